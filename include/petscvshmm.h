@@ -1,0 +1,93 @@
+/*
+   petscvshmm.h - public interface of petsc-vshmm, the TSVSHMM time stepper for PETSc.
+
+   TSVSHMM is the Variable Step Size Heterogeneous Multiscale Method of Lee and Engquist
+   ("Fast integrators for dynamical systems with several temporal scales") for
+
+       dx/dt = f_0(x) + f_1(x)/eps_1 + ... + f_K(x)/eps_K,   eps_K < ... < eps_1 << 1,
+
+   where each scale f_k/eps_k is one TSRHSSplit of the TS (slowest first).
+*/
+#ifndef PETSCVSHMM_H
+#define PETSCVSHMM_H
+
+#include <petscts.h>
+
+/*J
+   TSVSHMM - the type name of the variable step size heterogeneous multiscale stepper, "vshmm"
+
+   Level: beginner
+
+.seealso: `TSSetType()`, `TSVSHMMInitializePackage()`
+J*/
+#define TSVSHMM "vshmm"
+
+/*E
+   TSVSHMMKernelType - the kernel K(s) on [0,1] that shapes the variable mesoscopic steps
+
+$  TSVSHMM_KERNEL_COSINE      - K(s) = 1 + cos(2 pi (s - 1/2)), order q = 1 (the paper's kernel, the default)
+$  TSVSHMM_KERNEL_CONSTANT    - K(s) = 1: constant mesoscopic steps (the paper's comparison)
+$  TSVSHMM_KERNEL_POLYNOMIAL  - K(s) = s^(q+1) (1-s)^(q+1) / B(q+2,q+2), any order q
+$  TSVSHMM_KERNEL_EXPONENTIAL - K(s) = exp(-1/(s(1-s))) / Z, infinitely smooth
+
+   Options Database Key:
+.  -ts_vshmm_kernel <cosine,constant,polynomial,exponential> - choose the kernel
+
+   Level: intermediate
+
+.seealso: `TSVSHMMSetKernel()`, `TSVSHMMSetKernelOrder()`
+E*/
+typedef enum {
+  TSVSHMM_KERNEL_COSINE,
+  TSVSHMM_KERNEL_CONSTANT,
+  TSVSHMM_KERNEL_POLYNOMIAL,
+  TSVSHMM_KERNEL_EXPONENTIAL
+} TSVSHMMKernelType;
+PETSC_EXTERN const char *const TSVSHMMKernelTypes[];
+
+/*S
+   TSVSHMMStatistics - the work a TSVSHMM has done since its set-up (or the last
+   TSVSHMMResetStatistics())
+
+   Fields:
++  macro_steps      - macro steps taken (sampling intervals DeltaT)
+.  micro_cycles     - micro cycles: one micro step of the full field plus one mesoscopic step per slower level
+.  nsplits          - number of scales (RHS splits)
+.  rhs_evaluations  - calls of each split's right-hand-side function, in scale order (slowest first)
+.  level_steps      - Runge-Kutta steps taken on each level (level l integrates the splits 0..l)
+-  level_evaluations - evaluations of each level's field G_l = f_0 + ... + f_l (one per RK stage)
+
+   Level: intermediate
+
+.seealso: `TSVSHMMGetStatistics()`, `TSVSHMMResetStatistics()`
+S*/
+typedef struct {
+  PetscInt64        macro_steps;
+  PetscInt64        micro_cycles;
+  PetscInt          nsplits;
+  const PetscInt64 *rhs_evaluations;
+  const PetscInt64 *level_steps;
+  const PetscInt64 *level_evaluations;
+} TSVSHMMStatistics;
+
+PETSC_EXTERN PetscErrorCode TSVSHMMInitializePackage(void);
+PETSC_EXTERN PetscErrorCode TSVSHMMFinalizePackage(void);
+
+PETSC_EXTERN PetscErrorCode TSVSHMMSetMicroStep(TS, PetscReal);
+PETSC_EXTERN PetscErrorCode TSVSHMMGetMicroStep(TS, PetscReal *);
+PETSC_EXTERN PetscErrorCode TSVSHMMSetSavingsFactors(TS, PetscInt, const PetscReal[]);
+PETSC_EXTERN PetscErrorCode TSVSHMMGetSavingsFactors(TS, PetscInt *, const PetscReal *[]);
+PETSC_EXTERN PetscErrorCode TSVSHMMSetSubintervals(TS, PetscInt, const PetscInt[]);
+PETSC_EXTERN PetscErrorCode TSVSHMMGetSubintervals(TS, PetscInt *, const PetscInt *[]);
+PETSC_EXTERN PetscErrorCode TSVSHMMSetKernel(TS, TSVSHMMKernelType);
+PETSC_EXTERN PetscErrorCode TSVSHMMGetKernel(TS, TSVSHMMKernelType *);
+PETSC_EXTERN PetscErrorCode TSVSHMMSetKernelOrder(TS, PetscInt);
+PETSC_EXTERN PetscErrorCode TSVSHMMGetKernelOrder(TS, PetscInt *);
+PETSC_EXTERN PetscErrorCode TSVSHMMSetRKType(TS, TSRKType);
+PETSC_EXTERN PetscErrorCode TSVSHMMGetRKType(TS, TSRKType *);
+PETSC_EXTERN PetscErrorCode TSVSHMMSetSplitOrder(TS, PetscInt, const char *const[]);
+PETSC_EXTERN PetscErrorCode TSVSHMMGetSplitOrder(TS, PetscInt *, const char *const *[]);
+PETSC_EXTERN PetscErrorCode TSVSHMMGetStatistics(TS, TSVSHMMStatistics *);
+PETSC_EXTERN PetscErrorCode TSVSHMMResetStatistics(TS);
+
+#endif

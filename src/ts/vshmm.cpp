@@ -1,0 +1,823 @@
+/*
+  TSVSHMM: the variable step size heterogeneous multiscale method for several time scales.
+
+  The PETSc glue: set-up from the TS's RHS splits, one macro step per TSStep, options, view.
+  The numerical core (kernel, step schedule, Runge-Kutta stepping) lives in src/core.
+*/
+#include "vshmmimpl.hpp"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+#include <stdexcept>
+
+static constexpr PetscInt kMaxListOption = 256; /* longest list an option may hold */
+
+const char *const TSVSHMMKernelTypes[] = {"cosine", "constant", "polynomial", "exponential", "TSVSHMMKernelType", "TSVSHMM_KERNEL_", nullptr};
+
+static vshmm::KernelType CoreKernelType(TSVSHMMKernelType type)
+{
+  switch (type) {
+  case TSVSHMM_KERNEL_CONSTANT:
+    return vshmm::KernelType::Constant;
+  case TSVSHMM_KERNEL_POLYNOMIAL:
+    return vshmm::KernelType::Polynomial;
+  case TSVSHMM_KERNEL_EXPONENTIAL:
+    return vshmm::KernelType::Exponential;
+  default:
+    return vshmm::KernelType::Cosine;
+  }
+}
+
+/* ------------------------------------------------------------------------------------------ */
+/* Evaluation of a level's field G_l = f_0 + ... + f_l                                          */
+
+/* Remembers the first non-finite split output of this rank in the current macro step. */
+static inline void NoteNonFinite(TS_VSHMM *vs, PetscInt k, PetscReal t)
+{
+  if (vs->nonfinite_split < 0) {
+    vs->nonfinite_split = k;
+    vs->nonfinite_time  = t;
+  }
+}
+
+static inline bool AllFinite(const PetscScalar *f, PetscInt n)
+{
+  bool ok = true;
+  for (PetscInt i = 0; i < n; ++i) ok &= (bool)std::isfinite(PetscRealPart(f[i]));
+  return ok;
+}
+
+/* G += F for one scale, checking F for Inf/NaN locally (no reduction) while no fault is known. */
+static PetscErrorCode AddScale(TS_VSHMM *vs, PetscInt k, PetscReal t, Vec F, Vec G)
+{
+  VSHMMScale        &sc = vs->scales[k];
+  const PetscScalar *f;
+  PetscInt           n;
+
+  PetscFunctionBegin;
+  PetscCall(VecGetLocalSize(F, &n));
+  if (sc.local) {
+    PetscScalar *g;
+    bool         ok = true;
+
+    PetscCall(VecGetArrayRead(F, &f));
+    PetscCall(VecGetArray(G, &g));
+    g += sc.offset;
+    for (PetscInt i = 0; i < n; ++i) {
+      g[i] += f[i];
+      ok &= (bool)std::isfinite(PetscRealPart(f[i]));
+    }
+    PetscCall(VecRestoreArray(G, &g));
+    PetscCall(VecRestoreArrayRead(F, &f));
+    if (!ok) NoteNonFinite(vs, k, t);
+  } else {
+    if (vs->nonfinite_split < 0) {
+      PetscCall(VecGetArrayRead(F, &f));
+      if (!AllFinite(f, n)) NoteNonFinite(vs, k, t);
+      PetscCall(VecRestoreArrayRead(F, &f));
+    }
+    PetscCall(VecScatterBegin(sc.scatter, F, G, ADD_VALUES, SCATTER_FORWARD));
+    PetscCall(VecScatterEnd(sc.scatter, F, G, ADD_VALUES, SCATTER_FORWARD));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* G = f_0(t,Y) + ... + f_level(t,Y): each split function called with the full state. */
+static PetscErrorCode EvaluateLevel(TS_VSHMM *vs, PetscInt level, PetscReal t, Vec Y, Vec G)
+{
+  PetscFunctionBegin;
+  vs->level_evaluations[level]++;
+  for (PetscInt k = 0; k <= level; ++k) {
+    VSHMMScale &sc = vs->scales[k];
+
+    if (k == 0 && sc.additive) { /* the slowest additive split writes G itself */
+      PetscCall(TSComputeRHSFunction(sc.subts, t, Y, G));
+      vs->rhs_evaluations[k]++;
+      if (vs->nonfinite_split < 0) {
+        const PetscScalar *g;
+        PetscInt           n;
+
+        PetscCall(VecGetLocalSize(G, &n));
+        PetscCall(VecGetArrayRead(G, &g));
+        if (!AllFinite(g, n)) NoteNonFinite(vs, k, t);
+        PetscCall(VecRestoreArrayRead(G, &g));
+      }
+      continue;
+    }
+    if (k == 0) PetscCall(VecZeroEntries(G));
+    PetscCall(TSComputeRHSFunction(sc.subts, t, Y, sc.F));
+    vs->rhs_evaluations[k]++;
+    PetscCall(AddScale(vs, k, t, sc.F, G));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The vector operations of one explicit Runge-Kutta step of one level, on PETSc Vecs. */
+struct LevelStepOps {
+  TS_VSHMM *vs;
+  Vec       X;
+  PetscInt  level;
+
+  int stage(int i, double ti, const double *w)
+  {
+    Vec Yi = X;
+    if (i > 0) {
+      PetscCall(VecCopy(X, vs->Y));
+      PetscCall(VecMAXPY(vs->Y, i, w, vs->K.data()));
+      Yi = vs->Y;
+    }
+    return EvaluateLevel(vs, level, ti, Yi, vs->K[i]);
+  }
+  int update(int s, const double *w) { return VecMAXPY(X, s, w, vs->K.data()); }
+};
+
+/* ------------------------------------------------------------------------------------------ */
+/* Set-up                                                                                       */
+
+static PetscErrorCode TSVSHMMTearDown_Private(TS ts)
+{
+  TS_VSHMM *vs = (TS_VSHMM *)ts->data;
+
+  PetscFunctionBegin;
+  for (VSHMMScale &sc : vs->scales) {
+    PetscCall(VecDestroy(&sc.F));
+    PetscCall(VecScatterDestroy(&sc.scatter));
+  }
+  vs->scales.clear();
+  PetscCall(VecDestroy(&vs->Y));
+  PetscCall(VecDestroy(&vs->X0));
+  for (Vec &k : vs->K) PetscCall(VecDestroy(&k));
+  vs->K.clear();
+  vs->tableau.reset();
+  vs->kernel.reset();
+  PetscFunctionReturn(0);
+}
+
+/* The TS's splits in creation order, as "a, b, c" for messages. */
+static std::string SplitNames(TS ts)
+{
+  std::string s;
+  for (TS_RHSSplitLink l = ts->tsrhssplit; l; l = l->next) s += std::string(s.empty() ? "" : ", ") + l->splitname;
+  return s.empty() ? std::string("none") : s;
+}
+
+/* The splits in scale order (slowest first): the creation order or -ts_vshmm_splits. */
+static PetscErrorCode OrderSplits(TS ts, std::vector<TS_RHSSplitLink> &links)
+{
+  TS_VSHMM *vs   = (TS_VSHMM *)ts->data;
+  MPI_Comm  comm = PetscObjectComm((PetscObject)ts);
+
+  PetscFunctionBegin;
+  links.clear();
+  PetscCheck(ts->num_rhs_splits >= 2, comm, PETSC_ERR_ARG_WRONGSTATE,
+             "TSVSHMM needs at least two RHS splits, one per time scale, but the TS has %" PetscInt_FMT ": declare each scale with TSRHSSplitSetIS() and TSRHSSplitSetRHSFunction()", ts->num_rhs_splits);
+  if (vs->split_order.empty()) {
+    for (TS_RHSSplitLink l = ts->tsrhssplit; l; l = l->next) links.push_back(l);
+  } else {
+    PetscCheck((PetscInt)vs->split_order.size() == ts->num_rhs_splits, comm, PETSC_ERR_ARG_SIZ,
+               "-ts_vshmm_splits (TSVSHMMSetSplitOrder()) names %d splits but the TS has %" PetscInt_FMT " (%s): list every split once, slowest scale first", (int)vs->split_order.size(), ts->num_rhs_splits, SplitNames(ts).c_str());
+    for (const std::string &name : vs->split_order) {
+      TS_RHSSplitLink found = nullptr;
+      for (TS_RHSSplitLink l = ts->tsrhssplit; l; l = l->next)
+        if (name == l->splitname) found = l;
+      PetscCheck(found, comm, PETSC_ERR_ARG_WRONG, "Unknown split '%s' in -ts_vshmm_splits (TSVSHMMSetSplitOrder()): the TS's splits are %s", name.c_str(), SplitNames(ts).c_str());
+      for (TS_RHSSplitLink l : links) PetscCheck(l != found, comm, PETSC_ERR_ARG_WRONG, "Split '%s' appears twice in -ts_vshmm_splits (TSVSHMMSetSplitOrder()): list every split once", name.c_str());
+      links.push_back(found);
+    }
+  }
+  for (TS_RHSSplitLink l : links) {
+    TSRHSFunction f;
+
+    PetscCall(TSGetRHSFunction(l->ts, nullptr, &f, nullptr));
+    PetscCheck(f, comm, PETSC_ERR_ARG_WRONGSTATE, "Split '%s' has no right-hand-side function: call TSRHSSplitSetRHSFunction()", l->splitname);
+  }
+  PetscFunctionReturn(0);
+}
+
+/* How a split's output is added into a full vector: in place (its IS is a contiguous run of
+   locally owned components on every rank) or by a scatter. */
+static PetscErrorCode SetUpScale(TS ts, TS_RHSSplitLink link, VSHMMScale &sc)
+{
+  Vec             X    = ts->vec_sol;
+  MPI_Comm        comm = PetscObjectComm((PetscObject)X);
+  const PetscInt *idx;
+  PetscInt        nis, rstart, rend;
+  VecType         vtype;
+  int             flags[2];
+
+  PetscFunctionBegin;
+  sc.name  = link->splitname;
+  sc.subts = link->ts;
+  sc.is    = link->is;
+  PetscCall(ISGetLocalSize(sc.is, &nis));
+  PetscCall(VecGetOwnershipRange(X, &rstart, &rend));
+  PetscCall(ISGetIndices(sc.is, &idx));
+  bool contiguous = true;
+  for (PetscInt i = 1; i < nis && contiguous; ++i) contiguous = idx[i] == idx[0] + i;
+  bool owned = nis == 0 || (idx[0] >= rstart && idx[0] + nis <= rend);
+  sc.offset  = nis ? idx[0] - rstart : 0;
+  PetscCall(ISRestoreIndices(sc.is, &idx));
+  flags[0] = contiguous && owned;
+  flags[1] = flags[0] && nis == rend - rstart;
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, flags, 2, MPI_INT, MPI_LAND, comm));
+  sc.local    = flags[0] ? PETSC_TRUE : PETSC_FALSE;
+  sc.additive = flags[1] ? PETSC_TRUE : PETSC_FALSE;
+
+  PetscCall(VecCreate(comm, &sc.F));
+  PetscCall(VecSetSizes(sc.F, nis, PETSC_DETERMINE));
+  PetscCall(VecGetType(X, &vtype));
+  PetscCall(VecSetType(sc.F, vtype));
+  if (!sc.local) PetscCall(VecScatterCreate(sc.F, nullptr, X, sc.is, &sc.scatter));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ParameterError(MPI_Comm comm, const char *what)
+{
+  SETERRQ(comm, PETSC_ERR_ARG_OUTOFRANGE, "TSVSHMM: %s", what);
+}
+
+/* The inner Runge-Kutta tableau, taken from PETSc's TSRK registry. */
+static PetscErrorCode GetRKTableau(MPI_Comm comm, const std::string &type, std::unique_ptr<vshmm::Tableau> &tab)
+{
+  TS               rk;
+  PetscInt         s, p;
+  const PetscReal *A, *b, *c;
+  PetscErrorCode   ierr;
+
+  PetscFunctionBegin;
+  PetscCall(TSCreate(PETSC_COMM_SELF, &rk));
+  PetscCall(TSSetType(rk, TSRK));
+  PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, nullptr));
+  ierr = TSRKSetType(rk, type.c_str());
+  PetscCall(PetscPopErrorHandler());
+  if (ierr) {
+    PetscCall(TSDestroy(&rk));
+    SETERRQ(comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "Unknown inner Runge-Kutta type '%s' in -ts_vshmm_rk_type (TSVSHMMSetRKType()): use a TSRK type, one of 1fe, 2a, 2b, 3, 3bs, 4, 5f, 5dp, 5bs, 6vr, 7vr, 8vr, or one registered with TSRKRegister()", type.c_str());
+  }
+  PetscCall(TSRKGetTableau(rk, &s, &A, &b, &c, nullptr, nullptr, nullptr, nullptr));
+  PetscCall(TSRKGetOrder(rk, &p));
+  try {
+    tab = std::make_unique<vshmm::Tableau>(type, (int)p, (int)s, std::vector<double>(A, A + s * s), std::vector<double>(b, b + s), std::vector<double>(c, c + s));
+  } catch (const std::exception &e) {
+    PetscCall(TSDestroy(&rk));
+    SETERRQ(comm, PETSC_ERR_ARG_WRONG, "-ts_vshmm_rk_type %s: %s", type.c_str(), e.what());
+  }
+  PetscCall(TSDestroy(&rk));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode TSSetUp_VSHMM(TS ts)
+{
+  TS_VSHMM                    *vs   = (TS_VSHMM *)ts->data;
+  MPI_Comm                     comm = PetscObjectComm((PetscObject)ts);
+  std::vector<TS_RHSSplitLink> links;
+
+  PetscFunctionBegin;
+  PetscCall(TSVSHMMTearDown_Private(ts));
+  PetscCall(OrderSplits(ts, links));
+  const PetscInt nscales = (PetscInt)links.size(), K = nscales - 1;
+
+  /* Method parameters */
+  if (vs->savings.empty()) vs->savings_used.assign(K, 1.0);
+  else {
+    PetscCheck((PetscInt)vs->savings.size() == K, comm, PETSC_ERR_ARG_SIZ,
+               "-ts_vshmm_savings_factors (TSVSHMMSetSavingsFactors()) has %d values but the TS has %" PetscInt_FMT " splits, so it needs %" PetscInt_FMT ": one savings factor alpha_j per scale except the fastest, slowest first", (int)vs->savings.size(), nscales, K);
+    vs->savings_used = vs->savings;
+  }
+  if (vs->subintervals.empty()) vs->subintervals_used.assign(K, 1);
+  else {
+    PetscCheck((PetscInt)vs->subintervals.size() == K, comm, PETSC_ERR_ARG_SIZ,
+               "-ts_vshmm_subintervals (TSVSHMMSetSubintervals()) has %d values but the TS has %" PetscInt_FMT " splits, so it needs %" PetscInt_FMT ": one subinterval count m_j >= 1 per scale except the fastest, slowest first", (int)vs->subintervals.size(), nscales, K);
+    vs->subintervals_used = vs->subintervals;
+  }
+  PetscCheck(std::isfinite(ts->time_step) && ts->time_step > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "TSVSHMM: the TS time step (the sampling interval DeltaT) is %g: set a positive one with TSSetTimeStep() or -ts_dt", (double)ts->time_step);
+  PetscCheck(vs->micro_dt == 0.0 || vs->micro_dt < ts->time_step, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-ts_vshmm_micro_dt (TSVSHMMSetMicroStep()) is %g, not smaller than the sampling interval DeltaT = %g (the TS time step, -ts_dt): the micro step must be a small fraction of DeltaT", (double)vs->micro_dt, (double)ts->time_step);
+
+  /* Kernel */
+  if (vs->kernel_order != PETSC_DEFAULT && vs->kernel_type != TSVSHMM_KERNEL_POLYNOMIAL) {
+    std::unique_ptr<vshmm::Kernel> probe = vshmm::Kernel::create(CoreKernelType(vs->kernel_type));
+    PetscCheck(probe->order() == vs->kernel_order, comm, PETSC_ERR_ARG_INCOMP,
+               "-ts_vshmm_kernel_order %" PetscInt_FMT " does not apply to the %s kernel, whose order is fixed; only the polynomial kernel takes an order (0..%d)", vs->kernel_order, TSVSHMMKernelTypes[vs->kernel_type], vshmm::Kernel::kMaxPolynomialOrder);
+  }
+  try {
+    vs->kernel = vshmm::Kernel::create(CoreKernelType(vs->kernel_type), vs->kernel_order == PETSC_DEFAULT ? 1 : (int)vs->kernel_order);
+  } catch (const std::exception &e) {
+    PetscCall(ParameterError(comm, e.what()));
+  }
+  PetscCall(GetRKTableau(comm, vs->rk_type, vs->tableau));
+
+  /* Work vectors and scales */
+  PetscCheck(ts->vec_sol, comm, PETSC_ERR_ARG_WRONGSTATE, "TSVSHMM: call TSSetSolution() before TSSetUp()");
+  PetscCall(VecDuplicate(ts->vec_sol, &vs->Y));
+  PetscCall(VecDuplicate(ts->vec_sol, &vs->X0));
+  vs->K.assign(vs->tableau->stages, nullptr);
+  for (Vec &k : vs->K) PetscCall(VecDuplicate(ts->vec_sol, &k));
+  vs->scales.resize(nscales);
+  for (PetscInt k = 0; k < nscales; ++k) PetscCall(SetUpScale(ts, links[k], vs->scales[k]));
+
+  vs->level_events.resize(nscales);
+  for (PetscInt l = 0; l < nscales; ++l) PetscCall(TSVSHMMGetLevelEvent_Private(l, &vs->level_events[l]));
+  PetscCall(TSVSHMMResetStatistics(ts));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode TSReset_VSHMM(TS ts)
+{
+  PetscFunctionBegin;
+  PetscCall(TSVSHMMTearDown_Private(ts));
+  PetscFunctionReturn(0);
+}
+
+/* A parameter changed after set-up: the next TSSetUp() (TSSolve() calls it) sets up again. */
+static PetscErrorCode TSVSHMMInvalidateSetUp_Private(TS ts)
+{
+  PetscFunctionBegin;
+  if (ts->setupcalled) {
+    PetscCall(TSVSHMMTearDown_Private(ts));
+    ts->setupcalled = PETSC_FALSE;
+  }
+  PetscFunctionReturn(0);
+}
+
+/* ------------------------------------------------------------------------------------------ */
+/* One macro step                                                                               */
+
+static PetscErrorCode TSStep_VSHMM(TS ts)
+{
+  TS_VSHMM *vs   = (TS_VSHMM *)ts->data;
+  MPI_Comm  comm = PetscObjectComm((PetscObject)ts);
+  PetscReal t0 = ts->ptime, DeltaT = ts->time_step;
+  PetscBool last = PETSC_FALSE;
+
+  PetscFunctionBegin;
+  if ((PetscInt)vs->scales.size() != ts->num_rhs_splits) { /* splits added after set-up */
+    PetscCall(PetscInfo(ts, "The TS has %" PetscInt_FMT " RHS splits, %d at set-up: setting up again\n", ts->num_rhs_splits, (int)vs->scales.size()));
+    PetscCall(TSSetUp_VSHMM(ts));
+  }
+  PetscCheck(std::isfinite(DeltaT) && DeltaT > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "TSVSHMM: the TS time step (the sampling interval DeltaT) is %g: it must be positive", (double)DeltaT);
+  if (ts->exact_final_time == TS_EXACTFINALTIME_MATCHSTEP && ts->max_time - (t0 + DeltaT) < 1e-10 * DeltaT) { /* the last macro step ends on the final time */
+    DeltaT = ts->max_time - t0;
+    last   = PETSC_TRUE;
+  }
+  const PetscReal dt = vs->micro_dt > 0 ? vs->micro_dt : ts->time_step / kDefaultMicroStepsPerMacroStep;
+
+  std::unique_ptr<vshmm::MesoscopicSchedule> schedule;
+  try {
+    schedule = std::make_unique<vshmm::MesoscopicSchedule>(*vs->kernel, dt, std::vector<double>(vs->savings_used.begin(), vs->savings_used.end()), std::vector<int>(vs->subintervals_used.begin(), vs->subintervals_used.end()));
+  } catch (const std::exception &e) {
+    PetscCall(ParameterError(comm, e.what()));
+  }
+
+  PetscCall(VecCopy(ts->vec_sol, vs->X0));
+  vs->nonfinite_split = -1;
+  vs->nonfinite_time  = PETSC_MAX_REAL;
+  LevelStepOps          ops{vs, ts->vec_sol, 0};
+  vshmm::MacroStepCounts counts;
+  int                   err = vshmm::runMacroStep(
+    *schedule, DeltaT,
+    [&](int level, double tau, double h) -> int {
+      ops.level = level;
+      PetscCall(PetscLogEventBegin(vs->level_events[level], ts, 0, 0, 0));
+      PetscCall(vshmm::explicitRungeKuttaStep(*vs->tableau, ops, t0 + tau, h));
+      PetscCall(PetscLogEventEnd(vs->level_events[level], ts, 0, 0, 0));
+      return 0;
+    },
+    &counts);
+  PetscCall(err);
+  vs->macro_steps++;
+  vs->micro_cycles += counts.cycles;
+  for (size_t l = 0; l < counts.levelSteps.size(); ++l) vs->level_steps[l] += counts.levelSteps[l];
+
+  /* One reduction per macro step: the earliest Inf/NaN of any split on any rank. */
+  struct {
+    double t;
+    int    split;
+  } fault = {(double)vs->nonfinite_time, (int)vs->nonfinite_split};
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &fault, 1, MPI_DOUBLE_INT, MPI_MINLOC, comm));
+  if (fault.split >= 0) {
+    const char *name = vs->scales[fault.split].name.c_str();
+
+    PetscCall(VecCopy(vs->X0, ts->vec_sol)); /* keep the last good sampled state */
+    ts->reason = TS_DIVERGED_STEP_REJECTED;
+    PetscCheck(!ts->errorifstepfailed, comm, PETSC_ERR_FP,
+               "TSVSHMM: split '%s' (scale %d) produced Inf or NaN at t = %.17g in the macro step from t = %g to %g; the solution was left at t = %g (use -ts_error_if_step_fails false to stop with TS_DIVERGED_STEP_REJECTED instead)", name, fault.split, fault.t, (double)t0, (double)(t0 + DeltaT), (double)t0);
+    PetscCall(PetscInfo(ts, "Split '%s' (scale %d) produced Inf or NaN at t = %.17g; stopping with TS_DIVERGED_STEP_REJECTED at t = %g\n", name, fault.split, fault.t, (double)t0));
+    PetscCall(PetscFPrintf(comm, PETSC_STDERR, "TSVSHMM: split '%s' (scale %d) produced Inf or NaN at t = %.17g; the solve stops with TS_DIVERGED_STEP_REJECTED at t = %g\n", name, fault.split, fault.t, (double)t0));
+    PetscFunctionReturn(0);
+  }
+  ts->ptime = last ? ts->max_time : t0 + DeltaT;
+  PetscFunctionReturn(0);
+}
+
+/* Sampled states are the method's output: between two of them, interpolate linearly. */
+static PetscErrorCode TSInterpolate_VSHMM(TS ts, PetscReal t, Vec X)
+{
+  TS_VSHMM *vs = (TS_VSHMM *)ts->data;
+  PetscReal t0 = ts->ptime_prev, t1 = ts->ptime;
+  PetscReal theta = t1 > t0 ? (t - t0) / (t1 - t0) : 1.0;
+
+  PetscFunctionBegin;
+  if (X == ts->vec_sol) PetscCall(VecAXPBY(X, 1.0 - theta, theta, vs->X0));
+  else PetscCall(VecAXPBYPCZ(X, 1.0 - theta, theta, 0.0, vs->X0, ts->vec_sol));
+  PetscFunctionReturn(0);
+}
+
+/* ------------------------------------------------------------------------------------------ */
+/* Options and view                                                                             */
+
+static PetscErrorCode ParseReal(MPI_Comm comm, const char *option, const char *text, PetscReal *value)
+{
+  char *end = nullptr;
+
+  PetscFunctionBegin;
+  errno    = 0;
+  double v = std::strtod(text, &end);
+  PetscCheck(text[0] && end != text && *end == '\0' && errno != ERANGE, comm, PETSC_ERR_ARG_WRONG, "%s: '%s' is not a real number", option, text);
+  *value = (PetscReal)v;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ParseInt(MPI_Comm comm, const char *option, const char *text, PetscInt *value)
+{
+  char *end = nullptr;
+
+  PetscFunctionBegin;
+  errno  = 0;
+  long v = std::strtol(text, &end, 10);
+  PetscCheck(text[0] && end != text && *end == '\0' && errno != ERANGE && v >= PETSC_MIN_INT && v <= PETSC_MAX_INT, comm, PETSC_ERR_ARG_WRONG, "%s: '%s' is not an integer", option, text);
+  *value = (PetscInt)v;
+  PetscFunctionReturn(0);
+}
+
+/* Reads a comma-separated option as strings; an option given with no value is an error. */
+static PetscErrorCode ReadList(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, const char *option, const char *text, const char *man, std::vector<std::string> &items, PetscBool *set)
+{
+  char    *values[kMaxListOption];
+  PetscInt n = kMaxListOption;
+
+  PetscFunctionBegin;
+  PetscCall(PetscOptionsStringArray(option, text, man, values, &n, set));
+  if (!*set) { /* given with no value? */
+    PetscBool given;
+    PetscCall(PetscOptionsHasName(PetscOptionsObject->options, PetscOptionsObject->prefix, option, &given));
+    PetscCheck(!given, comm, PETSC_ERR_ARG_WRONG, "%s needs a comma-separated list of values", option);
+  }
+  items.clear();
+  for (PetscInt i = 0; i < n; ++i) {
+    items.emplace_back(values[i] ? values[i] : "");
+    PetscCall(PetscFree(values[i]));
+  }
+  if (*set) {
+    PetscCheck(n > 0, comm, PETSC_ERR_ARG_WRONG, "%s needs a comma-separated list of values", option);
+    PetscCheck(n < kMaxListOption, comm, PETSC_ERR_ARG_SIZ, "%s has more than %d values", option, (int)kMaxListOption - 1);
+  }
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode TSSetFromOptions_VSHMM(TS ts, PetscOptionItems *PetscOptionsObject)
+{
+  TS_VSHMM                *vs   = (TS_VSHMM *)ts->data;
+  MPI_Comm                 comm = PetscObjectComm((PetscObject)ts);
+  char                     text[256];
+  PetscBool                set;
+  std::vector<std::string> items;
+
+  PetscFunctionBegin;
+  PetscOptionsHeadBegin(PetscOptionsObject, "VSHMM multiscale ODE solver options");
+  {
+    std::ostringstream dflt;
+    dflt << vs->micro_dt;
+    PetscCall(PetscOptionsString("-ts_vshmm_micro_dt", "Micro step dt of the full field (default: DeltaT/100)", "TSVSHMMSetMicroStep", dflt.str().c_str(), text, sizeof(text), &set));
+    if (set) {
+      PetscReal dt;
+      PetscCall(ParseReal(comm, "-ts_vshmm_micro_dt", text, &dt));
+      PetscCall(TSVSHMMSetMicroStep(ts, dt));
+    }
+
+    PetscCall(ReadList(PetscOptionsObject, comm, "-ts_vshmm_savings_factors", "Savings factors alpha_1,...,alpha_K, slowest level first", "TSVSHMMSetSavingsFactors", items, &set));
+    if (set) {
+      std::vector<PetscReal> a(items.size());
+      for (size_t i = 0; i < items.size(); ++i) PetscCall(ParseReal(comm, "-ts_vshmm_savings_factors", items[i].c_str(), &a[i]));
+      PetscCall(TSVSHMMSetSavingsFactors(ts, (PetscInt)a.size(), a.data()));
+    }
+
+    PetscCall(ReadList(PetscOptionsObject, comm, "-ts_vshmm_subintervals", "Subinterval counts m_1,...,m_K (periods of the kernel per DeltaT), slowest level first", "TSVSHMMSetSubintervals", items, &set));
+    if (set) {
+      std::vector<PetscInt> m(items.size());
+      for (size_t i = 0; i < items.size(); ++i) PetscCall(ParseInt(comm, "-ts_vshmm_subintervals", items[i].c_str(), &m[i]));
+      PetscCall(TSVSHMMSetSubintervals(ts, (PetscInt)m.size(), m.data()));
+    }
+
+    PetscCall(PetscOptionsString("-ts_vshmm_kernel", "Kernel of the mesoscopic steps: cosine, constant, polynomial, exponential", "TSVSHMMSetKernel", TSVSHMMKernelTypes[vs->kernel_type], text, sizeof(text), &set));
+    if (set) {
+      PetscInt found = -1;
+      for (PetscInt i = 0; i < 4; ++i)
+        if (!strcmp(text, TSVSHMMKernelTypes[i])) found = i;
+      PetscCheck(found >= 0, comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "Unknown -ts_vshmm_kernel '%s': use cosine, constant, polynomial or exponential", text);
+      PetscCall(TSVSHMMSetKernel(ts, (TSVSHMMKernelType)found));
+    }
+
+    PetscCall(PetscOptionsString("-ts_vshmm_kernel_order", "Order q of the polynomial kernel (derivatives 0..q vanish at the ends)", "TSVSHMMSetKernelOrder", "1", text, sizeof(text), &set));
+    if (set) {
+      PetscInt q;
+      PetscCall(ParseInt(comm, "-ts_vshmm_kernel_order", text, &q));
+      PetscCall(TSVSHMMSetKernelOrder(ts, q));
+    }
+
+    PetscCall(PetscOptionsString("-ts_vshmm_rk_type", "TSRK type of the inner steps", "TSVSHMMSetRKType", vs->rk_type.c_str(), text, sizeof(text), &set));
+    if (set) PetscCall(TSVSHMMSetRKType(ts, text));
+
+    PetscCall(ReadList(PetscOptionsObject, comm, "-ts_vshmm_splits", "RHS split names, slowest scale first", "TSVSHMMSetSplitOrder", items, &set));
+    if (set) {
+      std::vector<const char *> names;
+      for (const std::string &s : items) names.push_back(s.c_str());
+      PetscCall(TSVSHMMSetSplitOrder(ts, (PetscInt)names.size(), names.data()));
+    }
+  }
+  PetscOptionsHeadEnd();
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode TSView_VSHMM(TS ts, PetscViewer viewer)
+{
+  TS_VSHMM *vs = (TS_VSHMM *)ts->data;
+  PetscBool iascii;
+
+  PetscFunctionBegin;
+  PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &iascii));
+  if (!iascii) PetscFunctionReturn(0);
+  if (vs->scales.empty() || !vs->kernel || !vs->tableau) {
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  VSHMM: not set up yet; kernel %s, inner Runge-Kutta type %s\n", TSVSHMMKernelTypes[vs->kernel_type], vs->rk_type.c_str()));
+    PetscFunctionReturn(0);
+  }
+  const PetscInt nscales = (PetscInt)vs->scales.size();
+  const int      q       = vs->kernel->order();
+  if (q == vshmm::Kernel::kInfiniteOrder) PetscCall(PetscViewerASCIIPrintf(viewer, "  VSHMM: %" PetscInt_FMT " scales (RHS splits, slowest first), kernel %s (infinitely smooth)\n", nscales, vs->kernel->name().c_str()));
+  else PetscCall(PetscViewerASCIIPrintf(viewer, "  VSHMM: %" PetscInt_FMT " scales (RHS splits, slowest first), kernel %s (order q = %d)\n", nscales, vs->kernel->name().c_str(), q));
+  if (vs->micro_dt > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "  micro step dt = %g, sampling interval DeltaT = %g\n", (double)vs->micro_dt, (double)ts->time_step));
+  else PetscCall(PetscViewerASCIIPrintf(viewer, "  micro step dt = DeltaT/%d = %g (default), sampling interval DeltaT = %g\n", (int)kDefaultMicroStepsPerMacroStep, (double)(ts->time_step / kDefaultMicroStepsPerMacroStep), (double)ts->time_step));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  inner Runge-Kutta: TSRK %s (order %d, %d stages)\n", vs->tableau->name.c_str(), vs->tableau->order, vs->tableau->stages));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  scale  split                 step         savings factor  subintervals  RHS evaluations\n"));
+  for (PetscInt k = 0; k < nscales; ++k) {
+    const VSHMMScale &sc = vs->scales[k];
+    if (k < nscales - 1)
+      PetscCall(PetscViewerASCIIPrintf(viewer, "  %5" PetscInt_FMT "  %-20s  h_%-3" PetscInt_FMT "        %-14g  %-12" PetscInt_FMT "  %" PetscInt64_FMT "\n", k, sc.name.c_str(), k + 1, (double)vs->savings_used[k], vs->subintervals_used[k], vs->rhs_evaluations[k]));
+    else PetscCall(PetscViewerASCIIPrintf(viewer, "  %5" PetscInt_FMT "  %-20s  dt (micro)   %-14s  %-12s  %" PetscInt64_FMT "\n", k, sc.name.c_str(), "-", "-", vs->rhs_evaluations[k]));
+  }
+  PetscInt64 steps = 0, evals = 0;
+  for (PetscInt l = 0; l < nscales; ++l) {
+    steps += vs->level_steps[l];
+    evals += vs->rhs_evaluations[l];
+  }
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  work: %" PetscInt64_FMT " macro steps, %" PetscInt64_FMT " micro cycles, %" PetscInt64_FMT " Runge-Kutta steps, %" PetscInt64_FMT " split RHS evaluations\n", vs->macro_steps, vs->micro_cycles, steps, evals));
+  PetscFunctionReturn(0);
+}
+
+/* ------------------------------------------------------------------------------------------ */
+/* Type-specific setters and getters (composed on the TS)                                      */
+
+static PetscErrorCode TSVSHMMSetMicroStep_VSHMM(TS ts, PetscReal dt)
+{
+  PetscFunctionBegin;
+  ((TS_VSHMM *)ts->data)->micro_dt = dt;
+  PetscCall(TSVSHMMInvalidateSetUp_Private(ts));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode TSVSHMMGetMicroStep_VSHMM(TS ts, PetscReal *dt)
+{
+  TS_VSHMM *vs = (TS_VSHMM *)ts->data;
+
+  PetscFunctionBegin;
+  *dt = vs->micro_dt > 0 ? vs->micro_dt : ts->time_step / kDefaultMicroStepsPerMacroStep;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode TSVSHMMSetSavingsFactors_VSHMM(TS ts, PetscInt n, const PetscReal a[])
+{
+  PetscFunctionBegin;
+  ((TS_VSHMM *)ts->data)->savings.assign(a, a + n);
+  PetscCall(TSVSHMMInvalidateSetUp_Private(ts));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode TSVSHMMGetSavingsFactors_VSHMM(TS ts, PetscInt *n, const PetscReal *a[])
+{
+  TS_VSHMM                     *vs = (TS_VSHMM *)ts->data;
+  const std::vector<PetscReal> &v  = vs->savings.empty() ? vs->savings_used : vs->savings;
+
+  PetscFunctionBegin;
+  if (n) *n = (PetscInt)v.size();
+  if (a) *a = v.empty() ? nullptr : v.data();
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode TSVSHMMSetSubintervals_VSHMM(TS ts, PetscInt n, const PetscInt m[])
+{
+  PetscFunctionBegin;
+  ((TS_VSHMM *)ts->data)->subintervals.assign(m, m + n);
+  PetscCall(TSVSHMMInvalidateSetUp_Private(ts));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode TSVSHMMGetSubintervals_VSHMM(TS ts, PetscInt *n, const PetscInt *m[])
+{
+  TS_VSHMM                    *vs = (TS_VSHMM *)ts->data;
+  const std::vector<PetscInt> &v  = vs->subintervals.empty() ? vs->subintervals_used : vs->subintervals;
+
+  PetscFunctionBegin;
+  if (n) *n = (PetscInt)v.size();
+  if (m) *m = v.empty() ? nullptr : v.data();
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode TSVSHMMSetKernel_VSHMM(TS ts, TSVSHMMKernelType type)
+{
+  PetscFunctionBegin;
+  ((TS_VSHMM *)ts->data)->kernel_type = type;
+  PetscCall(TSVSHMMInvalidateSetUp_Private(ts));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode TSVSHMMGetKernel_VSHMM(TS ts, TSVSHMMKernelType *type)
+{
+  PetscFunctionBegin;
+  *type = ((TS_VSHMM *)ts->data)->kernel_type;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode TSVSHMMSetKernelOrder_VSHMM(TS ts, PetscInt q)
+{
+  PetscFunctionBegin;
+  ((TS_VSHMM *)ts->data)->kernel_order = q;
+  PetscCall(TSVSHMMInvalidateSetUp_Private(ts));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode TSVSHMMGetKernelOrder_VSHMM(TS ts, PetscInt *q)
+{
+  TS_VSHMM *vs = (TS_VSHMM *)ts->data;
+
+  PetscFunctionBegin;
+  if (vs->kernel_type == TSVSHMM_KERNEL_POLYNOMIAL) *q = vs->kernel_order == PETSC_DEFAULT ? 1 : vs->kernel_order;
+  else *q = vshmm::Kernel::create(CoreKernelType(vs->kernel_type))->order();
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode TSVSHMMSetRKType_VSHMM(TS ts, TSRKType type)
+{
+  PetscFunctionBegin;
+  ((TS_VSHMM *)ts->data)->rk_type = type;
+  PetscCall(TSVSHMMInvalidateSetUp_Private(ts));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode TSVSHMMGetRKType_VSHMM(TS ts, TSRKType *type)
+{
+  PetscFunctionBegin;
+  *type = ((TS_VSHMM *)ts->data)->rk_type.c_str();
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode TSVSHMMSetSplitOrder_VSHMM(TS ts, PetscInt n, const char *const names[])
+{
+  TS_VSHMM *vs = (TS_VSHMM *)ts->data;
+
+  PetscFunctionBegin;
+  vs->split_order.assign(names, names + n);
+  PetscCall(TSVSHMMInvalidateSetUp_Private(ts));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode TSVSHMMGetSplitOrder_VSHMM(TS ts, PetscInt *n, const char *const *names[])
+{
+  TS_VSHMM *vs = (TS_VSHMM *)ts->data;
+
+  PetscFunctionBegin;
+  vs->split_order_c.clear();
+  if (!vs->scales.empty())
+    for (const VSHMMScale &sc : vs->scales) vs->split_order_c.push_back(sc.name.c_str());
+  else if (!vs->split_order.empty())
+    for (const std::string &s : vs->split_order) vs->split_order_c.push_back(s.c_str());
+  else
+    for (TS_RHSSplitLink l = ts->tsrhssplit; l; l = l->next) vs->split_order_c.push_back(l->splitname);
+  if (n) *n = (PetscInt)vs->split_order_c.size();
+  if (names) *names = vs->split_order_c.empty() ? nullptr : vs->split_order_c.data();
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode TSVSHMMGetStatistics_VSHMM(TS ts, TSVSHMMStatistics *stats)
+{
+  TS_VSHMM *vs = (TS_VSHMM *)ts->data;
+
+  PetscFunctionBegin;
+  stats->macro_steps       = vs->macro_steps;
+  stats->micro_cycles      = vs->micro_cycles;
+  stats->nsplits           = (PetscInt)vs->rhs_evaluations.size();
+  stats->rhs_evaluations   = vs->rhs_evaluations.empty() ? nullptr : vs->rhs_evaluations.data();
+  stats->level_steps       = vs->level_steps.empty() ? nullptr : vs->level_steps.data();
+  stats->level_evaluations = vs->level_evaluations.empty() ? nullptr : vs->level_evaluations.data();
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode TSVSHMMResetStatistics_VSHMM(TS ts)
+{
+  TS_VSHMM *vs = (TS_VSHMM *)ts->data;
+  size_t    n  = vs->scales.size();
+
+  PetscFunctionBegin;
+  vs->macro_steps  = 0;
+  vs->micro_cycles = 0;
+  vs->rhs_evaluations.assign(n, 0);
+  vs->level_steps.assign(n, 0);
+  vs->level_evaluations.assign(n, 0);
+  PetscFunctionReturn(0);
+}
+
+#define VSHMM_METHODS(X) \
+  X(TSVSHMMSetMicroStep) \
+  X(TSVSHMMGetMicroStep) \
+  X(TSVSHMMSetSavingsFactors) \
+  X(TSVSHMMGetSavingsFactors) \
+  X(TSVSHMMSetSubintervals) \
+  X(TSVSHMMGetSubintervals) \
+  X(TSVSHMMSetKernel) \
+  X(TSVSHMMGetKernel) \
+  X(TSVSHMMSetKernelOrder) \
+  X(TSVSHMMGetKernelOrder) \
+  X(TSVSHMMSetRKType) \
+  X(TSVSHMMGetRKType) \
+  X(TSVSHMMSetSplitOrder) \
+  X(TSVSHMMGetSplitOrder) \
+  X(TSVSHMMGetStatistics) \
+  X(TSVSHMMResetStatistics)
+
+static PetscErrorCode TSDestroy_VSHMM(TS ts)
+{
+  PetscFunctionBegin;
+  PetscCall(TSReset_VSHMM(ts));
+#define VSHMM_UNCOMPOSE(name) PetscCall(PetscObjectComposeFunction((PetscObject)ts, #name "_C", nullptr));
+  VSHMM_METHODS(VSHMM_UNCOMPOSE)
+#undef VSHMM_UNCOMPOSE
+  delete (TS_VSHMM *)ts->data;
+  ts->data = nullptr;
+  PetscFunctionReturn(0);
+}
+
+/*MC
+   TSVSHMM - the Variable Step Size Heterogeneous Multiscale Method for ODEs and PDEs with several
+   time scales (Lee and Engquist)
+
+   The right-hand side is given as one RHS split per time scale (TSRHSSplitSetIS() and
+   TSRHSSplitSetRHSFunction()), slowest first:
+
+$    dx/dt = f_0(x) + f_1(x)/eps_1 + ... + f_K(x)/eps_K
+
+   Each split function returns its scale's term (with its 1/eps_k factor) for the split's
+   components: a split whose IS holds every component is an additive term of the field, a split
+   with a subset is a component split as in TSMPRK. Level l integrates G_l = f_0 + ... + f_l. One
+   TSStep is one macro step: the TS time step is the sampling interval DeltaT. A macro step repeats
+   micro cycles until it reaches t_n + DeltaT exactly: one step of the full field G_K with the micro
+   step dt, then one step of G_l for l = K-1, ..., 0 with the mesoscopic step
+
+$    h_j(t) = alpha_j dt K(Theta^{-1}(((t - t_n) mod P_j) / P_j)),   P_j = DeltaT / m_j,  j = l + 1,
+
+   where K is the kernel, Theta its antiderivative, alpha_j the savings factors and m_j the
+   subinterval counts. Every step is one step of an explicit Runge-Kutta method from the TSRK
+   registry. Only the sampled states (at multiples of DeltaT) are accurate for the slow variables.
+
+   Options Database Keys:
++  -ts_vshmm_micro_dt <dt> - micro step of the full field (default DeltaT/100)
+.  -ts_vshmm_savings_factors <a1,...,aK> - savings factors, slowest level first (default all 1)
+.  -ts_vshmm_subintervals <m1,...,mK> - kernel periods per sampling interval (default all 1)
+.  -ts_vshmm_kernel <cosine,constant,polynomial,exponential> - kernel (default cosine)
+.  -ts_vshmm_kernel_order <q> - order of the polynomial kernel (default 1)
+.  -ts_vshmm_rk_type <type> - TSRK type of every inner step (default 4)
+-  -ts_vshmm_splits <a,b,...> - the splits in scale order, slowest first (default creation order)
+
+   Level: intermediate
+
+.seealso: `TSCreate()`, `TS`, `TSSetType()`, `TSRHSSplitSetIS()`, `TSVSHMMSetSavingsFactors()`,
+          `TSVSHMMSetMicroStep()`, `TSVSHMMGetStatistics()`, `TSMPRK`
+M*/
+PETSC_INTERN PetscErrorCode TSCreate_VSHMM(TS ts)
+{
+  PetscFunctionBegin;
+  ts->ops->setup          = TSSetUp_VSHMM;
+  ts->ops->step           = TSStep_VSHMM;
+  ts->ops->interpolate    = TSInterpolate_VSHMM;
+  ts->ops->reset          = TSReset_VSHMM;
+  ts->ops->destroy        = TSDestroy_VSHMM;
+  ts->ops->setfromoptions = TSSetFromOptions_VSHMM;
+  ts->ops->view           = TSView_VSHMM;
+  ts->default_adapt_type  = TSADAPTNONE;
+  ts->usessnes            = PETSC_FALSE;
+  ts->data                = new TS_VSHMM();
+#define VSHMM_COMPOSE(name) PetscCall(PetscObjectComposeFunction((PetscObject)ts, #name "_C", name##_VSHMM));
+  VSHMM_METHODS(VSHMM_COMPOSE)
+#undef VSHMM_COMPOSE
+  PetscFunctionReturn(0);
+}

@@ -1,0 +1,450 @@
+/*
+  The public TSVSHMM interface: argument checks, then the type's composed implementation.
+  Setting a parameter on a TS of another type does nothing (PetscTryMethod), as for TSRK.
+*/
+#include "vshmmimpl.hpp"
+
+#include <cmath>
+
+/*@
+   TSVSHMMSetMicroStep - Sets the micro step dt with which the full field (all scales) is integrated
+
+   Logically Collective
+
+   Input Parameters:
++  ts - the `TS` of type `TSVSHMM`
+-  dt - the micro step, positive and smaller than the sampling interval (the TS time step)
+
+   Options Database Key:
+.  -ts_vshmm_micro_dt <dt> - the micro step
+
+   Notes:
+   dt must resolve the fastest scale: it is the step of an explicit Runge-Kutta method applied to
+   the whole right-hand side. By default dt is one hundredth of the sampling interval.
+
+   Level: beginner
+
+.seealso: `TSVSHMM`, `TSVSHMMGetMicroStep()`, `TSVSHMMSetSavingsFactors()`, `TSSetTimeStep()`
+@*/
+PetscErrorCode TSVSHMMSetMicroStep(TS ts, PetscReal dt)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  PetscValidLogicalCollectiveReal(ts, dt, 2);
+  PetscCheck(std::isfinite(dt) && dt > 0, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "Micro step %g is invalid: -ts_vshmm_micro_dt must be positive and finite", (double)dt);
+  PetscTryMethod(ts, "TSVSHMMSetMicroStep_C", (TS, PetscReal), (ts, dt));
+  PetscFunctionReturn(0);
+}
+
+/*@
+   TSVSHMMGetMicroStep - Gets the micro step dt of the full field
+
+   Not Collective
+
+   Input Parameter:
+.  ts - the `TS` of type `TSVSHMM`
+
+   Output Parameter:
+.  dt - the micro step (the default, one hundredth of the TS time step, if none was set)
+
+   Level: beginner
+
+.seealso: `TSVSHMM`, `TSVSHMMSetMicroStep()`
+@*/
+PetscErrorCode TSVSHMMGetMicroStep(TS ts, PetscReal *dt)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  PetscValidRealPointer(dt, 2);
+  PetscUseMethod(ts, "TSVSHMMGetMicroStep_C", (TS, PetscReal *), (ts, dt));
+  PetscFunctionReturn(0);
+}
+
+/*@
+   TSVSHMMSetSavingsFactors - Sets the savings factors alpha_1, ..., alpha_K of the mesoscopic steps
+
+   Logically Collective
+
+   Input Parameters:
++  ts - the `TS` of type `TSVSHMM`
+.  n - the number of factors: the number of RHS splits less one (checked at set-up)
+-  alpha - the factors, positive, slowest level first
+
+   Options Database Key:
+.  -ts_vshmm_savings_factors <a1,...,aK> - the savings factors
+
+   Notes:
+   Level l < K (the splits 0..l) takes mesoscopic steps h_{l+1} whose average over a kernel period
+   is about alpha_{l+1} dt, so alpha_1 belongs to the slowest field alone and alpha_K to the field
+   without the fastest scale. The paper's dissipative example uses alpha = (100, 10) with
+   dt = 1e-4. By default every factor is 1 (no savings).
+
+   Level: beginner
+
+.seealso: `TSVSHMM`, `TSVSHMMGetSavingsFactors()`, `TSVSHMMSetMicroStep()`, `TSVSHMMSetSubintervals()`
+@*/
+PetscErrorCode TSVSHMMSetSavingsFactors(TS ts, PetscInt n, const PetscReal alpha[])
+{
+  MPI_Comm comm;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  comm = PetscObjectComm((PetscObject)ts);
+  PetscCheck(n >= 1, comm, PETSC_ERR_ARG_SIZ, "-ts_vshmm_savings_factors needs at least one value (one per RHS split except the fastest), got %" PetscInt_FMT, n);
+  PetscValidRealPointer(alpha, 3);
+  for (PetscInt i = 0; i < n; ++i) PetscCheck(std::isfinite(alpha[i]) && alpha[i] > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Savings factor %" PetscInt_FMT " is %g: -ts_vshmm_savings_factors values must be positive and finite", i + 1, (double)alpha[i]);
+  PetscTryMethod(ts, "TSVSHMMSetSavingsFactors_C", (TS, PetscInt, const PetscReal[]), (ts, n, alpha));
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   TSVSHMMGetSavingsFactors - Gets the savings factors alpha_1, ..., alpha_K
+
+   Not Collective
+
+   Input Parameter:
+.  ts - the `TS` of type `TSVSHMM`
+
+   Output Parameters:
++  n - the number of factors (0 if none were set and the TS is not set up)
+-  alpha - the factors, slowest level first (owned by the TS; do not free)
+
+   Level: beginner
+
+.seealso: `TSVSHMM`, `TSVSHMMSetSavingsFactors()`
+@*/
+PetscErrorCode TSVSHMMGetSavingsFactors(TS ts, PetscInt *n, const PetscReal *alpha[])
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  PetscUseMethod(ts, "TSVSHMMGetSavingsFactors_C", (TS, PetscInt *, const PetscReal *[]), (ts, n, alpha));
+  PetscFunctionReturn(0);
+}
+
+/*@
+   TSVSHMMSetSubintervals - Sets the number of kernel periods m_j of each mesoscopic step per sampling interval
+
+   Logically Collective
+
+   Input Parameters:
++  ts - the `TS` of type `TSVSHMM`
+.  n - the number of counts: the number of RHS splits less one (checked at set-up)
+-  m - the counts, at least 1, slowest level first
+
+   Options Database Key:
+.  -ts_vshmm_subintervals <m1,...,mK> - the counts
+
+   Notes:
+   The mesoscopic step h_j follows the kernel over periods P_j = DeltaT / m_j. The paper uses
+   m_1 = 1. The default is 1 for every level.
+
+   Level: intermediate
+
+.seealso: `TSVSHMM`, `TSVSHMMGetSubintervals()`, `TSVSHMMSetSavingsFactors()`
+@*/
+PetscErrorCode TSVSHMMSetSubintervals(TS ts, PetscInt n, const PetscInt m[])
+{
+  MPI_Comm comm;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  comm = PetscObjectComm((PetscObject)ts);
+  PetscCheck(n >= 1, comm, PETSC_ERR_ARG_SIZ, "-ts_vshmm_subintervals needs at least one value (one per RHS split except the fastest), got %" PetscInt_FMT, n);
+  PetscValidIntPointer(m, 3);
+  for (PetscInt i = 0; i < n; ++i) PetscCheck(m[i] >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "Subinterval count %" PetscInt_FMT " is %" PetscInt_FMT ": -ts_vshmm_subintervals values must be integers >= 1", i + 1, m[i]);
+  PetscTryMethod(ts, "TSVSHMMSetSubintervals_C", (TS, PetscInt, const PetscInt[]), (ts, n, m));
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   TSVSHMMGetSubintervals - Gets the number of kernel periods m_j per sampling interval
+
+   Not Collective
+
+   Input Parameter:
+.  ts - the `TS` of type `TSVSHMM`
+
+   Output Parameters:
++  n - the number of counts (0 if none were set and the TS is not set up)
+-  m - the counts, slowest level first (owned by the TS; do not free)
+
+   Level: intermediate
+
+.seealso: `TSVSHMM`, `TSVSHMMSetSubintervals()`
+@*/
+PetscErrorCode TSVSHMMGetSubintervals(TS ts, PetscInt *n, const PetscInt *m[])
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  PetscUseMethod(ts, "TSVSHMMGetSubintervals_C", (TS, PetscInt *, const PetscInt *[]), (ts, n, m));
+  PetscFunctionReturn(0);
+}
+
+/*@
+   TSVSHMMSetKernel - Sets the kernel K(s) that shapes the variable mesoscopic steps
+
+   Logically Collective
+
+   Input Parameters:
++  ts - the `TS` of type `TSVSHMM`
+-  type - `TSVSHMM_KERNEL_COSINE` (default), `TSVSHMM_KERNEL_CONSTANT`, `TSVSHMM_KERNEL_POLYNOMIAL` or `TSVSHMM_KERNEL_EXPONENTIAL`
+
+   Options Database Key:
+.  -ts_vshmm_kernel <cosine,constant,polynomial,exponential> - the kernel
+
+   Notes:
+   Kernels that vanish at the ends of each period make the steps fine there, which resolves fast
+   transients; the constant kernel gives constant mesoscopic steps alpha_j dt.
+
+   Level: intermediate
+
+.seealso: `TSVSHMM`, `TSVSHMMKernelType`, `TSVSHMMGetKernel()`, `TSVSHMMSetKernelOrder()`
+@*/
+PetscErrorCode TSVSHMMSetKernel(TS ts, TSVSHMMKernelType type)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  PetscValidLogicalCollectiveEnum(ts, type, 2);
+  PetscCheck(type >= TSVSHMM_KERNEL_COSINE && type <= TSVSHMM_KERNEL_EXPONENTIAL, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "Unknown kernel %d: -ts_vshmm_kernel takes cosine, constant, polynomial or exponential", (int)type);
+  PetscTryMethod(ts, "TSVSHMMSetKernel_C", (TS, TSVSHMMKernelType), (ts, type));
+  PetscFunctionReturn(0);
+}
+
+/*@
+   TSVSHMMGetKernel - Gets the kernel of the mesoscopic steps
+
+   Not Collective
+
+   Input Parameter:
+.  ts - the `TS` of type `TSVSHMM`
+
+   Output Parameter:
+.  type - the kernel
+
+   Level: intermediate
+
+.seealso: `TSVSHMM`, `TSVSHMMSetKernel()`
+@*/
+PetscErrorCode TSVSHMMGetKernel(TS ts, TSVSHMMKernelType *type)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  PetscValidPointer(type, 2);
+  PetscUseMethod(ts, "TSVSHMMGetKernel_C", (TS, TSVSHMMKernelType *), (ts, type));
+  PetscFunctionReturn(0);
+}
+
+/*@
+   TSVSHMMSetKernelOrder - Sets the order q of the polynomial kernel s^(q+1) (1-s)^(q+1) / B
+
+   Logically Collective
+
+   Input Parameters:
++  ts - the `TS` of type `TSVSHMM`
+-  q - the order, 0 <= q <= 16: the derivatives of order 0..q vanish at both ends
+
+   Options Database Key:
+.  -ts_vshmm_kernel_order <q> - the order
+
+   Notes:
+   The other kernels have a fixed order (cosine 1, constant -1, exponential infinite); setting an
+   order other than theirs is an error at set-up.
+
+   Level: intermediate
+
+.seealso: `TSVSHMM`, `TSVSHMMSetKernel()`, `TSVSHMMGetKernelOrder()`
+@*/
+PetscErrorCode TSVSHMMSetKernelOrder(TS ts, PetscInt q)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  PetscValidLogicalCollectiveInt(ts, q, 2);
+  PetscCheck(q >= 0 && q <= vshmm::Kernel::kMaxPolynomialOrder, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "Kernel order %" PetscInt_FMT " is out of range: -ts_vshmm_kernel_order takes 0..%d (polynomial kernel)", q, vshmm::Kernel::kMaxPolynomialOrder);
+  PetscTryMethod(ts, "TSVSHMMSetKernelOrder_C", (TS, PetscInt), (ts, q));
+  PetscFunctionReturn(0);
+}
+
+/*@
+   TSVSHMMGetKernelOrder - Gets the order of the kernel: the derivatives of order 0..q vanish at both ends
+
+   Not Collective
+
+   Input Parameter:
+.  ts - the `TS` of type `TSVSHMM`
+
+   Output Parameter:
+.  q - the order (-1 for the constant kernel, PETSC_MAX_INT for the exponential one)
+
+   Level: intermediate
+
+.seealso: `TSVSHMM`, `TSVSHMMSetKernelOrder()`
+@*/
+PetscErrorCode TSVSHMMGetKernelOrder(TS ts, PetscInt *q)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  PetscValidIntPointer(q, 2);
+  PetscUseMethod(ts, "TSVSHMMGetKernelOrder_C", (TS, PetscInt *), (ts, q));
+  if (*q == vshmm::Kernel::kInfiniteOrder) *q = PETSC_MAX_INT;
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   TSVSHMMSetRKType - Sets the explicit Runge-Kutta method of every micro and mesoscopic step
+
+   Logically Collective
+
+   Input Parameters:
++  ts - the `TS` of type `TSVSHMM`
+-  type - a `TSRKType` (`TSRK4`, the default, `TSRK3`, `TSRK5DP`, ...) or a type registered with `TSRKRegister()`
+
+   Options Database Key:
+.  -ts_vshmm_rk_type <type> - the Runge-Kutta type
+
+   Notes:
+   The tableau is taken from PETSc's TSRK registry at set-up; an unknown type is an error there.
+
+   Level: intermediate
+
+.seealso: `TSVSHMM`, `TSVSHMMGetRKType()`, `TSRKSetType()`, `TSRKRegister()`
+@*/
+PetscErrorCode TSVSHMMSetRKType(TS ts, TSRKType type)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  PetscValidCharPointer(type, 2);
+  PetscCheck(type[0], PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_WRONG, "-ts_vshmm_rk_type needs a TSRK type name, e.g. 4");
+  PetscTryMethod(ts, "TSVSHMMSetRKType_C", (TS, TSRKType), (ts, type));
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   TSVSHMMGetRKType - Gets the Runge-Kutta type of the inner steps
+
+   Not Collective
+
+   Input Parameter:
+.  ts - the `TS` of type `TSVSHMM`
+
+   Output Parameter:
+.  type - the `TSRKType`
+
+   Level: intermediate
+
+.seealso: `TSVSHMM`, `TSVSHMMSetRKType()`
+@*/
+PetscErrorCode TSVSHMMGetRKType(TS ts, TSRKType *type)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  PetscValidPointer(type, 2);
+  PetscUseMethod(ts, "TSVSHMMGetRKType_C", (TS, TSRKType *), (ts, type));
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   TSVSHMMSetSplitOrder - Names the RHS splits in scale order, slowest first
+
+   Logically Collective
+
+   Input Parameters:
++  ts - the `TS` of type `TSVSHMM`
+.  n - the number of names: every split of the TS, once (checked at set-up)
+-  names - the split names given to `TSRHSSplitSetIS()`
+
+   Options Database Key:
+.  -ts_vshmm_splits <a,b,...> - the split names, slowest first
+
+   Notes:
+   By default the scales are the splits in the order in which they were created.
+
+   Level: beginner
+
+.seealso: `TSVSHMM`, `TSVSHMMGetSplitOrder()`, `TSRHSSplitSetIS()`
+@*/
+PetscErrorCode TSVSHMMSetSplitOrder(TS ts, PetscInt n, const char *const names[])
+{
+  MPI_Comm comm;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  comm = PetscObjectComm((PetscObject)ts);
+  PetscCheck(n >= 2, comm, PETSC_ERR_ARG_SIZ, "-ts_vshmm_splits needs at least two split names (one per scale, slowest first), got %" PetscInt_FMT, n);
+  PetscValidPointer(names, 3);
+  for (PetscInt i = 0; i < n; ++i) PetscCheck(names[i] && names[i][0], comm, PETSC_ERR_ARG_WRONG, "-ts_vshmm_splits: name %" PetscInt_FMT " is empty", i + 1);
+  PetscTryMethod(ts, "TSVSHMMSetSplitOrder_C", (TS, PetscInt, const char *const[]), (ts, n, names));
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   TSVSHMMGetSplitOrder - Gets the split names in scale order, slowest first
+
+   Not Collective
+
+   Input Parameter:
+.  ts - the `TS` of type `TSVSHMM`
+
+   Output Parameters:
++  n - the number of scales
+-  names - the split names (owned by the TS; valid until the next call or a change of the splits)
+
+   Level: beginner
+
+.seealso: `TSVSHMM`, `TSVSHMMSetSplitOrder()`
+@*/
+PetscErrorCode TSVSHMMGetSplitOrder(TS ts, PetscInt *n, const char *const *names[])
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  PetscUseMethod(ts, "TSVSHMMGetSplitOrder_C", (TS, PetscInt *, const char *const *[]), (ts, n, names));
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   TSVSHMMGetStatistics - Gets the work done since set-up: macro steps, micro cycles, and the
+   right-hand-side evaluations of every split
+
+   Not Collective
+
+   Input Parameter:
+.  ts - the `TS` of type `TSVSHMM`
+
+   Output Parameter:
+.  stats - the statistics; its arrays are owned by the TS and valid until its next set-up
+
+   Notes:
+   Level l evaluates the splits 0..l at each Runge-Kutta stage, so per micro cycle split k is
+   evaluated (K + 1 - k) s times for an s-stage method. -ts_view prints the same numbers.
+
+   Level: intermediate
+
+.seealso: `TSVSHMM`, `TSVSHMMStatistics`, `TSVSHMMResetStatistics()`
+@*/
+PetscErrorCode TSVSHMMGetStatistics(TS ts, TSVSHMMStatistics *stats)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  PetscValidPointer(stats, 2);
+  PetscUseMethod(ts, "TSVSHMMGetStatistics_C", (TS, TSVSHMMStatistics *), (ts, stats));
+  PetscFunctionReturn(0);
+}
+
+/*@
+   TSVSHMMResetStatistics - Sets the work counters of a TSVSHMM to zero
+
+   Logically Collective
+
+   Input Parameter:
+.  ts - the `TS` of type `TSVSHMM`
+
+   Level: intermediate
+
+.seealso: `TSVSHMM`, `TSVSHMMGetStatistics()`
+@*/
+PetscErrorCode TSVSHMMResetStatistics(TS ts)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  PetscTryMethod(ts, "TSVSHMMResetStatistics_C", (TS), (ts));
+  PetscFunctionReturn(0);
+}

@@ -1,0 +1,62 @@
+// Private data of a TSVSHMM (ts->data) and what the package shares with the type.
+#pragma once
+
+#include <petscvshmm.h>
+#include <petsc/private/tsimpl.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "kernel.hpp"
+#include "rk.hpp"
+#include "schedule.hpp"
+
+// One scale: one RHS split, with what it takes to add its output into a level's field.
+struct VSHMMScale {
+  std::string name;
+  TS          subts = nullptr;   // the split's sub-TS (owned by the TS's split list)
+  IS          is    = nullptr;   // its components (owned by the split list)
+  Vec         F     = nullptr;   // split-sized output of the split function
+  PetscBool   additive = PETSC_FALSE; // IS = every locally owned component, in order, on every rank
+  PetscBool   local    = PETSC_FALSE; // IS = a contiguous run of locally owned components on every rank
+  PetscInt    offset   = 0;           // start of that run in the local array (local only)
+  VecScatter  scatter  = nullptr;     // general IS: adds F into the full vector
+};
+
+struct TS_VSHMM {
+  // Parameters (settable at any time; checked at set-up)
+  PetscReal                micro_dt = 0.0; // 0: DeltaT / kDefaultMicroStepsPerMacroStep
+  std::vector<PetscReal>   savings;        // empty: all 1
+  std::vector<PetscInt>    subintervals;   // empty: all 1
+  TSVSHMMKernelType        kernel_type  = TSVSHMM_KERNEL_COSINE;
+  PetscInt                 kernel_order = PETSC_DEFAULT; // PETSC_DEFAULT: the kernel's own
+  std::string              rk_type      = TSRK4;
+  std::vector<std::string> split_order;                  // empty: creation order
+  std::vector<const char *> split_order_c;               // for TSVSHMMGetSplitOrder()
+
+  // Set-up state
+  std::vector<VSHMMScale>                   scales;
+  std::unique_ptr<vshmm::Tableau>           tableau;
+  std::unique_ptr<vshmm::Kernel>            kernel;
+  std::vector<PetscReal>                    savings_used; // savings with defaults filled in
+  std::vector<PetscInt>                     subintervals_used;
+  Vec                                       Y  = nullptr; // stage state
+  std::vector<Vec>                          K;            // stage derivatives
+  Vec                                       X0 = nullptr; // previous sampled state (interpolation, rejection)
+  std::vector<PetscLogEvent>                level_events;
+
+  // Statistics since set-up
+  PetscInt64                macro_steps  = 0;
+  PetscInt64                micro_cycles = 0;
+  std::vector<PetscInt64>   rhs_evaluations, level_steps, level_evaluations;
+
+  // First non-finite split output seen on this rank in the current macro step
+  PetscReal nonfinite_time  = PETSC_MAX_REAL;
+  PetscInt  nonfinite_split = -1;
+};
+
+static constexpr PetscInt kDefaultMicroStepsPerMacroStep = 100;
+
+PETSC_INTERN PetscErrorCode TSCreate_VSHMM(TS);
+PETSC_INTERN PetscErrorCode TSVSHMMGetLevelEvent_Private(PetscInt, PetscLogEvent *);

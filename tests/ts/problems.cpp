@@ -1,0 +1,186 @@
+#include "problems.hpp"
+
+#include <cmath>
+#include <functional>
+
+namespace {
+
+struct SplitCtx {
+  SplitProblem *problem;
+  PetscInt      scale;
+  SplitKind     kind;
+};
+
+std::vector<SplitCtx> &Contexts(SplitProblem *p)
+{
+  static std::vector<std::pair<SplitProblem *, std::vector<SplitCtx>>> all;
+  for (auto &e : all)
+    if (e.first == p) return e.second;
+  all.push_back({p, {}});
+  return all.back().second;
+}
+
+PetscErrorCode SplitFunction(TS, PetscReal t, Vec X, Vec F, void *vctx)
+{
+  SplitCtx          *ctx = (SplitCtx *)vctx;
+  SplitProblem      *p   = ctx->problem;
+  const PetscScalar *xa;
+  PetscScalar       *fa;
+  std::vector<PetscScalar> full(p->n);
+  PetscInt           rstart, rend, lo;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecScatterBegin(p->gather, X, p->xall, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(p->gather, X, p->xall, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecGetArrayRead(p->xall, &xa));
+  p->terms[ctx->scale](p->params, t, xa, full.data());
+  PetscCall(VecRestoreArrayRead(p->xall, &xa));
+  if (ctx->scale == (PetscInt)p->terms.size() - 1) {
+    p->calls++;
+    if ((p->nan_after_calls >= 0 && p->calls > p->nan_after_calls) || t > p->nan_after_time) full[p->n - 1] = NAN;
+  }
+  PetscCall(VecGetOwnershipRange(X, &rstart, &rend));
+  PetscCall(VecGetArray(F, &fa));
+  if (ctx->kind == SplitKind::Additive) {
+    for (PetscInt i = rstart; i < rend; ++i) fa[i - rstart] = full[i];
+  } else { /* component split: scale k owns component k (and the rest of the components if it is the last scale) */
+    PetscInt nloc;
+    PetscCall(VecGetOwnershipRange(F, &lo, nullptr));
+    PetscCall(VecGetLocalSize(F, &nloc));
+    for (PetscInt i = 0; i < nloc; ++i) fa[i] = full[ctx->scale + lo + i];
+  }
+  PetscCall(VecRestoreArray(F, &fa));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FullFunction(TS, PetscReal t, Vec X, Vec F, void *vctx)
+{
+  SplitProblem      *p = (SplitProblem *)vctx;
+  const PetscScalar *xa;
+  PetscScalar       *fa;
+  std::vector<PetscScalar> full(p->n), sum(p->n, 0.0);
+  PetscInt           rstart, rend;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecScatterBegin(p->gather, X, p->xall, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(p->gather, X, p->xall, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecGetArrayRead(p->xall, &xa));
+  for (auto term : p->terms) {
+    term(p->params, t, xa, full.data());
+    for (PetscInt i = 0; i < p->n; ++i) sum[i] += full[i];
+  }
+  PetscCall(VecRestoreArrayRead(p->xall, &xa));
+  PetscCall(VecGetOwnershipRange(X, &rstart, &rend));
+  PetscCall(VecGetArray(F, &fa));
+  for (PetscInt i = rstart; i < rend; ++i) fa[i - rstart] = sum[i];
+  PetscCall(VecRestoreArray(F, &fa));
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+PetscErrorCode CreateSplitTS(MPI_Comm comm, SplitProblem *p, SplitKind kind, const std::vector<PetscReal> &x0, const std::vector<std::string> &names, TS *ts, Vec *x, const std::vector<int> &creation)
+{
+  PetscInt rstart, rend;
+  const PetscInt nscales = (PetscInt)p->terms.size();
+
+  PetscFunctionBeginUser;
+  PetscCall(VecCreate(comm, x));
+  PetscCall(VecSetSizes(*x, PETSC_DECIDE, p->n));
+  PetscCall(VecSetFromOptions(*x));
+  PetscCall(VecGetOwnershipRange(*x, &rstart, &rend));
+  for (PetscInt i = rstart; i < rend; ++i) PetscCall(VecSetValue(*x, i, x0[i], INSERT_VALUES));
+  PetscCall(VecAssemblyBegin(*x));
+  PetscCall(VecAssemblyEnd(*x));
+  PetscCall(VecScatterCreateToAll(*x, &p->gather, &p->xall));
+
+  PetscCall(TSCreate(comm, ts));
+  PetscCall(TSSetType(*ts, TSVSHMM));
+  PetscCall(TSSetRHSFunction(*ts, nullptr, FullFunction, p));
+  std::vector<SplitCtx> &ctxs = Contexts(p);
+  ctxs.assign(nscales, SplitCtx{p, 0, kind});
+  for (PetscInt c = 0; c < nscales; ++c) {
+    const PetscInt k = creation.empty() ? c : creation[c];
+    IS             is;
+    ctxs[k].scale = k;
+    if (kind == SplitKind::Additive) PetscCall(ISCreateStride(comm, rend - rstart, rstart, 1, &is));
+    else { /* component k; the last scale also takes the components beyond nscales - 1 */
+      PetscInt lo = k, hi = k == nscales - 1 ? p->n : k + 1;
+      lo = PetscMax(lo, rstart);
+      hi = PetscMin(hi, rend);
+      PetscCall(ISCreateStride(comm, PetscMax(hi - lo, 0), lo, 1, &is));
+    }
+    PetscCall(TSRHSSplitSetIS(*ts, names[k].c_str(), is));
+    PetscCall(TSRHSSplitSetRHSFunction(*ts, names[k].c_str(), nullptr, SplitFunction, &ctxs[k]));
+    PetscCall(ISDestroy(&is));
+  }
+  PetscCall(TSSetSolution(*ts, *x));
+  PetscCall(TSSetExactFinalTime(*ts, TS_EXACTFINALTIME_MATCHSTEP));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode DestroySplitTS(SplitProblem *p, TS *ts, Vec *x)
+{
+  PetscFunctionBeginUser;
+  PetscCall(TSDestroy(ts));
+  PetscCall(VecDestroy(x));
+  PetscCall(VecScatterDestroy(&p->gather));
+  PetscCall(VecDestroy(&p->xall));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode GatherState(SplitProblem *p, Vec x, std::vector<PetscReal> &out)
+{
+  const PetscScalar *a;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecScatterBegin(p->gather, x, p->xall, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(p->gather, x, p->xall, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecGetArrayRead(p->xall, &a));
+  out.assign(a, a + p->n);
+  PetscCall(VecRestoreArrayRead(p->xall, &a));
+  PetscFunctionReturn(0);
+}
+
+static void DissipativeSlow(const void *vp, PetscReal, const PetscScalar *x, PetscScalar *f)
+{
+  (void)vp;
+  const PetscReal s = x[0] + x[1] + x[2];
+  f[0]              = std::sin(s) - s * s / 20;
+  f[1] = f[2] = 0;
+}
+static void DissipativeMedium(const void *vp, PetscReal, const PetscScalar *x, PetscScalar *f)
+{
+  const PetscReal eps = ((const DissipativeParams *)vp)->eps;
+  f[0] = f[2] = 0;
+  f[1]        = (3 * x[0] * x[0] - x[1] * x[1] + x[2] * x[2]) / eps;
+}
+static void DissipativeFast(const void *vp, PetscReal, const PetscScalar *x, PetscScalar *f)
+{
+  const PetscReal eps = ((const DissipativeParams *)vp)->eps;
+  f[0] = f[1] = 0;
+  f[2]        = (x[0] - x[1] - x[2]) / (eps * eps);
+}
+
+void DissipativeProblem(SplitProblem *p, const DissipativeParams *params)
+{
+  p->n      = 3;
+  p->terms  = {DissipativeSlow, DissipativeMedium, DissipativeFast};
+  p->params = params;
+}
+
+static PetscErrorCode CaptureHandler(MPI_Comm, int, const char *, const char *, PetscErrorCode n, PetscErrorType p, const char *mess, void *ctx)
+{
+  CapturedError *e = (CapturedError *)ctx;
+  if (p == PETSC_ERROR_INITIAL && e->message.empty() && mess) e->message = mess;
+  return n;
+}
+
+CapturedError CaptureError(const std::function<PetscErrorCode()> &f)
+{
+  CapturedError e;
+  PetscPushErrorHandler(CaptureHandler, &e);
+  e.code = f();
+  PetscPopErrorHandler();
+  return e;
+}

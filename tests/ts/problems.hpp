@@ -1,0 +1,47 @@
+// Test problems for the PETSc-level tests, each built as a TS with one RHS split per scale,
+// on any communicator, with additive or component splits.
+#pragma once
+
+#include <petscvshmm.h>
+
+#include <functional>
+#include <string>
+#include <vector>
+
+enum class SplitKind { Additive, Component };
+
+// A small ODE dx/dt = sum_k f_k(x) whose split k writes the terms of scale k. The state lives on
+// `comm` (spread over its ranks); split functions gather it to every rank.
+struct SplitProblem {
+  using Term = void (*)(const void *params, PetscReal t, const PetscScalar *x, PetscScalar *f); // f_k for all components
+  PetscInt          n = 0;
+  std::vector<Term> terms; // scale k's term, written for every component
+  const void       *params = nullptr;
+  long              nan_after_calls = -1; // test hook: the fastest split returns NaN after this many calls
+  PetscReal         nan_after_time  = PETSC_MAX_REAL; // test hook: ... or at times past this one
+  long              calls = 0;
+
+  // Internal
+  VecScatter gather = nullptr;
+  Vec        xall   = nullptr;
+};
+
+// Builds ts (type TSVSHMM unless `type` says otherwise) for `problem` with the initial state x0.
+// The splits are created in the order `creation` (scale indices; empty: slowest first).
+PetscErrorCode CreateSplitTS(MPI_Comm comm, SplitProblem *problem, SplitKind kind, const std::vector<PetscReal> &x0, const std::vector<std::string> &names, TS *ts, Vec *x, const std::vector<int> &creation = {});
+PetscErrorCode DestroySplitTS(SplitProblem *problem, TS *ts, Vec *x);
+// The full state on every rank.
+PetscErrorCode GatherState(SplitProblem *problem, Vec x, std::vector<PetscReal> &out);
+
+// The paper's dissipative example (xi, eta, zeta) with eps: three scales.
+struct DissipativeParams {
+  PetscReal eps = 1e-2;
+};
+void DissipativeProblem(SplitProblem *p, const DissipativeParams *params);
+
+// Runs the TS's error path with errors captured: returns the error code and the first message.
+struct CapturedError {
+  PetscErrorCode code = 0;
+  std::string    message;
+};
+CapturedError CaptureError(const std::function<PetscErrorCode()> &f);

@@ -1,0 +1,526 @@
+// PETSc-level tests of TSVSHMM: the method on the paper's dissipative example, additive and
+// component splits, serial against distributed runs, exact final times, statistics, view,
+// and every bad input the type must reject with a clear error.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numeric>
+#include <sstream>
+
+#include "problems.hpp"
+
+namespace {
+
+// Converged DNS value of xi(2) for eps = 1e-2 from (5, -10, 5) (RK4, steps refined to 1e-6;
+// see docs/dissipative.md and the method note).
+constexpr double kXiAt2 = 1.48166;
+// A DNS with RK4 at dt = 1e-6 to t = 2 evaluates the full field 8e6 times.
+constexpr double kDnsEvaluations = 8e6;
+
+struct SolveResult {
+  std::vector<PetscReal> x;
+  PetscReal              time = 0;
+  PetscInt64             split_evaluations = 0;
+  TSConvergedReason      reason = TS_CONVERGED_ITERATING;
+};
+
+// Solves the dissipative example with VSHMM and the paper's parameters (or the options given).
+// Options inserted for one solve are cleared when it ends, whether it succeeded or not.
+struct OptionsGuard {
+  explicit OptionsGuard(const char *options)
+  {
+    if (options) PetscOptionsInsertString(nullptr, options);
+  }
+  ~OptionsGuard() { PetscOptionsClear(nullptr); }
+};
+
+PetscErrorCode SolveDissipative(MPI_Comm comm, SplitKind kind, PetscReal tfinal, PetscReal DeltaT, SolveResult *run, const char *extra_options = nullptr, SplitProblem *hooks = nullptr, const std::vector<int> &creation = {})
+{
+  OptionsGuard      guard(extra_options);
+  DissipativeParams params;
+  SplitProblem      local, *p = hooks ? hooks : &local;
+  TS                ts;
+  Vec               x;
+  const PetscReal   alpha[] = {100, 10};
+  TSVSHMMStatistics stats;
+
+  PetscFunctionBeginUser;
+  DissipativeProblem(p, &params);
+  PetscCall(CreateSplitTS(comm, p, kind, {5, -10, 5}, {"slow", "medium", "fast"}, &ts, &x, creation));
+  PetscCall(TSSetTimeStep(ts, DeltaT));
+  PetscCall(TSSetMaxTime(ts, tfinal));
+  PetscCall(TSSetMaxSteps(ts, 1000000));
+  PetscCall(TSVSHMMSetMicroStep(ts, 1e-4));
+  PetscCall(TSVSHMMSetSavingsFactors(ts, 2, alpha));
+  if (extra_options) PetscCall(TSSetFromOptions(ts));
+  PetscCall(TSSolve(ts, x));
+  PetscCall(TSGetSolveTime(ts, &run->time));
+  PetscCall(TSGetConvergedReason(ts, &run->reason));
+  PetscCall(GatherState(p, x, run->x));
+  PetscCall(TSVSHMMGetStatistics(ts, &stats));
+  run->split_evaluations = std::accumulate(stats.rhs_evaluations, stats.rhs_evaluations + stats.nsplits, (PetscInt64)0);
+  PetscCall(DestroySplitTS(p, &ts, &x));
+  PetscFunctionReturn(0);
+}
+
+TEST(VSHMMSolver, DissipativeExampleMatchesConvergedDNSAtAFractionOfTheCost)
+{
+  SolveResult run;
+  ASSERT_EQ(SolveDissipative(PETSC_COMM_WORLD, SplitKind::Component, 2.0, 0.1, &run), 0);
+  EXPECT_EQ(run.reason, TS_CONVERGED_TIME);
+  EXPECT_DOUBLE_EQ(run.time, 2.0);
+  EXPECT_NEAR(run.x[0], kXiAt2, 2e-2);
+  EXPECT_LT(run.split_evaluations, 1e-3 * kDnsEvaluations);
+  // The fast variables sit on their slow manifold at sampled times: zeta = xi - eta, eta = 2 xi.
+  EXPECT_NEAR(run.x[1], 2 * run.x[0], 0.05);
+  EXPECT_NEAR(run.x[2], run.x[0] - run.x[1], 0.05);
+}
+
+TEST(VSHMMSolver, AdditiveAndComponentSplitsAgreeToRounding)
+{
+  SolveResult a, c;
+  ASSERT_EQ(SolveDissipative(PETSC_COMM_WORLD, SplitKind::Additive, 1.0, 0.1, &a), 0);
+  ASSERT_EQ(SolveDissipative(PETSC_COMM_WORLD, SplitKind::Component, 1.0, 0.1, &c), 0);
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(a.x[i], c.x[i], 1e-13 * std::abs(c.x[i]) + 1e-14) << "component " << i;
+  EXPECT_EQ(a.split_evaluations, c.split_evaluations);
+}
+
+TEST(VSHMMSolver, DistributedRunMatchesSerialRun)
+{
+  // Under mpiexec -n 2 the state of the first run is spread over both ranks.
+  for (SplitKind kind : {SplitKind::Component, SplitKind::Additive}) {
+    SolveResult world, self;
+    ASSERT_EQ(SolveDissipative(PETSC_COMM_WORLD, kind, 1.0, 0.1, &world), 0);
+    ASSERT_EQ(SolveDissipative(PETSC_COMM_SELF, kind, 1.0, 0.1, &self), 0);
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(world.x[i], self.x[i], 1e-12 * std::abs(self.x[i])) << "component " << i;
+  }
+}
+
+TEST(VSHMMSolver, SplitOrderOptionReordersScales)
+{
+  // Creating the splits fast-first and naming the order gives the same result as creating them slowest-first.
+  SolveResult ordered, reordered, unordered;
+  ASSERT_EQ(SolveDissipative(PETSC_COMM_WORLD, SplitKind::Additive, 0.5, 0.1, &ordered), 0);
+  ASSERT_EQ(SolveDissipative(PETSC_COMM_WORLD, SplitKind::Additive, 0.5, 0.1, &reordered, "-ts_vshmm_splits slow,medium,fast", nullptr, {2, 0, 1}), 0);
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(ordered.x[i], reordered.x[i]);
+  // Without the option the creation order (fast, slow, medium) is the scale order: another method,
+  // here unstable (the stiff 'fast' field alone takes the largest steps), which the solve reports.
+  CapturedError e = CaptureError([&]() { return SolveDissipative(PETSC_COMM_WORLD, SplitKind::Additive, 0.5, 0.1, &unordered, nullptr, nullptr, {2, 0, 1}); });
+  EXPECT_NE(e.code, 0);
+  EXPECT_NE(e.message.find("produced Inf or NaN"), std::string::npos) << e.message;
+}
+
+TEST(VSHMMSolver, ExactFinalTimeModes)
+{
+  SolveResult match, over, interp, at02;
+  ASSERT_EQ(SolveDissipative(PETSC_COMM_WORLD, SplitKind::Component, 0.25, 0.1, &match), 0);
+  EXPECT_DOUBLE_EQ(match.time, 0.25);
+  ASSERT_EQ(SolveDissipative(PETSC_COMM_WORLD, SplitKind::Component, 0.25, 0.1, &over, "-ts_exact_final_time stepover"), 0);
+  EXPECT_NEAR(over.time, 0.3, 1e-14);
+  ASSERT_EQ(SolveDissipative(PETSC_COMM_WORLD, SplitKind::Component, 0.25, 0.1, &interp, "-ts_exact_final_time interpolate"), 0);
+  EXPECT_DOUBLE_EQ(interp.time, 0.25);
+  // Interpolation is linear between the sampled states at 0.2 and 0.3.
+  ASSERT_EQ(SolveDissipative(PETSC_COMM_WORLD, SplitKind::Component, 0.2, 0.1, &at02), 0);
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(interp.x[i], 0.5 * (at02.x[i] + over.x[i]), 1e-12 * (1 + std::abs(over.x[i])));
+}
+
+TEST(VSHMMSolver, StatisticsCountEveryLevelAndSplit)
+{
+  DissipativeParams params;
+  SplitProblem      p;
+  TS                ts;
+  Vec               x;
+  const PetscReal   alpha[] = {100, 10};
+  TSVSHMMStatistics stats;
+
+  DissipativeProblem(&p, &params);
+  ASSERT_EQ(CreateSplitTS(PETSC_COMM_WORLD, &p, SplitKind::Component, {5, -10, 5}, {"slow", "medium", "fast"}, &ts, &x), 0);
+  ASSERT_EQ(TSSetTimeStep(ts, 0.1), 0);
+  ASSERT_EQ(TSSetMaxTime(ts, 0.5), 0);
+  ASSERT_EQ(TSVSHMMSetMicroStep(ts, 1e-4), 0);
+  ASSERT_EQ(TSVSHMMSetSavingsFactors(ts, 2, alpha), 0);
+  ASSERT_EQ(TSSolve(ts, x), 0);
+  ASSERT_EQ(TSVSHMMGetStatistics(ts, &stats), 0);
+  EXPECT_EQ(stats.macro_steps, 5);
+  ASSERT_EQ(stats.nsplits, 3);
+  // RK4: split k is evaluated at 4 stages of every step of the levels k..K.
+  for (int k = 0; k < 3; ++k) {
+    PetscInt64 steps = 0;
+    for (int l = k; l < 3; ++l) steps += stats.level_steps[l];
+    EXPECT_EQ(stats.rhs_evaluations[k], 4 * steps) << "split " << k;
+    EXPECT_EQ(stats.level_evaluations[k], 4 * stats.level_steps[k]);
+  }
+  // Every cycle takes one step per level, except the last cycle of a macro step, which may stop early.
+  EXPECT_LE(stats.micro_cycles - stats.level_steps[0], stats.macro_steps);
+  EXPECT_EQ(stats.level_steps[2], stats.micro_cycles);
+  // The full field is evaluated only by the micro steps: far fewer than for a DNS.
+  EXPECT_GT(stats.micro_cycles, 0.5 / (1e-4 * 112) * 0.9);
+  EXPECT_LT(stats.micro_cycles, 0.5 / (1e-4 * 110) * 1.1);
+  ASSERT_EQ(TSVSHMMResetStatistics(ts), 0);
+  ASSERT_EQ(TSVSHMMGetStatistics(ts, &stats), 0);
+  EXPECT_EQ(stats.micro_cycles, 0);
+  ASSERT_EQ(DestroySplitTS(&p, &ts, &x), 0);
+}
+
+TEST(VSHMMSolver, ViewPrintsScalesKernelAndWork)
+{
+  DissipativeParams params;
+  SplitProblem      p;
+  TS                ts;
+  Vec               x;
+  const PetscReal   alpha[] = {100, 10};
+  const PetscInt    m[]     = {1, 3};
+  char              path[]  = "/tmp/vshmm_view_XXXXXX";
+  PetscMPIInt       rank;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  if (!rank) { // one file, named on rank 0: the viewer writes from rank 0 only
+    int fd = mkstemp(path);
+    ASSERT_GE(fd, 0);
+    close(fd);
+  }
+  MPI_Bcast(path, sizeof(path), MPI_CHAR, 0, PETSC_COMM_WORLD);
+
+  DissipativeProblem(&p, &params);
+  ASSERT_EQ(CreateSplitTS(PETSC_COMM_WORLD, &p, SplitKind::Component, {5, -10, 5}, {"slow", "medium", "fast"}, &ts, &x), 0);
+  ASSERT_EQ(TSSetTimeStep(ts, 0.1), 0);
+  ASSERT_EQ(TSSetMaxTime(ts, 0.2), 0);
+  ASSERT_EQ(TSVSHMMSetMicroStep(ts, 1e-4), 0);
+  ASSERT_EQ(TSVSHMMSetSavingsFactors(ts, 2, alpha), 0);
+  ASSERT_EQ(TSVSHMMSetSubintervals(ts, 2, m), 0);
+  ASSERT_EQ(TSVSHMMSetKernel(ts, TSVSHMM_KERNEL_POLYNOMIAL), 0);
+  ASSERT_EQ(TSVSHMMSetKernelOrder(ts, 3), 0);
+  ASSERT_EQ(TSVSHMMSetRKType(ts, TSRK3), 0);
+  ASSERT_EQ(TSSolve(ts, x), 0);
+  TSVSHMMStatistics stats;
+  ASSERT_EQ(TSVSHMMGetStatistics(ts, &stats), 0);
+  const PetscInt64 steps = stats.level_steps[0] + stats.level_steps[1] + stats.level_steps[2];
+  const std::string evals[] = {std::to_string(3 * steps), std::to_string(3 * (steps - stats.level_steps[0])), std::to_string(3 * stats.level_steps[2])};
+  PetscViewer viewer;
+  ASSERT_EQ(PetscViewerASCIIOpen(PETSC_COMM_WORLD, path, &viewer), 0);
+  ASSERT_EQ(TSView(ts, viewer), 0);
+  ASSERT_EQ(PetscViewerDestroy(&viewer), 0);
+  ASSERT_EQ(DestroySplitTS(&p, &ts, &x), 0);
+  MPI_Barrier(PETSC_COMM_WORLD); // rank 0 has closed the file
+  std::string text;
+  if (FILE *f = fopen(path, "r")) {
+    char line[512];
+    while (fgets(line, sizeof(line), f)) text += line;
+    fclose(f);
+  }
+  MPI_Barrier(PETSC_COMM_WORLD);
+  if (!rank) remove(path);
+  EXPECT_NE(text.find("3 scales"), std::string::npos) << text;
+  EXPECT_NE(text.find("kernel polynomial (order q = 3)"), std::string::npos) << text;
+  EXPECT_NE(text.find("micro step dt = 0.0001"), std::string::npos) << text;
+  EXPECT_NE(text.find("TSRK 3 (order 3, 3 stages)"), std::string::npos) << text;
+  const size_t slow = text.find("slow"), medium = text.find("medium"), fast = text.find("fast");
+  ASSERT_NE(slow, std::string::npos);
+  EXPECT_LT(slow, medium);
+  EXPECT_LT(medium, fast);
+  // The rows: scale, split, step, savings factor, subintervals, RHS evaluations.
+  auto row = [&](const char *split) {
+    std::istringstream lines(text);
+    std::string        line;
+    while (std::getline(lines, line)) {
+      std::istringstream       words(line);
+      std::vector<std::string> w;
+      for (std::string s; words >> s;) w.push_back(s);
+      if (w.size() >= 2 && w[1] == split) return w;
+    }
+    return std::vector<std::string>{};
+  };
+  EXPECT_EQ(row("slow"), (std::vector<std::string>{"0", "slow", "h_1", "100", "1", evals[0]})) << text;
+  EXPECT_EQ(row("medium"), (std::vector<std::string>{"1", "medium", "h_2", "10", "3", evals[1]})) << text;
+  EXPECT_EQ(row("fast"), (std::vector<std::string>{"2", "fast", "dt", "(micro)", "-", "-", evals[2]})) << text;
+  EXPECT_NE(text.find("2 macro steps"), std::string::npos) << text;
+}
+
+// Inner Runge-Kutta types from PETSc's registry keep their order: with the constant kernel and
+// savings factor 1 on a problem whose slow field is the whole field (f_1 = 0), VSHMM is that RK
+// method with steps dt, so halving dt divides the error by 2^p.
+struct Decay {
+  PetscReal rate = 1;
+};
+void DecaySlow(const void *vp, PetscReal, const PetscScalar *x, PetscScalar *f)
+{
+  f[0] = -((const Decay *)vp)->rate * x[0];
+}
+void Nothing(const void *, PetscReal, const PetscScalar *, PetscScalar *f)
+{
+  f[0] = 0;
+}
+
+PetscErrorCode DecayError(const char *rk, PetscReal dt, PetscReal *error)
+{
+  Decay        params;
+  SplitProblem p;
+  TS           ts;
+  Vec          x;
+  PetscReal    alpha = 1;
+  std::vector<PetscReal> out;
+
+  PetscFunctionBeginUser;
+  p.n      = 1;
+  p.terms  = {DecaySlow, Nothing};
+  p.params = &params;
+  PetscCall(CreateSplitTS(PETSC_COMM_SELF, &p, SplitKind::Additive, {1.0}, {"slow", "fast"}, &ts, &x));
+  PetscCall(TSSetTimeStep(ts, 0.5));
+  PetscCall(TSSetMaxTime(ts, 1.0));
+  PetscCall(TSVSHMMSetMicroStep(ts, dt));
+  PetscCall(TSVSHMMSetSavingsFactors(ts, 1, &alpha));
+  PetscCall(TSVSHMMSetKernel(ts, TSVSHMM_KERNEL_CONSTANT));
+  PetscCall(TSVSHMMSetRKType(ts, rk));
+  PetscCall(TSSolve(ts, x));
+  PetscCall(GatherState(&p, x, out));
+  *error = std::abs(out[0] - std::exp(-1.0));
+  PetscCall(DestroySplitTS(&p, &ts, &x));
+  PetscFunctionReturn(0);
+}
+
+TEST(VSHMMSolver, InnerRungeKuttaTypesKeepTheirOrder)
+{
+  const struct {
+    const char *type;
+    int         order;
+  } methods[] = {{TSRK1FE, 1}, {TSRK2A, 2}, {TSRK3, 3}, {TSRK3BS, 3}, {TSRK4, 4}, {TSRK5DP, 5}};
+  for (const auto &m : methods) {
+    PetscReal e1, e2;
+    ASSERT_EQ(DecayError(m.type, 1.0 / 16, &e1), 0);
+    ASSERT_EQ(DecayError(m.type, 1.0 / 32, &e2), 0);
+    EXPECT_NEAR(std::log2(e1 / e2), m.order, 0.3) << "TSRK " << m.type;
+  }
+}
+
+TEST(VSHMMSolver, OptionsChangedBetweenSolvesTakeEffect)
+{
+  DissipativeParams params;
+  SplitProblem      p;
+  TS                ts;
+  Vec               x;
+  const PetscReal   alpha[] = {100, 10};
+  TSVSHMMStatistics stats;
+
+  DissipativeProblem(&p, &params);
+  ASSERT_EQ(CreateSplitTS(PETSC_COMM_WORLD, &p, SplitKind::Component, {5, -10, 5}, {"slow", "medium", "fast"}, &ts, &x), 0);
+  ASSERT_EQ(TSSetTimeStep(ts, 0.1), 0);
+  ASSERT_EQ(TSSetMaxTime(ts, 0.2), 0);
+  ASSERT_EQ(TSVSHMMSetMicroStep(ts, 1e-4), 0);
+  ASSERT_EQ(TSVSHMMSetSavingsFactors(ts, 2, alpha), 0);
+  ASSERT_EQ(TSSetUp(ts), 0);
+  ASSERT_EQ(TSSetUp(ts), 0); // set-up twice is harmless
+  ASSERT_EQ(TSSolve(ts, x), 0);
+  ASSERT_EQ(TSVSHMMGetStatistics(ts, &stats), 0);
+  const PetscInt64 cycles_rk4 = stats.micro_cycles;
+  // A second solve with other parameters: set up again from the new values.
+  const PetscReal alpha2[] = {50, 5};
+  ASSERT_EQ(TSVSHMMSetSavingsFactors(ts, 2, alpha2), 0);
+  ASSERT_EQ(TSSetMaxTime(ts, 0.4), 0);
+  ASSERT_EQ(TSSolve(ts, x), 0);
+  ASSERT_EQ(TSVSHMMGetStatistics(ts, &stats), 0);
+  EXPECT_GT(stats.micro_cycles, 1.7 * cycles_rk4); // smaller factors: more cycles per macro step
+  PetscInt         n;
+  const PetscReal *got;
+  ASSERT_EQ(TSVSHMMGetSavingsFactors(ts, &n, &got), 0);
+  ASSERT_EQ(n, 2);
+  EXPECT_EQ(got[0], 50);
+  ASSERT_EQ(DestroySplitTS(&p, &ts, &x), 0);
+}
+
+TEST(VSHMMSolver, GettersReturnWhatWasSet)
+{
+  TS ts;
+  ASSERT_EQ(TSCreate(PETSC_COMM_WORLD, &ts), 0);
+  ASSERT_EQ(TSSetType(ts, TSVSHMM), 0);
+  ASSERT_EQ(TSSetTimeStep(ts, 0.5), 0);
+  PetscReal dt;
+  ASSERT_EQ(TSVSHMMGetMicroStep(ts, &dt), 0);
+  EXPECT_DOUBLE_EQ(dt, 0.005); // default: DeltaT / 100
+  ASSERT_EQ(TSVSHMMSetMicroStep(ts, 1e-3), 0);
+  ASSERT_EQ(TSVSHMMGetMicroStep(ts, &dt), 0);
+  EXPECT_EQ(dt, 1e-3);
+  const PetscInt m[] = {1, 2, 4};
+  ASSERT_EQ(TSVSHMMSetSubintervals(ts, 3, m), 0);
+  PetscInt        n;
+  const PetscInt *mm;
+  ASSERT_EQ(TSVSHMMGetSubintervals(ts, &n, &mm), 0);
+  ASSERT_EQ(n, 3);
+  EXPECT_EQ(mm[2], 4);
+  TSVSHMMKernelType kt;
+  ASSERT_EQ(TSVSHMMGetKernel(ts, &kt), 0);
+  EXPECT_EQ(kt, TSVSHMM_KERNEL_COSINE);
+  PetscInt q;
+  ASSERT_EQ(TSVSHMMGetKernelOrder(ts, &q), 0);
+  EXPECT_EQ(q, 1);
+  ASSERT_EQ(TSVSHMMSetKernel(ts, TSVSHMM_KERNEL_EXPONENTIAL), 0);
+  ASSERT_EQ(TSVSHMMGetKernelOrder(ts, &q), 0);
+  EXPECT_EQ(q, PETSC_MAX_INT);
+  ASSERT_EQ(TSVSHMMSetKernel(ts, TSVSHMM_KERNEL_CONSTANT), 0);
+  ASSERT_EQ(TSVSHMMGetKernelOrder(ts, &q), 0);
+  EXPECT_EQ(q, -1);
+  TSRKType rk;
+  ASSERT_EQ(TSVSHMMGetRKType(ts, &rk), 0);
+  EXPECT_STREQ(rk, "4");
+  const char *names[] = {"b", "a"};
+  ASSERT_EQ(TSVSHMMSetSplitOrder(ts, 2, names), 0);
+  const char *const *got;
+  ASSERT_EQ(TSVSHMMGetSplitOrder(ts, &n, &got), 0);
+  ASSERT_EQ(n, 2);
+  EXPECT_STREQ(got[0], "b");
+  ASSERT_EQ(TSDestroy(&ts), 0);
+}
+
+// ------------------------------------------------------------------------------------------
+// Bad input: each yields a PETSc error whose message names the option and the allowed values.
+
+struct BadInput {
+  const char *options;    // inserted before TSSetFromOptions(); nullptr: none
+  int         nsplits;    // splits declared (3 = the dissipative example's)
+  const char *expected;   // a part of the error message
+};
+
+CapturedError SetUpWith(const BadInput &bad)
+{
+  DissipativeParams params;
+  SplitProblem      p;
+  TS                ts = nullptr;
+  Vec               x  = nullptr;
+  const PetscReal   alpha[] = {100, 10};
+
+  DissipativeProblem(&p, &params);
+  std::vector<std::string> names = {"slow", "medium", "fast"};
+  if (bad.nsplits == 1) { // one split: the whole field
+    p.terms = {[](const void *vp, PetscReal t, const PetscScalar *x, PetscScalar *f) {
+      PetscScalar a[3], b[3];
+      DissipativeParams q = *(const DissipativeParams *)vp;
+      (void)t;
+      const PetscReal s = x[0] + x[1] + x[2];
+      a[0] = std::sin(s) - s * s / 20, a[1] = (3 * x[0] * x[0] - x[1] * x[1] + x[2] * x[2]) / q.eps, a[2] = (x[0] - x[1] - x[2]) / (q.eps * q.eps);
+      (void)b;
+      for (int i = 0; i < 3; ++i) f[i] = a[i];
+    }};
+    names = {"all"};
+  }
+  EXPECT_EQ(CreateSplitTS(PETSC_COMM_WORLD, &p, SplitKind::Additive, {5, -10, 5}, names, &ts, &x), 0);
+  TSSetTimeStep(ts, 0.1);
+  TSSetMaxTime(ts, 0.2);
+  TSVSHMMSetMicroStep(ts, 1e-4);
+  TSVSHMMSetSavingsFactors(ts, 2, alpha);
+  if (bad.options) PetscOptionsInsertString(nullptr, bad.options);
+  CapturedError e = CaptureError([&]() -> PetscErrorCode {
+    PetscFunctionBeginUser;
+    PetscCall(TSSetFromOptions(ts));
+    PetscCall(TSSetUp(ts));
+    PetscFunctionReturn(0);
+  });
+  PetscOptionsClear(nullptr);
+  DestroySplitTS(&p, &ts, &x);
+  return e;
+}
+
+TEST(VSHMMBadInput, EachBadSettingIsAClearError)
+{
+  const BadInput cases[] = {
+    {nullptr, 1, "at least two RHS splits"},
+    {"-ts_vshmm_savings_factors 100", 3, "needs 2: one savings factor"},
+    {"-ts_vshmm_savings_factors 100,10,1", 3, "has 3 values but the TS has 3 splits"},
+    {"-ts_vshmm_savings_factors 100,-10", 3, "Savings factor 2 is -10"},
+    {"-ts_vshmm_savings_factors 100,-10", 3, "-ts_vshmm_savings_factors values must be positive and finite"},
+    {"-ts_vshmm_savings_factors 0,10", 3, "Savings factor 1 is 0"},
+    {"-ts_vshmm_savings_factors nan,10", 3, "must be positive and finite"},
+    {"-ts_vshmm_savings_factors inf,10", 3, "must be positive and finite"},
+    {"-ts_vshmm_savings_factors abc,10", 3, "-ts_vshmm_savings_factors: 'abc' is not a real number"},
+    {"-ts_vshmm_savings_factors", 3, "-ts_vshmm_savings_factors needs a comma-separated list"},
+    {"-ts_vshmm_micro_dt 0", 3, "-ts_vshmm_micro_dt must be positive and finite"},
+    {"-ts_vshmm_micro_dt -1e-4", 3, "-ts_vshmm_micro_dt must be positive and finite"},
+    {"-ts_vshmm_micro_dt nan", 3, "-ts_vshmm_micro_dt must be positive and finite"},
+    {"-ts_vshmm_micro_dt 0.1", 3, "not smaller than the sampling interval DeltaT = 0.1"},
+    {"-ts_vshmm_micro_dt 1", 3, "not smaller than the sampling interval"},
+    {"-ts_vshmm_micro_dt x", 3, "-ts_vshmm_micro_dt: 'x' is not a real number"},
+    {"-ts_vshmm_subintervals 1,0", 3, "Subinterval count 2 is 0: -ts_vshmm_subintervals values must be integers >= 1"},
+    {"-ts_vshmm_subintervals", 3, "-ts_vshmm_subintervals needs a comma-separated list"},
+    {"-ts_vshmm_splits", 3, "-ts_vshmm_splits needs a comma-separated list"},
+    {"-ts_vshmm_subintervals 1", 3, "-ts_vshmm_subintervals (TSVSHMMSetSubintervals()) has 1 values but the TS has 3 splits"},
+    {"-ts_vshmm_subintervals 1.5,2", 3, "-ts_vshmm_subintervals: '1.5' is not an integer"},
+    {"-ts_vshmm_splits slow,medium,bogus", 3, "Unknown split 'bogus' in -ts_vshmm_splits (TSVSHMMSetSplitOrder()): the TS's splits are slow, medium, fast"},
+    {"-ts_vshmm_splits slow,fast", 3, "names 2 splits but the TS has 3 (slow, medium, fast)"},
+    {"-ts_vshmm_splits slow,slow,fast", 3, "Split 'slow' appears twice"},
+    {"-ts_vshmm_kernel gaussian", 3, "Unknown -ts_vshmm_kernel 'gaussian': use cosine, constant, polynomial or exponential"},
+    {"-ts_vshmm_kernel polynomial -ts_vshmm_kernel_order 17", 3, "Kernel order 17 is out of range: -ts_vshmm_kernel_order takes 0..16"},
+    {"-ts_vshmm_kernel polynomial -ts_vshmm_kernel_order -1", 3, "Kernel order -1 is out of range"},
+    {"-ts_vshmm_kernel cosine -ts_vshmm_kernel_order 3", 3, "-ts_vshmm_kernel_order 3 does not apply to the cosine kernel"},
+    {"-ts_vshmm_rk_type 9zz", 3, "Unknown inner Runge-Kutta type '9zz' in -ts_vshmm_rk_type"},
+    {"-ts_dt -0.1", 3, "sampling interval DeltaT) is -0.1"},
+  };
+  for (const BadInput &bad : cases) {
+    CapturedError e = SetUpWith(bad);
+    EXPECT_NE(e.code, 0) << (bad.options ? bad.options : "(no options)");
+    EXPECT_NE(e.message.find(bad.expected), std::string::npos) << (bad.options ? bad.options : "(no options)") << "\n  message: " << e.message << "\n  expected: " << bad.expected;
+  }
+  // The good settings of the same TS set up without error.
+  EXPECT_EQ(SetUpWith({"-ts_vshmm_kernel polynomial -ts_vshmm_kernel_order 4 -ts_vshmm_subintervals 1,3 -ts_vshmm_rk_type 5dp", 3, ""}).code, 0);
+  EXPECT_EQ(SetUpWith({"-ts_vshmm_kernel cosine -ts_vshmm_kernel_order 1", 3, ""}).code, 0);
+}
+
+TEST(VSHMMBadInput, NonFiniteSplitOutputStopsTheSolveNamingSplitAndTime)
+{
+  // Default (-ts_error_if_step_fails true): a PETSc error naming the split and the time.
+  {
+    SplitProblem p;
+    p.nan_after_time = 0.35;
+    SolveResult           run;
+    CapturedError e = CaptureError([&]() { return SolveDissipative(PETSC_COMM_WORLD, SplitKind::Component, 1.0, 0.1, &run, nullptr, &p); });
+    EXPECT_NE(e.code, 0);
+    const std::string head = "split 'fast' (scale 2) produced Inf or NaN at t = ";
+    const size_t      at   = e.message.find(head);
+    ASSERT_NE(at, std::string::npos) << e.message;
+    const double t = std::atof(e.message.c_str() + at + head.size());
+    EXPECT_GT(t, 0.35); // the first evaluation of 'fast' past 0.35: within one micro cycle of it
+    EXPECT_LT(t, 0.38);
+    EXPECT_NE(e.message.find("macro step from t = 0.3 to 0.4"), std::string::npos) << e.message;
+    VecScatterDestroy(&p.gather);
+    VecDestroy(&p.xall);
+  }
+  // With -ts_error_if_step_fails false: the solve stops with a diverged reason at the last good sample.
+  {
+    SplitProblem p;
+    p.nan_after_time = 0.35;
+    SolveResult run;
+    ASSERT_EQ(SolveDissipative(PETSC_COMM_WORLD, SplitKind::Additive, 1.0, 0.1, &run, "-ts_error_if_step_fails false", &p), 0);
+    EXPECT_EQ(run.reason, TS_DIVERGED_STEP_REJECTED);
+    EXPECT_NEAR(run.time, 0.3, 1e-14);
+    for (double v : run.x) EXPECT_TRUE(std::isfinite(v));
+    SolveResult clean;
+    ASSERT_EQ(SolveDissipative(PETSC_COMM_WORLD, SplitKind::Additive, 0.3, 0.1, &clean), 0);
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(run.x[i], clean.x[i], 1e-12 * std::abs(clean.x[i]));
+  }
+}
+
+TEST(VSHMMBadInput, SplitsAddedAfterSetUpAreTakenUp)
+{
+  // The scales are read at set-up; a 4th split added later makes the next step set up again,
+  // which finds the new split (here still without a function, which it names).
+  DissipativeParams params;
+  SplitProblem      p;
+  TS                ts;
+  Vec               x;
+  const PetscReal   alpha[] = {100, 10};
+  DissipativeProblem(&p, &params);
+  ASSERT_EQ(CreateSplitTS(PETSC_COMM_WORLD, &p, SplitKind::Additive, {5, -10, 5}, {"slow", "medium", "fast"}, &ts, &x), 0);
+  ASSERT_EQ(TSSetTimeStep(ts, 0.1), 0);
+  ASSERT_EQ(TSSetMaxTime(ts, 0.2), 0);
+  ASSERT_EQ(TSVSHMMSetMicroStep(ts, 1e-4), 0);
+  ASSERT_EQ(TSVSHMMSetSavingsFactors(ts, 2, alpha), 0);
+  ASSERT_EQ(TSSetUp(ts), 0);
+  IS       is;
+  PetscInt rstart, rend;
+  ASSERT_EQ(VecGetOwnershipRange(x, &rstart, &rend), 0);
+  ASSERT_EQ(ISCreateStride(PETSC_COMM_WORLD, rend - rstart, rstart, 1, &is), 0);
+  ASSERT_EQ(TSRHSSplitSetIS(ts, "extra", is), 0);
+  ASSERT_EQ(ISDestroy(&is), 0);
+  CapturedError e = CaptureError([&]() { return TSStep(ts); });
+  EXPECT_NE(e.code, 0);
+  EXPECT_NE(e.message.find("Split 'extra' has no right-hand-side function"), std::string::npos) << e.message;
+  ASSERT_EQ(DestroySplitTS(&p, &ts, &x), 0);
+}
+
+} // namespace
