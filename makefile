@@ -1,0 +1,63 @@
+# petsc-vshmm: convenience targets around CMake (GNU make).
+#   make demo        install missing Debian packages, build, run examples/ode/demo.sh
+#   make check       install missing Debian packages, build, run all tests (ctest)
+#   make build       configure and build in $(BUILD_DIR)
+#   make install PREFIX=/some/prefix
+#   make clean       remove $(BUILD_DIR)
+# Variables: BUILD_DIR (build), BUILD_TYPE (Release), JOBS (2), PREFIX (/usr/local),
+#            CMAKE_FLAGS (extra configure options), CTEST_FLAGS (extra ctest options).
+
+BUILD_DIR ?= build
+BUILD_TYPE ?= Release
+JOBS ?= 2
+PREFIX ?= /usr/local
+CMAKE_FLAGS ?=
+CTEST_FLAGS ?=
+
+DEB_PACKAGES := petsc-dev libfftw3-dev libgtest-dev cmake pkg-config make g++ \
+                libpetsc3.18-dev-examples gnuplot-nox
+
+.PHONY: all deps configure build check demo install clean
+.NOTPARALLEL:
+MAKEFLAGS += --no-print-directory
+
+all: build
+
+# Debian packages: installed with apt-get when missing and running as root; otherwise listed.
+deps:
+	@if ! command -v dpkg-query >/dev/null 2>&1; then \
+	  echo "make deps: no dpkg-query (not Debian?); need: $(DEB_PACKAGES)"; exit 0; \
+	fi; \
+	missing=; \
+	for p in $(DEB_PACKAGES); do \
+	  dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q 'install ok installed' || missing="$$missing $$p"; \
+	done; \
+	if [ -z "$$missing" ]; then exit 0; fi; \
+	if [ "$$(id -u)" = 0 ]; then \
+	  echo "Installing:$$missing"; \
+	  apt-get update && DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends $$missing; \
+	else \
+	  echo "make deps: missing Debian packages:$$missing"; \
+	  echo "  install them with: sudo apt-get install --no-install-recommends$$missing"; \
+	fi
+
+$(BUILD_DIR)/CMakeCache.txt:
+	cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) $(CMAKE_FLAGS)
+
+configure: deps
+	cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) $(CMAKE_FLAGS)
+
+build: deps $(BUILD_DIR)/CMakeCache.txt
+	cmake --build $(BUILD_DIR) -j $(JOBS)
+
+check: build
+	ctest --test-dir $(BUILD_DIR) --output-on-failure $(CTEST_FLAGS)
+
+demo: build
+	sh examples/ode/demo.sh $(BUILD_DIR)
+
+install: build
+	cmake --install $(BUILD_DIR) --prefix $(PREFIX)
+
+clean:
+	rm -rf $(BUILD_DIR)
