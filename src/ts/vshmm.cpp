@@ -489,7 +489,8 @@ static PetscErrorCode TSSetFromOptions_VSHMM(TS ts, PetscOptionItems *PetscOptio
   PetscOptionsHeadBegin(PetscOptionsObject, "VSHMM multiscale ODE solver options");
   {
     std::ostringstream dflt;
-    dflt << vs->micro_dt;
+    if (vs->micro_dt > 0) dflt << vs->micro_dt;
+    else dflt << "DeltaT/" << kDefaultMicroStepsPerMacroStep;
     PetscCall(PetscOptionsString("-ts_vshmm_micro_dt", "Micro step dt of the full field (default: DeltaT/100)", "TSVSHMMSetMicroStep", dflt.str().c_str(), text, sizeof(text), &set));
     if (set) {
       PetscReal dt;
