@@ -2,6 +2,7 @@
 // of micro cycles that fills one macro step (sampling interval) DeltaT. No PETSc here.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -45,18 +46,31 @@ struct MacroStepCounts {
   std::vector<std::int64_t> levelSteps;   // steps per level (index = level)
 };
 
+// The smallest step h from tau with fl(tau + h) >= end: it ends exactly on end whenever some
+// double does, in particular whenever tau >= end / 2 (then end - tau is exact). end - tau alone
+// can miss by an ulp when tau < end / 2; a few such (tau, end) admit no exact h at all.
+inline double stepToEnd(double tau, double end)
+{
+  double h = end - tau;
+  while (tau + h > end) h = std::nextafter(h, 0.0);
+  while (tau + h < end) h = std::nextafter(h, end);
+  return h;
+}
+
 // Runs one macro step of length macroStep: micro cycles of
 //   level K with dt, then levels K-1, ..., 0 with h_K, ..., h_1,
 // each step starting at tau (time since the macro step began) with the length given by the
 // schedule, except that a step that would pass macroStep is shortened to end exactly on it,
 // and the macro step ends there. A step of length 0 (K = 0 at the start of a period) is not
 // taken. advance(level, tau, h) performs one step and returns 0 or a nonzero error code,
-// which stops the macro step and is returned. The final tau is exactly macroStep.
+// which stops the macro step and is returned. The final tau + h is exactly macroStep whenever
+// the last step starts at or after macroStep / 2 (see stepToEnd): the caller should still set
+// its time to t_n + macroStep itself.
 template <class Advance>
 int runMacroStep(const MesoscopicSchedule &schedule, double macroStep, Advance &&advance, MacroStepCounts *counts = nullptr)
 {
   const int top = schedule.numScales() - 1;
-  if (counts) counts->levelSteps.assign(top + 1, 0);
+  if (counts) *counts = MacroStepCounts{std::int64_t{0}, std::vector<std::int64_t>(top + 1, 0)};
   double tau = 0.0;
   while (tau < macroStep) {
     if (counts) counts->cycles++;
@@ -64,7 +78,7 @@ int runMacroStep(const MesoscopicSchedule &schedule, double macroStep, Advance &
       double h    = schedule.levelStep(level, tau, macroStep);
       bool   last = false;
       if (!(tau + h < macroStep)) {
-        h    = macroStep - tau;
+        if (tau + h != macroStep) h = stepToEnd(tau, macroStep);
         last = true;
       }
       if (h > 0.0) {

@@ -293,6 +293,8 @@ static PetscErrorCode TSSetUp_VSHMM(TS ts)
     vs->subintervals_used = vs->subintervals;
   }
   PetscCheck(std::isfinite(ts->time_step) && ts->time_step > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "TSVSHMM: the TS time step (the sampling interval DeltaT) is %g: set a positive one with TSSetTimeStep() or -ts_dt", (double)ts->time_step);
+  PetscCheck(vs->micro_dt == 0.0 || vs->micro_dt > kMinMicroStepFraction * ts->time_step, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-ts_vshmm_micro_dt (TSVSHMMSetMicroStep()) is %g, below the time resolution of the sampling interval DeltaT = %g: the micro step must exceed %g DeltaT", (double)vs->micro_dt, (double)ts->time_step, (double)kMinMicroStepFraction);
   PetscCheck(vs->micro_dt == 0.0 || vs->micro_dt < ts->time_step, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-ts_vshmm_micro_dt (TSVSHMMSetMicroStep()) is %g, not smaller than the sampling interval DeltaT = %g (the TS time step, -ts_dt): the micro step must be a small fraction of DeltaT", (double)vs->micro_dt, (double)ts->time_step);
 
@@ -363,6 +365,8 @@ static PetscErrorCode TSStep_VSHMM(TS ts)
     last   = PETSC_TRUE;
   }
   const PetscReal dt = vs->micro_dt > 0 ? vs->micro_dt : ts->time_step / kDefaultMicroStepsPerMacroStep;
+  PetscCheck(dt > kMinMicroStepFraction * DeltaT || last, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-ts_vshmm_micro_dt %g is below the time resolution of the macro step DeltaT = %g: the micro step must exceed %g DeltaT", (double)dt, (double)DeltaT, (double)kMinMicroStepFraction);
 
   std::unique_ptr<vshmm::MesoscopicSchedule> schedule;
   try {

@@ -56,7 +56,8 @@ struct TS_VSHMM {
   PetscInt  nonfinite_split = -1;
 };
 
-static constexpr PetscInt kDefaultMicroStepsPerMacroStep = 100;
+static constexpr PetscInt  kDefaultMicroStepsPerMacroStep = 100;
+static constexpr PetscReal kMinMicroStepFraction          = 1e-13; /* dt / DeltaT below this cannot advance time */
 
 PETSC_INTERN PetscErrorCode TSCreate_VSHMM(TS);
 PETSC_INTERN PetscErrorCode TSVSHMMGetLevelEvent_Private(PetscInt, PetscLogEvent *);

@@ -435,6 +435,7 @@ TEST(VSHMMBadInput, EachBadSettingIsAClearError)
     {"-ts_vshmm_micro_dt nan", 3, "-ts_vshmm_micro_dt must be positive and finite"},
     {"-ts_vshmm_micro_dt 0.1", 3, "not smaller than the sampling interval DeltaT = 0.1"},
     {"-ts_vshmm_micro_dt 1", 3, "not smaller than the sampling interval"},
+    {"-ts_vshmm_micro_dt 1e-20", 3, "below the time resolution of the sampling interval DeltaT = 0.1"},
     {"-ts_vshmm_micro_dt x", 3, "-ts_vshmm_micro_dt: 'x' is not a real number"},
     {"-ts_vshmm_subintervals 1,0", 3, "Subinterval count 2 is 0: -ts_vshmm_subintervals values must be integers >= 1"},
     {"-ts_vshmm_subintervals", 3, "-ts_vshmm_subintervals needs a comma-separated list"},
