@@ -41,7 +41,7 @@ PetscErrorCode SplitFunction(TS, PetscReal t, Vec X, Vec F, void *vctx)
   }
   PetscCall(VecGetOwnershipRange(X, &rstart, &rend));
   PetscCall(VecGetArray(F, &fa));
-  if (ctx->kind == SplitKind::Additive) {
+  if (ctx->kind == SplitKind::Additive || (ctx->kind == SplitKind::Mixed && ctx->scale % 2 == 0)) {
     for (PetscInt i = rstart; i < rend; ++i) fa[i - rstart] = full[i];
   } else { /* component split: scale k owns component k (and the rest of the components if it is the last scale) */
     PetscInt nloc;
@@ -103,7 +103,7 @@ PetscErrorCode CreateSplitTS(MPI_Comm comm, SplitProblem *p, SplitKind kind, con
     const PetscInt k = creation.empty() ? c : creation[c];
     IS             is;
     ctxs[k].scale = k;
-    if (kind == SplitKind::Additive) PetscCall(ISCreateStride(comm, rend - rstart, rstart, 1, &is));
+    if (kind == SplitKind::Additive || (kind == SplitKind::Mixed && k % 2 == 0)) PetscCall(ISCreateStride(comm, rend - rstart, rstart, 1, &is));
     else { /* component k; the last scale also takes the components beyond nscales - 1 */
       PetscInt lo = k, hi = k == nscales - 1 ? p->n : k + 1;
       lo = PetscMax(lo, rstart);
@@ -166,6 +166,34 @@ void DissipativeProblem(SplitProblem *p, const DissipativeParams *params)
 {
   p->n      = 3;
   p->terms  = {DissipativeSlow, DissipativeMedium, DissipativeFast};
+  p->params = params;
+}
+
+static void ChainSlow(const void *, PetscReal, const PetscScalar *x, PetscScalar *f)
+{
+  f[0] = std::sin(x[1]) - x[0] / 2;
+  f[1] = f[2] = f[3] = 0;
+}
+static void ChainScale1(const void *vp, PetscReal, const PetscScalar *x, PetscScalar *f)
+{
+  f[0] = f[2] = f[3] = 0;
+  f[1]               = (x[0] - x[1]) / ((const ChainParams *)vp)->e1;
+}
+static void ChainScale2(const void *vp, PetscReal, const PetscScalar *x, PetscScalar *f)
+{
+  f[0] = f[1] = f[3] = 0;
+  f[2]               = (x[1] + x[0] - x[2]) / ((const ChainParams *)vp)->e2;
+}
+static void ChainScale3(const void *vp, PetscReal, const PetscScalar *x, PetscScalar *f)
+{
+  f[0] = f[1] = f[2] = 0;
+  f[3]               = (x[2] - x[3]) / ((const ChainParams *)vp)->e3;
+}
+
+void ChainProblem(SplitProblem *p, const ChainParams *params)
+{
+  p->n      = 4;
+  p->terms  = {ChainSlow, ChainScale1, ChainScale2, ChainScale3};
   p->params = params;
 }
 

@@ -8,7 +8,8 @@
 #include <string>
 #include <vector>
 
-enum class SplitKind { Additive, Component };
+// Mixed: even scales additive, odd scales component splits.
+enum class SplitKind { Additive, Component, Mixed };
 
 // A small ODE dx/dt = sum_k f_k(x) whose split k writes the terms of scale k. The state lives on
 // `comm` (spread over its ranks); split functions gather it to every rank.
@@ -38,6 +39,14 @@ struct DissipativeParams {
   PetscReal eps = 1e-2;
 };
 void DissipativeProblem(SplitProblem *p, const DissipativeParams *params);
+
+// A four-scale dissipative chain with a known averaged equation:
+//   x0' = sin(x1) - x0/2,  x1' = (x0 - x1)/e1,  x2' = (x1 + x0 - x2)/e2,  x3' = (x2 - x3)/e3,
+// whose fast variables relax to x1 = x0, x2 = 2 x0, x3 = 2 x0, so that X' = sin(X) - X/2.
+struct ChainParams {
+  PetscReal e1 = 1e-2, e2 = 1e-3, e3 = 1e-4;
+};
+void ChainProblem(SplitProblem *p, const ChainParams *params);
 
 // Runs the TS's error path with errors captured: returns the error code and the first message.
 struct CapturedError {

@@ -96,6 +96,109 @@ TEST(VSHMMSolver, DistributedRunMatchesSerialRun)
   }
 }
 
+TEST(VSHMMSolver, MixedAdditiveAndComponentSplitsAgree)
+{
+  SolveResult mixed, component;
+  ASSERT_EQ(SolveDissipative(PETSC_COMM_WORLD, SplitKind::Mixed, 1.0, 0.1, &mixed), 0);
+  ASSERT_EQ(SolveDissipative(PETSC_COMM_SELF, SplitKind::Component, 1.0, 0.1, &component), 0);
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(mixed.x[i], component.x[i], 1e-12 * std::abs(component.x[i])) << "component " << i;
+}
+
+// Four scales: x0 follows the averaged equation X' = sin(X) - X/2 (X(0) = 1) up to O(e1).
+PetscErrorCode SolveChain(MPI_Comm comm, SplitKind kind, std::vector<PetscReal> &x, PetscInt *monitor_calls, std::vector<PetscReal> alpha = {300, 100, 10})
+{
+  ChainParams  params;
+  SplitProblem p;
+  TS           ts;
+  Vec          X;
+
+  PetscFunctionBeginUser;
+  ChainProblem(&p, &params);
+  PetscCall(CreateSplitTS(comm, &p, kind, {1, 0, 0, 0}, {"s0", "s1", "s2", "s3"}, &ts, &X));
+  PetscCall(TSSetTimeStep(ts, 0.25));
+  PetscCall(TSSetMaxTime(ts, 2.0));
+  PetscCall(TSVSHMMSetMicroStep(ts, 1e-5));
+  PetscCall(TSVSHMMSetSavingsFactors(ts, 3, alpha.data()));
+  if (monitor_calls) {
+    *monitor_calls = 0;
+    PetscCall(TSMonitorSet(
+      ts,
+      [](TS, PetscInt, PetscReal t, Vec, void *ctx) -> PetscErrorCode {
+        PetscInt *n = (PetscInt *)ctx;
+        // every state the monitor sees is a sampled state: t is a multiple of DeltaT
+        if (std::abs(t / 0.25 - std::round(t / 0.25)) > 1e-12) return PETSC_ERR_PLIB;
+        (*n)++;
+        return 0;
+      },
+      monitor_calls, nullptr));
+  }
+  PetscCall(TSSolve(ts, X));
+  PetscCall(GatherState(&p, X, x));
+  PetscCall(DestroySplitTS(&p, &ts, &X));
+  PetscFunctionReturn(0);
+}
+
+// RK4 for y' = f(y) from 0 to T with n steps.
+template <class F, class V>
+V RK4(F f, V y, double T, int n)
+{
+  const double h = T / n;
+  for (int i = 0; i < n; ++i) {
+    V k1 = f(y), y2 = y, y3 = y, y4 = y;
+    for (size_t j = 0; j < y.size(); ++j) y2[j] += h / 2 * k1[j];
+    V k2 = f(y2);
+    for (size_t j = 0; j < y.size(); ++j) y3[j] += h / 2 * k2[j];
+    V k3 = f(y3);
+    for (size_t j = 0; j < y.size(); ++j) y4[j] += h * k3[j];
+    V k4 = f(y4);
+    for (size_t j = 0; j < y.size(); ++j) y[j] += h / 6 * (k1[j] + 2 * k2[j] + 2 * k3[j] + k4[j]);
+  }
+  return y;
+}
+
+TEST(VSHMMSolver, FourScalesFollowTheAveragedEquation)
+{
+  // Converged references at t = 2: the averaged equation and a DNS of the chain (RK4; halving the
+  // step changes them by < 1e-12).
+  using V = std::vector<double>;
+  const double X = RK4([](const V &y) { return V{std::sin(y[0]) - y[0] / 2}; }, V{1.0}, 2.0, 2000)[0];
+  const ChainParams c;
+  auto chain = [&](const V &x) { return V{std::sin(x[1]) - x[0] / 2, (x[0] - x[1]) / c.e1, (x[1] + x[0] - x[2]) / c.e2, (x[2] - x[3]) / c.e3}; };
+  const double dns = RK4(chain, V{1, 0, 0, 0}, 2.0, 100000)[0];
+  EXPECT_NEAR(dns, RK4(chain, V{1, 0, 0, 0}, 2.0, 200000)[0], 1e-12);
+  EXPECT_NEAR(dns, X, 1e-2); // the averaged equation holds to O(e1)
+  // Measured x0(2) errors against the DNS: 4.8e-2 for alpha = (1000, 100, 10), 1.4e-2 for
+  // (300, 100, 10): the larger alpha_1, the less time per cycle scale 1 has to follow x0.
+  std::vector<PetscReal> coarse;
+  ASSERT_EQ(SolveChain(PETSC_COMM_SELF, SplitKind::Additive, coarse, nullptr, {1000, 100, 10}), 0);
+  std::vector<PetscReal> additive, component, mixed, serial;
+  PetscInt               monitor_calls;
+  ASSERT_EQ(SolveChain(PETSC_COMM_WORLD, SplitKind::Additive, additive, &monitor_calls), 0);
+  EXPECT_EQ(monitor_calls, 9); // the initial state and 8 sampled states
+  ASSERT_EQ(SolveChain(PETSC_COMM_WORLD, SplitKind::Component, component, nullptr), 0);
+  ASSERT_EQ(SolveChain(PETSC_COMM_WORLD, SplitKind::Mixed, mixed, nullptr), 0);
+  ASSERT_EQ(SolveChain(PETSC_COMM_SELF, SplitKind::Additive, serial, nullptr), 0);
+  EXPECT_NEAR(additive[0], dns, 2e-2);
+  EXPECT_GT(std::abs(coarse[0] - dns), 2 * std::abs(additive[0] - dns));
+  EXPECT_NEAR(additive[1], additive[0], 5e-2);
+  EXPECT_NEAR(additive[2], 2 * additive[0], 1e-1);
+  EXPECT_NEAR(additive[3], additive[2], 1e-1);
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_NEAR(component[i], additive[i], 1e-12 * std::abs(additive[i]) + 1e-14) << i;
+    EXPECT_NEAR(mixed[i], additive[i], 1e-12 * std::abs(additive[i]) + 1e-14) << i;
+    EXPECT_NEAR(serial[i], additive[i], 1e-12 * std::abs(additive[i]) + 1e-14) << i;
+  }
+}
+
+TEST(VSHMMSolver, LogEventsPerLevel)
+{
+  for (const char *name : {"VSHMMLevel0", "VSHMMLevel1", "VSHMMLevel2"}) {
+    PetscLogEvent event = -1;
+    ASSERT_EQ(PetscLogEventGetId(name, &event), 0) << name;
+    EXPECT_GE(event, 0) << name;
+  }
+}
+
 TEST(VSHMMSolver, SplitOrderOptionReordersScales)
 {
   // Creating the splits fast-first and naming the order gives the same result as creating them slowest-first.
