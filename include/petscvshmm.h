@@ -55,7 +55,10 @@ PETSC_EXTERN const char *const TSVSHMMKernelTypes[];
 .  nsplits          - number of scales (RHS splits)
 .  rhs_evaluations  - calls of each split's right-hand-side function, in scale order (slowest first)
 .  level_steps      - Runge-Kutta steps taken on each level (level l integrates the splits 0..l)
--  level_evaluations - evaluations of each level's field G_l = f_0 + ... + f_l (one per RK stage)
+.  level_evaluations - evaluations of each level's field G_l = f_0 + ... + f_l (one per RK stage)
+.  stability_checks - stability checks run (see TSVSHMMSetStabilityCheck())
+.  stability_evaluations - split RHS evaluations spent by those checks (not in the counts above)
+-  stability_warnings - checks that found a level's largest step beyond its stable step, though damped over a macro step (warned on stderr)
 
    Level: intermediate
 
@@ -68,6 +71,9 @@ typedef struct {
   const PetscInt64 *rhs_evaluations;
   const PetscInt64 *level_steps;
   const PetscInt64 *level_evaluations;
+  PetscInt64        stability_checks;
+  PetscInt64        stability_evaluations;
+  PetscInt64        stability_warnings;
 } TSVSHMMStatistics;
 
 PETSC_EXTERN PetscErrorCode TSVSHMMInitializePackage(void);
@@ -87,6 +93,8 @@ PETSC_EXTERN PetscErrorCode TSVSHMMSetRKType(TS, TSRKType);
 PETSC_EXTERN PetscErrorCode TSVSHMMGetRKType(TS, TSRKType *);
 PETSC_EXTERN PetscErrorCode TSVSHMMSetSplitOrder(TS, PetscInt, const char *const[]);
 PETSC_EXTERN PetscErrorCode TSVSHMMGetSplitOrder(TS, PetscInt *, const char *const *[]);
+PETSC_EXTERN PetscErrorCode TSVSHMMSetStabilityCheck(TS, PetscBool, PetscInt);
+PETSC_EXTERN PetscErrorCode TSVSHMMGetStabilityCheck(TS, PetscBool *, PetscInt *);
 PETSC_EXTERN PetscErrorCode TSVSHMMGetStatistics(TS, TSVSHMMStatistics *);
 PETSC_EXTERN PetscErrorCode TSVSHMMResetStatistics(TS);
 

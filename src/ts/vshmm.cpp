@@ -8,7 +8,9 @@
 
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <sstream>
 #include <stdexcept>
 
@@ -85,16 +87,17 @@ static PetscErrorCode AddScale(TS_VSHMM *vs, PetscInt k, PetscReal t, Vec F, Vec
 }
 
 /* G = f_0(t,Y) + ... + f_level(t,Y): each split function called with the full state. */
-static PetscErrorCode EvaluateLevel(TS_VSHMM *vs, PetscInt level, PetscReal t, Vec Y, Vec G)
+PetscErrorCode TSVSHMMEvaluateLevel_Private(TS_VSHMM *vs, PetscInt level, PetscReal t, Vec Y, Vec G)
 {
   PetscFunctionBegin;
-  vs->level_evaluations[level]++;
+  if (vs->counting) vs->level_evaluations[level]++;
+  else vs->stability_evaluations += level + 1; /* split calls */
   for (PetscInt k = 0; k <= level; ++k) {
     VSHMMScale &sc = vs->scales[k];
 
     if (k == 0 && sc.additive) { /* the slowest additive split writes G itself */
       PetscCall(TSComputeRHSFunction(sc.subts, t, Y, G));
-      vs->rhs_evaluations[k]++;
+      if (vs->counting) vs->rhs_evaluations[k]++;
       if (vs->nonfinite_split < 0) {
         const PetscScalar *g;
         PetscInt           n;
@@ -108,7 +111,7 @@ static PetscErrorCode EvaluateLevel(TS_VSHMM *vs, PetscInt level, PetscReal t, V
     }
     if (k == 0) PetscCall(VecZeroEntries(G));
     PetscCall(TSComputeRHSFunction(sc.subts, t, Y, sc.F));
-    vs->rhs_evaluations[k]++;
+    if (vs->counting) vs->rhs_evaluations[k]++;
     PetscCall(AddScale(vs, k, t, sc.F, G));
   }
   PetscFunctionReturn(0);
@@ -128,7 +131,7 @@ struct LevelStepOps {
       PetscCall(VecMAXPY(vs->Y, i, w, vs->K.data()));
       Yi = vs->Y;
     }
-    return EvaluateLevel(vs, level, ti, Yi, vs->K[i]);
+    return TSVSHMMEvaluateLevel_Private(vs, level, ti, Yi, vs->K[i]);
   }
   int update(int s, const double *w) { return VecMAXPY(X, s, w, vs->K.data()); }
 };
@@ -323,6 +326,7 @@ static PetscErrorCode TSSetUp_VSHMM(TS ts)
   vs->level_events.resize(nscales);
   for (PetscInt l = 0; l < nscales; ++l) PetscCall(TSVSHMMGetLevelEvent_Private(l, &vs->level_events[l]));
   PetscCall(TSVSHMMResetStatistics(ts));
+  if (vs->check_stability) PetscCall(TSVSHMMCheckStability_Private(ts));
   PetscFunctionReturn(0);
 }
 
@@ -367,13 +371,9 @@ static PetscErrorCode TSStep_VSHMM(TS ts)
   const PetscReal dt = vs->micro_dt > 0 ? vs->micro_dt : ts->time_step / kDefaultMicroStepsPerMacroStep;
   PetscCheck(dt > kMinMicroStepFraction * DeltaT || last, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-ts_vshmm_micro_dt %g is below the time resolution of the macro step DeltaT = %g: the micro step must exceed %g DeltaT", (double)dt, (double)DeltaT, (double)kMinMicroStepFraction);
-
+  if (vs->stability_interval > 0 && ts->steps > 0 && ts->steps % vs->stability_interval == 0) PetscCall(TSVSHMMCheckStability_Private(ts));
   std::unique_ptr<vshmm::MesoscopicSchedule> schedule;
-  try {
-    schedule = std::make_unique<vshmm::MesoscopicSchedule>(*vs->kernel, dt, std::vector<double>(vs->savings_used.begin(), vs->savings_used.end()), std::vector<int>(vs->subintervals_used.begin(), vs->subintervals_used.end()));
-  } catch (const std::exception &e) {
-    PetscCall(ParameterError(comm, e.what()));
-  }
+  PetscCall(TSVSHMMCreateSchedule_Private(ts, dt, schedule));
 
   PetscCall(VecCopy(ts->vec_sol, vs->X0));
   vs->nonfinite_split = -1;
@@ -416,6 +416,20 @@ static PetscErrorCode TSStep_VSHMM(TS ts)
   PetscFunctionReturn(0);
 }
 
+/* The schedule of the mesoscopic steps for micro step dt. */
+PetscErrorCode TSVSHMMCreateSchedule_Private(TS ts, PetscReal dt, std::unique_ptr<vshmm::MesoscopicSchedule> &schedule)
+{
+  TS_VSHMM *vs = (TS_VSHMM *)ts->data;
+
+  PetscFunctionBegin;
+  try {
+    schedule = std::make_unique<vshmm::MesoscopicSchedule>(*vs->kernel, dt, std::vector<double>(vs->savings_used.begin(), vs->savings_used.end()), std::vector<int>(vs->subintervals_used.begin(), vs->subintervals_used.end()));
+  } catch (const std::exception &e) {
+    PetscCall(ParameterError(PetscObjectComm((PetscObject)ts), e.what()));
+  }
+  PetscFunctionReturn(0);
+}
+
 /* Sampled states are the method's output: between two of them, interpolate linearly. */
 static PetscErrorCode TSInterpolate_VSHMM(TS ts, PetscReal t, Vec X)
 {
@@ -453,6 +467,16 @@ static PetscErrorCode ParseInt(MPI_Comm comm, const char *option, const char *te
   long v = std::strtol(text, &end, 10);
   PetscCheck(text[0] && end != text && *end == '\0' && errno != ERANGE && v >= PETSC_MIN_INT && v <= PETSC_MAX_INT, comm, PETSC_ERR_ARG_WRONG, "%s: '%s' is not an integer", option, text);
   *value = (PetscInt)v;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ParseBool(MPI_Comm comm, const char *option, const char *text, PetscBool *value)
+{
+  PetscFunctionBegin;
+  const std::string v = text;
+  if (v == "true" || v == "1" || v == "yes" || v == "on" || v == "") *value = PETSC_TRUE; /* a flag alone means true */
+  else if (v == "false" || v == "0" || v == "no" || v == "off") *value = PETSC_FALSE;
+  else SETERRQ(comm, PETSC_ERR_ARG_WRONG, "%s: '%s' is not a truth value: use true or false", option, text);
   PetscFunctionReturn(0);
 }
 
@@ -535,6 +559,17 @@ static PetscErrorCode TSSetFromOptions_VSHMM(TS ts, PetscOptionItems *PetscOptio
     PetscCall(PetscOptionsString("-ts_vshmm_rk_type", "TSRK type of the inner steps", "TSVSHMMSetRKType", vs->rk_type.c_str(), text, sizeof(text), &set));
     if (set) PetscCall(TSVSHMMSetRKType(ts, text));
 
+    PetscCall(PetscOptionsString("-ts_vshmm_check_stability", "Check the steps against the stability region of the inner Runge-Kutta method at set-up (true or false)", "TSVSHMMSetStabilityCheck", vs->check_stability ? "true" : "false", text, sizeof(text), &set));
+    PetscBool check = vs->check_stability;
+    if (set) PetscCall(ParseBool(comm, "-ts_vshmm_check_stability", text, &check));
+    PetscInt interval = vs->stability_interval;
+    char     dflt_interval[32];
+    std::snprintf(dflt_interval, sizeof(dflt_interval), "%d", (int)vs->stability_interval);
+    PetscBool iset;
+    PetscCall(PetscOptionsString("-ts_vshmm_check_stability_interval", "Also check every this many macro steps (0: only at set-up)", "TSVSHMMSetStabilityCheck", dflt_interval, text, sizeof(text), &iset));
+    if (iset) PetscCall(ParseInt(comm, "-ts_vshmm_check_stability_interval", text, &interval));
+    if (set || iset) PetscCall(TSVSHMMSetStabilityCheck(ts, check, interval));
+
     PetscCall(ReadList(PetscOptionsObject, comm, "-ts_vshmm_splits", "RHS split names, slowest scale first", "TSVSHMMSetSplitOrder", items, &set));
     if (set) {
       std::vector<const char *> names;
@@ -578,6 +613,9 @@ static PetscErrorCode TSView_VSHMM(TS ts, PetscViewer viewer)
     evals += vs->rhs_evaluations[l];
   }
   PetscCall(PetscViewerASCIIPrintf(viewer, "  work: %" PetscInt64_FMT " macro steps, %" PetscInt64_FMT " micro cycles, %" PetscInt64_FMT " Runge-Kutta steps, %" PetscInt64_FMT " split RHS evaluations\n", vs->macro_steps, vs->micro_cycles, steps, evals));
+  if (!vs->check_stability && vs->stability_interval == 0) PetscCall(PetscViewerASCIIPrintf(viewer, "  stability check: off\n"));
+  else if (vs->stability_interval > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "  stability check: %s set-up and every %" PetscInt_FMT " macro steps; %" PetscInt64_FMT " checks, %" PetscInt64_FMT " split RHS evaluations, %" PetscInt64_FMT " warnings\n", vs->check_stability ? "at" : "not at", vs->stability_interval, vs->stability_checks, vs->stability_evaluations, vs->stability_warnings));
+  else PetscCall(PetscViewerASCIIPrintf(viewer, "  stability check: at set-up; %" PetscInt64_FMT " checks, %" PetscInt64_FMT " split RHS evaluations, %" PetscInt64_FMT " warnings\n", vs->stability_checks, vs->stability_evaluations, vs->stability_warnings));
   PetscFunctionReturn(0);
 }
 
@@ -714,6 +752,26 @@ static PetscErrorCode TSVSHMMGetSplitOrder_VSHMM(TS ts, PetscInt *n, const char 
   PetscFunctionReturn(0);
 }
 
+static PetscErrorCode TSVSHMMSetStabilityCheck_VSHMM(TS ts, PetscBool flg, PetscInt interval)
+{
+  TS_VSHMM *vs = (TS_VSHMM *)ts->data;
+
+  PetscFunctionBegin;
+  vs->check_stability    = flg;
+  vs->stability_interval = interval;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode TSVSHMMGetStabilityCheck_VSHMM(TS ts, PetscBool *flg, PetscInt *interval)
+{
+  TS_VSHMM *vs = (TS_VSHMM *)ts->data;
+
+  PetscFunctionBegin;
+  if (flg) *flg = vs->check_stability;
+  if (interval) *interval = vs->stability_interval;
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode TSVSHMMGetStatistics_VSHMM(TS ts, TSVSHMMStatistics *stats)
 {
   TS_VSHMM *vs = (TS_VSHMM *)ts->data;
@@ -725,6 +783,9 @@ static PetscErrorCode TSVSHMMGetStatistics_VSHMM(TS ts, TSVSHMMStatistics *stats
   stats->rhs_evaluations   = vs->rhs_evaluations.empty() ? nullptr : vs->rhs_evaluations.data();
   stats->level_steps       = vs->level_steps.empty() ? nullptr : vs->level_steps.data();
   stats->level_evaluations = vs->level_evaluations.empty() ? nullptr : vs->level_evaluations.data();
+  stats->stability_checks      = vs->stability_checks;
+  stats->stability_evaluations = vs->stability_evaluations;
+  stats->stability_warnings    = vs->stability_warnings;
   PetscFunctionReturn(0);
 }
 
@@ -734,8 +795,12 @@ static PetscErrorCode TSVSHMMResetStatistics_VSHMM(TS ts)
   size_t    n  = vs->scales.size();
 
   PetscFunctionBegin;
-  vs->macro_steps  = 0;
-  vs->micro_cycles = 0;
+  vs->macro_steps           = 0;
+  vs->micro_cycles          = 0;
+  vs->stability_checks      = 0;
+  vs->stability_evaluations = 0;
+  vs->stability_warnings    = 0;
+  vs->warned_ratio.assign(n, 0.0);
   vs->rhs_evaluations.assign(n, 0);
   vs->level_steps.assign(n, 0);
   vs->level_evaluations.assign(n, 0);
@@ -757,6 +822,8 @@ static PetscErrorCode TSVSHMMResetStatistics_VSHMM(TS ts)
   X(TSVSHMMGetRKType) \
   X(TSVSHMMSetSplitOrder) \
   X(TSVSHMMGetSplitOrder) \
+  X(TSVSHMMSetStabilityCheck) \
+  X(TSVSHMMGetStabilityCheck) \
   X(TSVSHMMGetStatistics) \
   X(TSVSHMMResetStatistics)
 
@@ -801,7 +868,9 @@ $    h_j(t) = alpha_j dt K(Theta^{-1}(((t - t_n) mod P_j) / P_j)),   P_j = Delta
 .  -ts_vshmm_kernel <cosine,constant,polynomial,exponential> - kernel (default cosine)
 .  -ts_vshmm_kernel_order <q> - order of the polynomial kernel (default 1)
 .  -ts_vshmm_rk_type <type> - TSRK type of every inner step (default 4)
--  -ts_vshmm_splits <a,b,...> - the splits in scale order, slowest first (default creation order)
+.  -ts_vshmm_splits <a,b,...> - the splits in scale order, slowest first (default creation order)
+.  -ts_vshmm_check_stability <true,false> - check the steps against the stability region at set-up (default true)
+-  -ts_vshmm_check_stability_interval <N> - also check every N macro steps (default 0: never)
 
    Level: intermediate
 

@@ -400,6 +400,70 @@ PetscErrorCode TSVSHMMGetSplitOrder(TS ts, PetscInt *n, const char *const *names
   PetscFunctionReturn(0);
 }
 
+/*@
+   TSVSHMMSetStabilityCheck - Turns the stability check of the micro and mesoscopic steps on or off
+
+   Logically Collective
+
+   Input Parameters:
++  ts - the `TS` of type `TSVSHMM`
+.  flg - `PETSC_TRUE` (the default) to check at set-up
+-  interval - also check every that many macro steps; 0 (the default) for never
+
+   Options Database Keys:
++  -ts_vshmm_check_stability <true,false> - check at set-up
+-  -ts_vshmm_check_stability_interval <N> - also check every N macro steps
+
+   Notes:
+   The check estimates the eigenvalues of each level's field G_l = f_0 + ... + f_l at the
+   current state by a few Arnoldi steps on finite-difference Jacobian products of the split
+   functions (about 17 level-field evaluations per level; no Jacobian is needed). For every
+   estimated eigenvalue lambda with Re(lambda) <= 0 the micro step dt must lie in the stability
+   region of the inner Runge-Kutta method (|R(dt lambda)| <= 1). A mesoscopic level passes when
+   its largest step does, or, as variable steps may exceed the limit near the kernel's peak,
+   when its steps over a whole macro step damp the mode. A failure is an error that names the
+   level, the step, the eigenvalue, the spectral radius, the largest stable step and the largest
+   stable savings factor. Growing modes (Re(lambda) > 0) are the problem's own and are not checked.
+
+   Level: intermediate
+
+.seealso: `TSVSHMM`, `TSVSHMMGetStabilityCheck()`, `TSVSHMMSetMicroStep()`, `TSVSHMMSetSavingsFactors()`
+@*/
+PetscErrorCode TSVSHMMSetStabilityCheck(TS ts, PetscBool flg, PetscInt interval)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  PetscValidLogicalCollectiveBool(ts, flg, 2);
+  PetscValidLogicalCollectiveInt(ts, interval, 3);
+  PetscCheck(interval >= 0, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "Stability check interval %" PetscInt_FMT " is invalid: -ts_vshmm_check_stability_interval takes 0 (never) or a number of macro steps >= 1", interval);
+  PetscTryMethod(ts, "TSVSHMMSetStabilityCheck_C", (TS, PetscBool, PetscInt), (ts, flg, interval));
+  PetscFunctionReturn(0);
+}
+
+/*@
+   TSVSHMMGetStabilityCheck - Tells whether and how often the stability check runs
+
+   Not Collective
+
+   Input Parameter:
+.  ts - the `TS` of type `TSVSHMM`
+
+   Output Parameters:
++  flg - whether it runs at set-up
+-  interval - every how many macro steps it runs too (0: never)
+
+   Level: intermediate
+
+.seealso: `TSVSHMM`, `TSVSHMMSetStabilityCheck()`
+@*/
+PetscErrorCode TSVSHMMGetStabilityCheck(TS ts, PetscBool *flg, PetscInt *interval)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  PetscUseMethod(ts, "TSVSHMMGetStabilityCheck_C", (TS, PetscBool *, PetscInt *), (ts, flg, interval));
+  PetscFunctionReturn(0);
+}
+
 /*@C
    TSVSHMMGetStatistics - Gets the work done since set-up: macro steps, micro cycles, and the
    right-hand-side evaluations of every split

@@ -11,6 +11,7 @@
 #include "kernel.hpp"
 #include "rk.hpp"
 #include "schedule.hpp"
+#include "stability.hpp"
 
 // One scale: one RHS split, with what it takes to add its output into a level's field.
 struct VSHMMScale {
@@ -33,6 +34,8 @@ struct TS_VSHMM {
   PetscInt                 kernel_order = PETSC_DEFAULT; // PETSC_DEFAULT: the kernel's own
   std::string              rk_type      = TSRK4;
   std::vector<std::string> split_order;                  // empty: creation order
+  PetscBool                check_stability    = PETSC_TRUE; // at set-up
+  PetscInt                 stability_interval = 0;          // also every that many macro steps (0: never)
   std::vector<const char *> split_order_c;               // for TSVSHMMGetSplitOrder()
 
   // Set-up state
@@ -47,8 +50,11 @@ struct TS_VSHMM {
   std::vector<PetscLogEvent>                level_events;
 
   // Statistics since set-up
+  PetscBool                 counting     = PETSC_TRUE; // off while the stability check evaluates fields
   PetscInt64                macro_steps  = 0;
   PetscInt64                micro_cycles = 0;
+  PetscInt64                stability_checks = 0, stability_evaluations = 0, stability_warnings = 0;
+  std::vector<PetscReal>    warned_ratio; // per level: largest step / stable step when last warned
   std::vector<PetscInt64>   rhs_evaluations, level_steps, level_evaluations;
 
   // First non-finite split output seen on this rank in the current macro step
@@ -60,4 +66,7 @@ static constexpr PetscInt  kDefaultMicroStepsPerMacroStep = 100;
 static constexpr PetscReal kMinMicroStepFraction          = 1e-13; /* dt / DeltaT below this cannot advance time */
 
 PETSC_INTERN PetscErrorCode TSCreate_VSHMM(TS);
+PETSC_INTERN PetscErrorCode TSVSHMMEvaluateLevel_Private(TS_VSHMM *, PetscInt, PetscReal, Vec, Vec);
+PETSC_INTERN PetscErrorCode TSVSHMMCreateSchedule_Private(TS, PetscReal, std::unique_ptr<vshmm::MesoscopicSchedule> &);
+PETSC_INTERN PetscErrorCode TSVSHMMCheckStability_Private(TS);
 PETSC_INTERN PetscErrorCode TSVSHMMGetLevelEvent_Private(PetscInt, PetscLogEvent *);

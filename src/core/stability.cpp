@@ -1,0 +1,63 @@
+#include "stability.hpp"
+
+#include <cmath>
+#include <limits>
+
+namespace vshmm {
+
+StabilityFunction::StabilityFunction(const Tableau &tableau) : a_(tableau.a), b_(tableau.b), s_(tableau.stages) { }
+
+std::complex<double> StabilityFunction::operator()(std::complex<double> z) const
+{
+  // Stage values for y' = y with step z: Y_i = 1 + z sum_{j<i} a_ij Y_j; R = 1 + z sum b_i Y_i.
+  std::complex<double> Y[Tableau::kMaxStages], R = 1.0;
+  for (int i = 0; i < s_; ++i) {
+    std::complex<double> sum = 0.0;
+    for (int j = 0; j < i; ++j) sum += a_[i * s_ + j] * Y[j];
+    Y[i] = 1.0 + z * sum;
+    R += z * b_[i] * Y[i];
+  }
+  return R;
+}
+
+double StabilityFunction::rayLimit(std::complex<double> direction) const
+{
+  const std::complex<double> d   = direction / std::abs(direction);
+  const double               tol = 1e-12;
+  auto stable = [&](double x) { return std::abs((*this)(x * d)) <= 1.0 + tol; };
+  // Scan outwards in steps small against the size of any stability region of an explicit method,
+  // then bisect the first crossing.
+  const double dx = 1e-3;
+  double       x  = 0.0;
+  while (x < kMaxRadius && stable(x + dx)) x += dx;
+  if (x >= kMaxRadius) return kMaxRadius;
+  double lo = x, hi = x + dx;
+  for (int it = 0; it < 60; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (stable(mid) ? lo : hi) = mid;
+  }
+  return lo;
+}
+
+double StabilityFunction::largestStableStep(std::complex<double> lambda) const
+{
+  const double r = std::abs(lambda);
+  if (r == 0.0) return std::numeric_limits<double>::infinity();
+  return rayLimit(lambda) / r;
+}
+
+LevelAmplification levelAmplification(const StabilityFunction &R, const MesoscopicSchedule &schedule, double macroStep, int level, std::complex<double> lambda)
+{
+  LevelAmplification a;
+  runMacroStep(schedule, macroStep, [&](int l, double, double h) {
+    if (l == level) {
+      a.logAmplification += std::log(std::abs(R(h * lambda)));
+      a.steps++;
+      a.largestStep = std::max(a.largestStep, h);
+    }
+    return 0;
+  });
+  return a;
+}
+
+}  // namespace vshmm

@@ -1,0 +1,48 @@
+// Linear stability of explicit Runge-Kutta steps: the stability function R(z) of a tableau, its
+// stability limits along rays of the complex plane, and the amplification of a level's
+// variable steps over one macro step. No PETSc here.
+#pragma once
+
+#include <complex>
+#include <vector>
+
+#include "rk.hpp"
+#include "schedule.hpp"
+
+namespace vshmm {
+
+// R(z) = 1 + z b^T (I - z A)^{-1} 1: one step of the method applied to y' = lambda y, z = h lambda.
+class StabilityFunction {
+public:
+  explicit StabilityFunction(const Tableau &tableau);
+
+  std::complex<double> operator()(std::complex<double> z) const;
+
+  // The largest r with |R(x d)| <= 1 for every x in [0, r], d = direction / |direction|:
+  // along the negative real axis (d = -1) it is 2 for forward Euler and 2.785 for RK4, along the
+  // imaginary axis 0 and 2.828. Bounded by kMaxRadius.
+  double rayLimit(std::complex<double> direction) const;
+  double realLimit() const { return rayLimit(-1.0); }
+  double imaginaryLimit() const { return rayLimit(std::complex<double>(0.0, 1.0)); }
+
+  // The largest step h with |R(x h lambda)| <= 1 for every x in [0, 1] (infinity for lambda = 0).
+  double largestStableStep(std::complex<double> lambda) const;
+
+  static constexpr double kMaxRadius = 1e3;
+
+private:
+  std::vector<double> a_, b_;
+  int                 s_;
+};
+
+// What the steps of one level do to a linear mode y' = lambda y over one macro step of
+// length macroStep, with the schedule's own step sequence (the shortened last step included):
+// the product of |R(h lambda)| over the level's steps, as its logarithm, and the step count.
+struct LevelAmplification {
+  double logAmplification = 0.0;
+  long   steps            = 0;
+  double largestStep      = 0.0;
+};
+LevelAmplification levelAmplification(const StabilityFunction &R, const MesoscopicSchedule &schedule, double macroStep, int level, std::complex<double> lambda);
+
+}  // namespace vshmm

@@ -1,0 +1,227 @@
+/*
+  The stability check of TSVSHMM: estimates the eigenvalues of each level's field at the current
+  state and compares the level's steps with the stability region of the inner Runge-Kutta method.
+
+  Eigenvalues: a few Arnoldi steps on the Jacobian of G_l = f_0 + ... + f_l, applied by finite
+  differences of the split functions (no user Jacobian); the Ritz values approximate the extreme
+  eigenvalues, the ones that limit an explicit step.
+
+  Verdict, for every Ritz value lambda that is not a growing mode (Re lambda <= 0):
+  - the micro step dt of the full field must satisfy |R(x dt lambda)| <= 1 for x in [0, 1];
+  - a mesoscopic level passes if its largest step does; variable steps may exceed the limit near
+    the kernel's peak as long as the level's steps over a whole macro step damp the mode
+    (prod |R(h lambda)| <= 1). Otherwise the check fails with an error that names the level,
+    the step, the eigenvalue, the spectral radius and the largest stable step.
+*/
+#include "vshmmimpl.hpp"
+
+#include <petscblaslapack.h>
+
+#include <cmath>
+#include <complex>
+#include <string>
+
+static constexpr PetscInt  kArnoldiSteps  = 16;
+static constexpr PetscReal kDampingTarget = 0.5;  /* what a suggested savings factor achieves over a macro step */
+
+/* Ritz values of the Jacobian of level l's field at (t, X). */
+static PetscErrorCode LevelRitzValues(TS ts, PetscInt level, PetscReal t, Vec X, std::vector<std::complex<double>> &ritz, PetscBool *finite)
+{
+  TS_VSHMM   *vs = (TS_VSHMM *)ts->data;
+  PetscInt    N, rstart, rend;
+  Vec        *V, G0, Xp, W;
+  PetscReal   xnorm;
+  PetscScalar *v;
+
+  PetscFunctionBegin;
+  ritz.clear();
+  *finite = PETSC_TRUE;
+  PetscCall(VecGetSize(X, &N));
+  const PetscInt m = PetscMin(kArnoldiSteps, N);
+  PetscCall(VecDuplicateVecs(X, m + 1, &V));
+  PetscCall(VecDuplicate(X, &G0));
+  PetscCall(VecDuplicate(X, &Xp));
+  PetscCall(VecDuplicate(X, &W));
+
+  /* A deterministic start vector that does not depend on the number of ranks */
+  PetscCall(VecGetOwnershipRange(V[0], &rstart, &rend));
+  PetscCall(VecGetArray(V[0], &v));
+  for (PetscInt i = rstart; i < rend; ++i) v[i - rstart] = 1.0 + 0.5 * std::sin(1.7 * (double)i + 0.3);
+  PetscCall(VecRestoreArray(V[0], &v));
+  PetscReal beta;
+  PetscCall(VecNormalize(V[0], &beta));
+
+  PetscCall(VecNorm(X, NORM_2, &xnorm));
+  const PetscReal delta = std::sqrt(PETSC_MACHINE_EPSILON) * (1.0 + xnorm);
+  PetscCall(TSVSHMMEvaluateLevel_Private(vs, level, t, X, G0));
+
+  std::vector<PetscScalar> H((m + 1) * m, 0.0), h(m + 1);
+  PetscInt                 k = 0; /* Krylov dimension reached */
+  for (PetscInt j = 0; j < m; ++j) {
+    /* W = J V_j ~ (G(X + delta V_j) - G(X)) / delta */
+    PetscCall(VecWAXPY(Xp, delta, V[j], X));
+    PetscCall(TSVSHMMEvaluateLevel_Private(vs, level, t, Xp, W));
+    PetscCall(VecAXPY(W, -1.0, G0));
+    PetscCall(VecScale(W, 1.0 / delta));
+    /* Gram-Schmidt, twice */
+    for (int pass = 0; pass < 2; ++pass) {
+      PetscCall(VecMDot(W, j + 1, V, h.data()));
+      for (PetscInt i = 0; i <= j; ++i) {
+        H[i + j * (m + 1)] += h[i];
+        h[i] = -h[i];
+      }
+      PetscCall(VecMAXPY(W, j + 1, h.data(), V));
+    }
+    PetscReal hnext;
+    PetscCall(VecNorm(W, NORM_2, &hnext));
+    if (!std::isfinite(hnext)) {
+      *finite = PETSC_FALSE;
+      break;
+    }
+    H[j + 1 + j * (m + 1)] = hnext;
+    k                      = j + 1;
+    PetscReal hnorm = 0;
+    for (PetscInt i = 0; i <= j + 1; ++i) hnorm = PetscMax(hnorm, PetscAbsScalar(H[i + j * (m + 1)]));
+    if (hnext <= 1e-12 * hnorm || j + 1 == m) break; /* invariant subspace, or done */
+    PetscCall(VecCopy(W, V[j + 1]));
+    PetscCall(VecScale(V[j + 1], 1.0 / hnext));
+  }
+  PetscCall(VecDestroyVecs(m + 1, &V));
+  PetscCall(VecDestroy(&G0));
+  PetscCall(VecDestroy(&Xp));
+  PetscCall(VecDestroy(&W));
+  if (!*finite || k == 0) PetscFunctionReturn(0);
+
+  /* Eigenvalues of the k x k Hessenberg matrix */
+  std::vector<PetscScalar> A(k * k), work(8 * k + 8);
+  std::vector<PetscReal>   wr(k), wi(k);
+  for (PetscInt j = 0; j < k; ++j)
+    for (PetscInt i = 0; i < k; ++i) A[i + j * k] = H[i + j * (m + 1)];
+  PetscBLASInt n, lwork = (PetscBLASInt)work.size(), one = 1, info;
+  PetscCall(PetscBLASIntCast(k, &n));
+  PetscCallBLAS("LAPACKgeev", LAPACKgeev_("N", "N", &n, A.data(), &n, wr.data(), wi.data(), nullptr, &one, nullptr, &one, work.data(), &lwork, &info));
+  if (info) {
+    *finite = PETSC_FALSE;
+    PetscFunctionReturn(0);
+  }
+  for (PetscInt i = 0; i < k; ++i) ritz.emplace_back(wr[i], wi[i]);
+  PetscFunctionReturn(0);
+}
+
+static std::string LevelSplits(const TS_VSHMM *vs, PetscInt level)
+{
+  std::string s;
+  for (PetscInt k = 0; k <= level; ++k) s += (k ? ", " : "") + vs->scales[k].name;
+  return s;
+}
+
+/* The largest savings factor alpha_j (0 < alpha <= alpha_now) for which level j - 1 damps lambda
+   by kDampingTarget over a macro step. */
+static PetscErrorCode LargestStableSavingsFactor(TS ts, PetscReal dt, PetscInt j, std::complex<double> lambda, const vshmm::StabilityFunction &R, PetscReal *alpha)
+{
+  TS_VSHMM *vs  = (TS_VSHMM *)ts->data;
+  PetscReal now = vs->savings_used[j - 1], lo = 0, hi = now;
+
+  PetscFunctionBegin;
+  for (int it = 0; it < 40; ++it) {
+    const PetscReal mid = 0.5 * (lo + hi);
+    vs->savings_used[j - 1] = mid;
+    std::unique_ptr<vshmm::MesoscopicSchedule> schedule;
+    PetscCall(TSVSHMMCreateSchedule_Private(ts, dt, schedule));
+    const double logA = vshmm::levelAmplification(R, *schedule, ts->time_step, (int)(j - 1), lambda).logAmplification;
+    (logA <= std::log(kDampingTarget) ? lo : hi) = mid;
+  }
+  vs->savings_used[j - 1] = now;
+  *alpha                  = lo;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode TSVSHMMCheckStability_Private(TS ts)
+{
+  TS_VSHMM       *vs      = (TS_VSHMM *)ts->data;
+  MPI_Comm        comm    = PetscObjectComm((PetscObject)ts);
+  const PetscInt  nscales = (PetscInt)vs->scales.size(), top = nscales - 1;
+  const PetscReal t = ts->ptime, DeltaT = ts->time_step;
+  const PetscReal dt = vs->micro_dt > 0 ? vs->micro_dt : DeltaT / kDefaultMicroStepsPerMacroStep;
+  const char     *rk = vs->tableau->name.c_str();
+  vshmm::StabilityFunction R(*vs->tableau);
+  std::unique_ptr<vshmm::MesoscopicSchedule> schedule;
+  std::vector<std::complex<double>>          ritz;
+
+  PetscFunctionBegin;
+  PetscCall(TSVSHMMCreateSchedule_Private(ts, dt, schedule));
+  vs->stability_checks++;
+  vs->counting                 = PETSC_FALSE;
+  const PetscInt  saved_split  = vs->nonfinite_split;
+  const PetscReal saved_time   = vs->nonfinite_time;
+  for (PetscInt level = 0; level <= top; ++level) {
+    PetscBool finite;
+    PetscCall(LevelRitzValues(ts, level, t, ts->vec_sol, ritz, &finite));
+    if (!finite) {
+      PetscCall(PetscInfo(ts, "Stability check at t = %g: the field of level %" PetscInt_FMT " is not finite near the state; skipped\n", (double)t, level));
+      continue;
+    }
+    /* The most restrictive decaying or oscillating mode */
+    double               radius = 0, hmax = PETSC_MAX_REAL;
+    std::complex<double> worst  = 0;
+    std::vector<std::complex<double>> limiting;
+    for (const std::complex<double> &lambda : ritz) {
+      radius = std::max(radius, std::abs(lambda));
+      if (std::abs(lambda) == 0 || lambda.real() > 1e-6 * std::abs(lambda)) continue; /* growing mode: not a stability matter */
+      const double h = R.largestStableStep(lambda);
+      if (h < hmax) {
+        hmax  = h;
+        worst = lambda;
+      }
+      limiting.push_back(lambda);
+    }
+    if (limiting.empty()) continue;
+    if (level == top) {
+      PetscCheck(dt <= hmax * (1 + 1e-10), comm, PETSC_ERR_ARG_OUTOFRANGE,
+                 "TSVSHMM stability check at t = %g: level %" PetscInt_FMT " (all splits: %s) is unstable with the micro step dt = %g: the estimated eigenvalue %g%+gi (spectral radius %g) needs dt <= %g for TSRK %s. Use a smaller -ts_vshmm_micro_dt, or -ts_vshmm_check_stability false to skip the check",
+                 (double)t, level, LevelSplits(vs, level).c_str(), (double)dt, worst.real(), worst.imag(), radius, hmax, rk);
+      PetscCall(PetscInfo(ts, "Stability check at t = %g: level %" PetscInt_FMT " (micro step %g): spectral radius %g, largest stable step %g\n", (double)t, level, (double)dt, radius, hmax));
+      continue;
+    }
+    const PetscInt j     = level + 1;
+    const double   hpeak = vshmm::levelAmplification(R, *schedule, DeltaT, (int)level, worst).largestStep;
+    if (hpeak <= hmax) {
+      PetscCall(PetscInfo(ts, "Stability check at t = %g: level %" PetscInt_FMT " (largest step h_%" PetscInt_FMT " = %g): spectral radius %g, largest stable step %g\n", (double)t, level, j, hpeak, radius, hmax));
+      continue;
+    }
+    /* Beyond the limit near the kernel's peak: does the macro step as a whole damp every limiting mode? */
+    double               logA = -PETSC_MAX_REAL;
+    std::complex<double> grows = worst;
+    for (const std::complex<double> &lambda : limiting) {
+      if (R.largestStableStep(lambda) >= hpeak) continue; /* every step of the level is stable for it */
+      const double a = vshmm::levelAmplification(R, *schedule, DeltaT, (int)level, lambda).logAmplification;
+      if (a > logA) {
+        logA  = a;
+        grows = lambda;
+      }
+    }
+    if (logA <= 1e-8) { /* damped (or neutral) over a macro step, but amplified near the kernel's peak */
+      const double    peak_growth = std::abs(R(hpeak * worst));
+      const PetscReal alpha_safe  = vs->savings_used[j - 1] * hmax / hpeak;
+      vs->stability_warnings++;
+      PetscCall(PetscInfo(ts, "Stability check at t = %g: level %" PetscInt_FMT ": the largest step h_%" PetscInt_FMT " = %g exceeds the stable step %g for the eigenvalue %g%+gi (growth %g per step there); over a macro step the level's steps change that mode by %g\n", (double)t, level, j, hpeak, hmax, worst.real(), worst.imag(), peak_growth, std::exp(logA)));
+      if (hpeak / hmax > 1.1 * vs->warned_ratio[level]) { /* first time, or clearly worse than last warned */
+        vs->warned_ratio[level] = hpeak / hmax;
+        PetscCall(PetscFPrintf(comm, PETSC_STDERR,
+                               "TSVSHMM warning: stability check at t = %g: level %" PetscInt_FMT " (splits %s): its largest step h_%" PetscInt_FMT " = %g exceeds the stable step %g of TSRK %s for the estimated eigenvalue %g%+gi (spectral radius %g), which grows by %g per step near the kernel's peak; over a macro step the mode changes by a factor %g. Such transient growth can bias the slow variables. A savings factor alpha_%" PetscInt_FMT " <= %g (now %g) keeps every step stable. (Shown again only if it gets worse; -info shows every check.)\n",
+                               (double)t, level, LevelSplits(vs, level).c_str(), j, hpeak, hmax, rk, worst.real(), worst.imag(), radius, peak_growth, std::exp(logA), j, (double)alpha_safe, (double)vs->savings_used[j - 1]));
+      }
+      continue;
+    }
+    PetscReal alpha_max;
+    PetscCall(LargestStableSavingsFactor(ts, dt, j, grows, R, &alpha_max));
+    vs->counting = PETSC_TRUE;
+    SETERRQ(comm, PETSC_ERR_ARG_OUTOFRANGE,
+            "TSVSHMM stability check at t = %g: level %" PetscInt_FMT " (splits %s) is unstable with its mesoscopic step h_%" PetscInt_FMT ": its largest step %g times the estimated eigenvalue %g%+gi (spectral radius %g) lies outside the stability region of TSRK %s, whose largest stable step for it is %g, and over a macro step the level's steps amplify that mode by %g. Use a savings factor alpha_%" PetscInt_FMT " <= %g (now %g) in -ts_vshmm_savings_factors, or -ts_vshmm_check_stability false to skip the check",
+            (double)t, level, LevelSplits(vs, level).c_str(), j, hpeak, grows.real(), grows.imag(), radius, rk, R.largestStableStep(grows), std::exp(logA), j, (double)alpha_max, (double)vs->savings_used[j - 1]);
+  }
+  vs->counting        = PETSC_TRUE;
+  vs->nonfinite_split = saved_split;
+  vs->nonfinite_time  = saved_time;
+  PetscFunctionReturn(0);
+}

@@ -1,0 +1,96 @@
+// Stability functions of explicit Runge-Kutta tableaus against their known polynomials and
+// stability limits, and the amplification of a level's steps over a macro step.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "stability.hpp"
+
+namespace {
+
+using vshmm::Tableau;
+using cd = std::complex<double>;
+
+Tableau Euler() { return Tableau("1fe", 1, 1, {0}, {1}, {0}); }
+Tableau Heun() { return Tableau("2a", 2, 2, {0, 0, 1, 0}, {0.5, 0.5}, {0, 1}); }
+Tableau Kutta3() { return Tableau("3", 3, 3, {0, 0, 0, 0.5, 0, 0, -1, 2, 0}, {1.0 / 6, 2.0 / 3, 1.0 / 6}, {0, 0.5, 1}); }
+Tableau RK4() { return Tableau("4", 4, 4, {0, 0, 0, 0, 0.5, 0, 0, 0, 0, 0.5, 0, 0, 0, 0, 1, 0}, {1.0 / 6, 1.0 / 3, 1.0 / 3, 1.0 / 6}, {0, 0.5, 0.5, 1}); }
+
+TEST(StabilityFunction, IsTheTruncatedExponentialForMethodsWithOrderEqualToStages)
+{
+  const Tableau tabs[] = {Euler(), Heun(), Kutta3(), RK4()};
+  for (const Tableau &t : tabs) {
+    vshmm::StabilityFunction R(t);
+    for (cd z : {cd(-1.3, 0.4), cd(0.2, -2.0), cd(-2.5, 0)}) {
+      cd taylor = 1, term = 1;
+      for (int k = 1; k <= t.stages; ++k) taylor += (term *= z / double(k));
+      EXPECT_NEAR(std::abs(R(z) - taylor), 0.0, 1e-14) << t.name;
+    }
+  }
+}
+
+TEST(StabilityFunction, KnownRealAndImaginaryLimits)
+{
+  EXPECT_NEAR(vshmm::StabilityFunction(Euler()).realLimit(), 2.0, 1e-9);
+  EXPECT_NEAR(vshmm::StabilityFunction(Heun()).realLimit(), 2.0, 1e-9);
+  EXPECT_NEAR(vshmm::StabilityFunction(Kutta3()).realLimit(), 2.5127453266, 1e-8);
+  EXPECT_NEAR(vshmm::StabilityFunction(RK4()).realLimit(), 2.7852935634, 1e-8);
+  EXPECT_NEAR(vshmm::StabilityFunction(Kutta3()).imaginaryLimit(), std::sqrt(3.0), 1e-8);
+  EXPECT_NEAR(vshmm::StabilityFunction(RK4()).imaginaryLimit(), 2 * std::sqrt(2.0), 1e-8);
+  // Euler and Heun amplify every purely imaginary mode: (almost) no interval.
+  EXPECT_LT(vshmm::StabilityFunction(Euler()).imaginaryLimit(), 1e-5);
+  EXPECT_LT(vshmm::StabilityFunction(Heun()).imaginaryLimit(), 3e-3);
+}
+
+TEST(StabilityFunction, LargestStableStepScalesWithTheEigenvalue)
+{
+  vshmm::StabilityFunction R(RK4());
+  EXPECT_NEAR(R.largestStableStep(-1000.0), 2.7852935634e-3, 1e-11);
+  EXPECT_NEAR(R.largestStableStep(cd(0, 500)), 2 * std::sqrt(2.0) / 500, 1e-11);
+  EXPECT_TRUE(std::isinf(R.largestStableStep(0.0)));
+  // Along a ray inside the left half plane the limit lies between the axes' limits and is a
+  // boundary point: |R| = 1 there.
+  const cd     lambda = std::polar(1.0, 0.75 * M_PI);
+  const double h      = R.largestStableStep(lambda);
+  EXPECT_NEAR(std::abs(R(h * lambda)), 1.0, 1e-9);
+  EXPECT_GT(std::abs(R(1.01 * h * lambda)), 1.0);
+}
+
+TEST(LevelAmplification, ConstantKernelGivesThePowerOfOneStep)
+{
+  auto                      kernel = vshmm::Kernel::create(vshmm::KernelType::Constant);
+  vshmm::MesoscopicSchedule schedule(*kernel, 1e-4, {100, 10}, {1, 1});
+  vshmm::StabilityFunction  R(RK4());
+  const double              lambda = -1500.0;
+  // Level 1 takes steps of exactly 1e-3 (but the shortened last one).
+  const vshmm::LevelAmplification a = vshmm::levelAmplification(R, schedule, 0.1, 1, lambda);
+  ASSERT_GT(a.steps, 5);
+  EXPECT_DOUBLE_EQ(a.largestStep, 1e-3);
+  // Every full step damps by |R(-1.5)|; the shortened last one by a factor between that and 1
+  // (|R(-x)| decreases on [0, 1.5] for RK4).
+  const double per_step = std::log(std::abs(R(1e-3 * lambda)));
+  ASSERT_LT(per_step, 0.0);
+  EXPECT_GE(a.logAmplification, a.steps * per_step - 1e-9);
+  EXPECT_LE(a.logAmplification, (a.steps - 1) * per_step + 1e-9);
+}
+
+TEST(LevelAmplification, VariableStepsBeyondThePeakLimitCanStillDampOverAPeriod)
+{
+  // The paper's dissipative parameters: level 1 (alpha_2 = 10, dt = 1e-4, cosine kernel) peaks at
+  // h_2 = 2e-3. For lambda = -1500 the peak step is outside RK4's interval (z = -3 < -2.785),
+  // yet the period as a whole damps; for lambda = -3000 it does not.
+  auto                      kernel = vshmm::Kernel::create(vshmm::KernelType::Cosine);
+  vshmm::MesoscopicSchedule schedule(*kernel, 1e-4, {100, 10}, {1, 1});
+  vshmm::StabilityFunction  R(RK4());
+  const vshmm::LevelAmplification mild = vshmm::levelAmplification(R, schedule, 0.1, 1, -1500.0);
+  EXPECT_GT(mild.largestStep * 1500.0, R.realLimit());
+  EXPECT_LT(mild.logAmplification, 0.0);
+  const vshmm::LevelAmplification hard = vshmm::levelAmplification(R, schedule, 0.1, 1, -3000.0);
+  EXPECT_GT(hard.logAmplification, 0.0);
+  // The micro steps of the top level are all dt.
+  const vshmm::LevelAmplification top = vshmm::levelAmplification(R, schedule, 0.1, 2, -1e4);
+  EXPECT_DOUBLE_EQ(top.largestStep, 1e-4);
+  EXPECT_NEAR(top.logAmplification, top.steps * std::log(std::abs(R(-1.0))), 1e-9 * top.steps);
+}
+
+} // namespace
