@@ -40,6 +40,7 @@ static inline void NoteNonFinite(TS_VSHMM *vs, PetscInt k, PetscReal t)
 {
   if (vs->nonfinite_split < 0) {
     vs->nonfinite_split = k;
+    vs->nonfinite_level = vs->current_level;
     vs->nonfinite_time  = t;
   }
 }
@@ -90,6 +91,7 @@ static PetscErrorCode AddScale(TS_VSHMM *vs, PetscInt k, PetscReal t, Vec F, Vec
 PetscErrorCode TSVSHMMEvaluateLevel_Private(TS_VSHMM *vs, PetscInt level, PetscReal t, Vec Y, Vec G)
 {
   PetscFunctionBegin;
+  vs->current_level = level;
   if (vs->counting) vs->level_evaluations[level]++;
   else vs->stability_evaluations += level + 1; /* split calls */
   for (PetscInt k = 0; k <= level; ++k) {
@@ -396,20 +398,23 @@ static PetscErrorCode TSStep_VSHMM(TS ts)
   for (size_t l = 0; l < counts.levelSteps.size(); ++l) vs->level_steps[l] += counts.levelSteps[l];
 
   /* One reduction per macro step: the earliest Inf/NaN of any split on any rank. */
+  const int nscales = (int)vs->scales.size();
   struct {
     double t;
-    int    split;
-  } fault = {(double)vs->nonfinite_time, (int)vs->nonfinite_split};
+    int    where; /* level * nscales + split, or -1 */
+  } fault = {(double)vs->nonfinite_time, vs->nonfinite_split < 0 ? -1 : (int)(vs->nonfinite_level * nscales + vs->nonfinite_split)};
+  if (fault.where < 0) fault.t = PETSC_MAX_REAL; /* ranks without a fault lose the MINLOC */
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &fault, 1, MPI_DOUBLE_INT, MPI_MINLOC, comm));
-  if (fault.split >= 0) {
-    const char *name = vs->scales[fault.split].name.c_str();
+  if (fault.where >= 0 && fault.t < PETSC_MAX_REAL) {
+    const int   split = fault.where % nscales, level = fault.where / nscales;
+    const char *name  = vs->scales[split].name.c_str();
 
     PetscCall(VecCopy(vs->X0, ts->vec_sol)); /* keep the last good sampled state */
     ts->reason = TS_DIVERGED_STEP_REJECTED;
     PetscCheck(!ts->errorifstepfailed, comm, PETSC_ERR_FP,
-               "TSVSHMM: split '%s' (scale %d) produced Inf or NaN at t = %.17g in the macro step from t = %g to %g; the solution was left at t = %g (use -ts_error_if_step_fails false to stop with TS_DIVERGED_STEP_REJECTED instead)", name, fault.split, fault.t, (double)t0, (double)(t0 + DeltaT), (double)t0);
-    PetscCall(PetscInfo(ts, "Split '%s' (scale %d) produced Inf or NaN at t = %.17g; stopping with TS_DIVERGED_STEP_REJECTED at t = %g\n", name, fault.split, fault.t, (double)t0));
-    PetscCall(PetscFPrintf(comm, PETSC_STDERR, "TSVSHMM: split '%s' (scale %d) produced Inf or NaN at t = %.17g; the solve stops with TS_DIVERGED_STEP_REJECTED at t = %g\n", name, fault.split, fault.t, (double)t0));
+               "TSVSHMM: split '%s' (scale %d) produced Inf or NaN at t = %.17g, evaluated for level %d, in the macro step from t = %g to %g; the solution was left at t = %g (use -ts_error_if_step_fails false to stop with TS_DIVERGED_STEP_REJECTED instead)", name, split, fault.t, level, (double)t0, (double)(t0 + DeltaT), (double)t0);
+    PetscCall(PetscInfo(ts, "Split '%s' (scale %d) produced Inf or NaN at t = %.17g, evaluated for level %d; stopping with TS_DIVERGED_STEP_REJECTED at t = %g\n", name, split, fault.t, level, (double)t0));
+    PetscCall(PetscFPrintf(comm, PETSC_STDERR, "TSVSHMM: split '%s' (scale %d) produced Inf or NaN at t = %.17g, evaluated for level %d; the solve stops with TS_DIVERGED_STEP_REJECTED at t = %g\n", name, split, fault.t, level, (double)t0));
     PetscFunctionReturn(0);
   }
   ts->ptime = last ? ts->max_time : t0 + DeltaT;
@@ -480,28 +485,24 @@ static PetscErrorCode ParseBool(MPI_Comm comm, const char *option, const char *t
   PetscFunctionReturn(0);
 }
 
-/* Reads a comma-separated option as strings; an option given with no value is an error. */
+/* Reads a comma-separated option as strings, keeping empty items so that they can be rejected
+   (PETSc's list parsers drop them); an option given with no value is an error. */
 static PetscErrorCode ReadList(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, const char *option, const char *text, const char *man, std::vector<std::string> &items, PetscBool *set)
 {
-  char    *values[kMaxListOption];
-  PetscInt n = kMaxListOption;
+  char value[4096];
 
   PetscFunctionBegin;
-  PetscCall(PetscOptionsStringArray(option, text, man, values, &n, set));
-  if (!*set) { /* given with no value? */
-    PetscBool given;
-    PetscCall(PetscOptionsHasName(PetscOptionsObject->options, PetscOptionsObject->prefix, option, &given));
-    PetscCheck(!given, comm, PETSC_ERR_ARG_WRONG, "%s needs a comma-separated list of values", option);
-  }
   items.clear();
-  for (PetscInt i = 0; i < n; ++i) {
-    items.emplace_back(values[i] ? values[i] : "");
-    PetscCall(PetscFree(values[i]));
-  }
-  if (*set) {
-    PetscCheck(n > 0, comm, PETSC_ERR_ARG_WRONG, "%s needs a comma-separated list of values", option);
-    PetscCheck(n < kMaxListOption, comm, PETSC_ERR_ARG_SIZ, "%s has more than %d values", option, (int)kMaxListOption - 1);
-  }
+  value[0] = 0;
+  PetscCall(PetscOptionsString(option, text, man, "", value, sizeof(value), set));
+  if (!*set) PetscFunctionReturn(0);
+  PetscCheck(strlen(value) < sizeof(value) - 1, comm, PETSC_ERR_ARG_SIZ, "%s is too long (at most %d characters)", option, (int)sizeof(value) - 2);
+  PetscCheck(value[0], comm, PETSC_ERR_ARG_WRONG, "%s needs a comma-separated list of values", option);
+  std::string       all = value, item;
+  std::stringstream in(all);
+  while (std::getline(in, item, ',')) items.push_back(item);
+  if (!all.empty() && all.back() == ',') items.push_back("");
+  PetscCheck((PetscInt)items.size() < kMaxListOption, comm, PETSC_ERR_ARG_SIZ, "%s has more than %d values", option, (int)kMaxListOption - 1);
   PetscFunctionReturn(0);
 }
 

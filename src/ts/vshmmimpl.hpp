@@ -59,7 +59,8 @@ struct TS_VSHMM {
 
   // First non-finite split output seen on this rank in the current macro step
   PetscReal nonfinite_time  = PETSC_MAX_REAL;
-  PetscInt  nonfinite_split = -1;
+  PetscInt  nonfinite_split = -1, nonfinite_level = -1;
+  PetscInt  current_level   = 0; // the level whose field is being evaluated
 };
 
 static constexpr PetscInt  kDefaultMicroStepsPerMacroStep = 100;

@@ -324,6 +324,265 @@ TEST(VSHMMStabilityCheck, PaperParametersPassAtEveryMacroStep)
   ASSERT_EQ(DestroySplitTS(&p, &ts, &x), 0);
 }
 
+TEST(VSHMMSolver, ExactFinalTimeModes)
+{
+  SolveResult match, over, interp, at02;
+  ASSERT_EQ(SolveDissipative(PETSC_COMM_WORLD, SplitKind::Component, 0.25, 0.1, &match), 0);
+  EXPECT_DOUBLE_EQ(match.time, 0.25);
+  ASSERT_EQ(SolveDissipative(PETSC_COMM_WORLD, SplitKind::Component, 0.25, 0.1, &over, "-ts_exact_final_time stepover"), 0);
+  EXPECT_NEAR(over.time, 0.3, 1e-14);
+  ASSERT_EQ(SolveDissipative(PETSC_COMM_WORLD, SplitKind::Component, 0.25, 0.1, &interp, "-ts_exact_final_time interpolate"), 0);
+  EXPECT_DOUBLE_EQ(interp.time, 0.25);
+  // Interpolation is linear between the sampled states at 0.2 and 0.3.
+  ASSERT_EQ(SolveDissipative(PETSC_COMM_WORLD, SplitKind::Component, 0.2, 0.1, &at02), 0);
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(interp.x[i], 0.5 * (at02.x[i] + over.x[i]), 1e-12 * (1 + std::abs(over.x[i])));
+}
+
+TEST(VSHMMSolver, StatisticsCountEveryLevelAndSplit)
+{
+  DissipativeParams params;
+  SplitProblem      p;
+  TS                ts;
+  Vec               x;
+  const PetscReal   alpha[] = {100, 10};
+  TSVSHMMStatistics stats;
+
+  DissipativeProblem(&p, &params);
+  ASSERT_EQ(CreateSplitTS(PETSC_COMM_WORLD, &p, SplitKind::Component, {5, -10, 5}, {"slow", "medium", "fast"}, &ts, &x), 0);
+  ASSERT_EQ(TSSetTimeStep(ts, 0.1), 0);
+  ASSERT_EQ(TSSetMaxTime(ts, 0.5), 0);
+  ASSERT_EQ(TSVSHMMSetMicroStep(ts, 1e-4), 0);
+  ASSERT_EQ(TSVSHMMSetSavingsFactors(ts, 2, alpha), 0);
+  ASSERT_EQ(TSSolve(ts, x), 0);
+  ASSERT_EQ(TSVSHMMGetStatistics(ts, &stats), 0);
+  EXPECT_EQ(stats.macro_steps, 5);
+  ASSERT_EQ(stats.nsplits, 3);
+  // RK4: split k is evaluated at 4 stages of every step of the levels k..K.
+  for (int k = 0; k < 3; ++k) {
+    PetscInt64 steps = 0;
+    for (int l = k; l < 3; ++l) steps += stats.level_steps[l];
+    EXPECT_EQ(stats.rhs_evaluations[k], 4 * steps) << "split " << k;
+    EXPECT_EQ(stats.level_evaluations[k], 4 * stats.level_steps[k]);
+  }
+  // Every cycle takes one step per level, except the last cycle of a macro step, which may stop early.
+  EXPECT_LE(stats.micro_cycles - stats.level_steps[0], stats.macro_steps);
+  EXPECT_EQ(stats.level_steps[2], stats.micro_cycles);
+  // The full field is evaluated only by the micro steps: far fewer than for a DNS.
+  EXPECT_GT(stats.micro_cycles, 0.5 / (1e-4 * 112) * 0.9);
+  EXPECT_LT(stats.micro_cycles, 0.5 / (1e-4 * 110) * 1.1);
+  ASSERT_EQ(TSVSHMMResetStatistics(ts), 0);
+  ASSERT_EQ(TSVSHMMGetStatistics(ts, &stats), 0);
+  EXPECT_EQ(stats.micro_cycles, 0);
+  ASSERT_EQ(DestroySplitTS(&p, &ts, &x), 0);
+}
+
+TEST(VSHMMSolver, ViewPrintsScalesKernelAndWork)
+{
+  DissipativeParams params;
+  SplitProblem      p;
+  TS                ts;
+  Vec               x;
+  const PetscReal   alpha[] = {100, 10};
+  const PetscInt    m[]     = {1, 3};
+  char              path[]  = "/tmp/vshmm_view_XXXXXX";
+  PetscMPIInt       rank;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  if (!rank) { // one file, named on rank 0: the viewer writes from rank 0 only
+    int fd = mkstemp(path);
+    ASSERT_GE(fd, 0);
+    close(fd);
+  }
+  MPI_Bcast(path, sizeof(path), MPI_CHAR, 0, PETSC_COMM_WORLD);
+
+  DissipativeProblem(&p, &params);
+  ASSERT_EQ(CreateSplitTS(PETSC_COMM_WORLD, &p, SplitKind::Component, {5, -10, 5}, {"slow", "medium", "fast"}, &ts, &x), 0);
+  ASSERT_EQ(TSSetTimeStep(ts, 0.1), 0);
+  ASSERT_EQ(TSSetMaxTime(ts, 0.2), 0);
+  ASSERT_EQ(TSVSHMMSetMicroStep(ts, 1e-4), 0);
+  ASSERT_EQ(TSVSHMMSetSavingsFactors(ts, 2, alpha), 0);
+  ASSERT_EQ(TSVSHMMSetSubintervals(ts, 2, m), 0);
+  ASSERT_EQ(TSVSHMMSetKernel(ts, TSVSHMM_KERNEL_POLYNOMIAL), 0);
+  ASSERT_EQ(TSVSHMMSetKernelOrder(ts, 3), 0);
+  ASSERT_EQ(TSVSHMMSetRKType(ts, TSRK3), 0);
+  ASSERT_EQ(TSSolve(ts, x), 0);
+  TSVSHMMStatistics stats;
+  ASSERT_EQ(TSVSHMMGetStatistics(ts, &stats), 0);
+  const PetscInt64 steps = stats.level_steps[0] + stats.level_steps[1] + stats.level_steps[2];
+  const std::string evals[] = {std::to_string(3 * steps), std::to_string(3 * (steps - stats.level_steps[0])), std::to_string(3 * stats.level_steps[2])};
+  PetscViewer viewer;
+  ASSERT_EQ(PetscViewerASCIIOpen(PETSC_COMM_WORLD, path, &viewer), 0);
+  ASSERT_EQ(TSView(ts, viewer), 0);
+  ASSERT_EQ(PetscViewerDestroy(&viewer), 0);
+  ASSERT_EQ(DestroySplitTS(&p, &ts, &x), 0);
+  MPI_Barrier(PETSC_COMM_WORLD); // rank 0 has closed the file
+  std::string text;
+  if (FILE *f = fopen(path, "r")) {
+    char line[512];
+    while (fgets(line, sizeof(line), f)) text += line;
+    fclose(f);
+  }
+  MPI_Barrier(PETSC_COMM_WORLD);
+  if (!rank) remove(path);
+  EXPECT_NE(text.find("3 scales"), std::string::npos) << text;
+  EXPECT_NE(text.find("kernel polynomial (order q = 3)"), std::string::npos) << text;
+  EXPECT_NE(text.find("micro step dt = 0.0001"), std::string::npos) << text;
+  EXPECT_NE(text.find("TSRK 3 (order 3, 3 stages)"), std::string::npos) << text;
+  const size_t slow = text.find("slow"), medium = text.find("medium"), fast = text.find("fast");
+  ASSERT_NE(slow, std::string::npos);
+  EXPECT_LT(slow, medium);
+  EXPECT_LT(medium, fast);
+  // The rows: scale, split, step, savings factor, subintervals, RHS evaluations.
+  auto row = [&](const char *split) {
+    std::istringstream lines(text);
+    std::string        line;
+    while (std::getline(lines, line)) {
+      std::istringstream       words(line);
+      std::vector<std::string> w;
+      for (std::string s; words >> s;) w.push_back(s);
+      if (w.size() >= 2 && w[1] == split) return w;
+    }
+    return std::vector<std::string>{};
+  };
+  EXPECT_EQ(row("slow"), (std::vector<std::string>{"0", "slow", "h_1", "100", "1", evals[0]})) << text;
+  EXPECT_EQ(row("medium"), (std::vector<std::string>{"1", "medium", "h_2", "10", "3", evals[1]})) << text;
+  EXPECT_EQ(row("fast"), (std::vector<std::string>{"2", "fast", "dt", "(micro)", "-", "-", evals[2]})) << text;
+  EXPECT_NE(text.find("2 macro steps"), std::string::npos) << text;
+}
+
+// Inner Runge-Kutta types from PETSc's registry keep their order: with the constant kernel and
+// savings factor 1 on a problem whose slow field is the whole field (f_1 = 0), VSHMM is that RK
+// method with steps dt, so halving dt divides the error by 2^p.
+struct Decay {
+  PetscReal rate = 1;
+};
+void DecaySlow(const void *vp, PetscReal, const PetscScalar *x, PetscScalar *f)
+{
+  f[0] = -((const Decay *)vp)->rate * x[0];
+}
+void Nothing(const void *, PetscReal, const PetscScalar *, PetscScalar *f)
+{
+  f[0] = 0;
+}
+
+PetscErrorCode DecayError(const char *rk, PetscReal dt, PetscReal *error)
+{
+  Decay        params;
+  SplitProblem p;
+  TS           ts;
+  Vec          x;
+  PetscReal    alpha = 1;
+  std::vector<PetscReal> out;
+
+  PetscFunctionBeginUser;
+  p.n      = 1;
+  p.terms  = {DecaySlow, Nothing};
+  p.params = &params;
+  PetscCall(CreateSplitTS(PETSC_COMM_SELF, &p, SplitKind::Additive, {1.0}, {"slow", "fast"}, &ts, &x));
+  PetscCall(TSSetTimeStep(ts, 0.5));
+  PetscCall(TSSetMaxTime(ts, 1.0));
+  PetscCall(TSVSHMMSetMicroStep(ts, dt));
+  PetscCall(TSVSHMMSetSavingsFactors(ts, 1, &alpha));
+  PetscCall(TSVSHMMSetKernel(ts, TSVSHMM_KERNEL_CONSTANT));
+  PetscCall(TSVSHMMSetRKType(ts, rk));
+  PetscCall(TSSolve(ts, x));
+  PetscCall(GatherState(&p, x, out));
+  *error = std::abs(out[0] - std::exp(-1.0));
+  PetscCall(DestroySplitTS(&p, &ts, &x));
+  PetscFunctionReturn(0);
+}
+
+TEST(VSHMMSolver, InnerRungeKuttaTypesKeepTheirOrder)
+{
+  const struct {
+    const char *type;
+    int         order;
+  } methods[] = {{TSRK1FE, 1}, {TSRK2A, 2}, {TSRK3, 3}, {TSRK3BS, 3}, {TSRK4, 4}, {TSRK5DP, 5}};
+  for (const auto &m : methods) {
+    PetscReal e1, e2;
+    ASSERT_EQ(DecayError(m.type, 1.0 / 16, &e1), 0);
+    ASSERT_EQ(DecayError(m.type, 1.0 / 32, &e2), 0);
+    EXPECT_NEAR(std::log2(e1 / e2), m.order, 0.3) << "TSRK " << m.type;
+  }
+}
+
+TEST(VSHMMSolver, OptionsChangedBetweenSolvesTakeEffect)
+{
+  DissipativeParams params;
+  SplitProblem      p;
+  TS                ts;
+  Vec               x;
+  const PetscReal   alpha[] = {100, 10};
+  TSVSHMMStatistics stats;
+
+  DissipativeProblem(&p, &params);
+  ASSERT_EQ(CreateSplitTS(PETSC_COMM_WORLD, &p, SplitKind::Component, {5, -10, 5}, {"slow", "medium", "fast"}, &ts, &x), 0);
+  ASSERT_EQ(TSSetTimeStep(ts, 0.1), 0);
+  ASSERT_EQ(TSSetMaxTime(ts, 0.2), 0);
+  ASSERT_EQ(TSVSHMMSetMicroStep(ts, 1e-4), 0);
+  ASSERT_EQ(TSVSHMMSetSavingsFactors(ts, 2, alpha), 0);
+  ASSERT_EQ(TSSetUp(ts), 0);
+  ASSERT_EQ(TSSetUp(ts), 0); // set-up twice is harmless
+  ASSERT_EQ(TSSolve(ts, x), 0);
+  ASSERT_EQ(TSVSHMMGetStatistics(ts, &stats), 0);
+  const PetscInt64 cycles_rk4 = stats.micro_cycles;
+  // A second solve with other parameters: set up again from the new values.
+  const PetscReal alpha2[] = {50, 5};
+  ASSERT_EQ(TSVSHMMSetSavingsFactors(ts, 2, alpha2), 0);
+  ASSERT_EQ(TSSetMaxTime(ts, 0.4), 0);
+  ASSERT_EQ(TSSolve(ts, x), 0);
+  ASSERT_EQ(TSVSHMMGetStatistics(ts, &stats), 0);
+  EXPECT_GT(stats.micro_cycles, 1.7 * cycles_rk4); // smaller factors: more cycles per macro step
+  PetscInt         n;
+  const PetscReal *got;
+  ASSERT_EQ(TSVSHMMGetSavingsFactors(ts, &n, &got), 0);
+  ASSERT_EQ(n, 2);
+  EXPECT_EQ(got[0], 50);
+  ASSERT_EQ(DestroySplitTS(&p, &ts, &x), 0);
+}
+
+TEST(VSHMMSolver, GettersReturnWhatWasSet)
+{
+  TS ts;
+  ASSERT_EQ(TSCreate(PETSC_COMM_WORLD, &ts), 0);
+  ASSERT_EQ(TSSetType(ts, TSVSHMM), 0);
+  ASSERT_EQ(TSSetTimeStep(ts, 0.5), 0);
+  PetscReal dt;
+  ASSERT_EQ(TSVSHMMGetMicroStep(ts, &dt), 0);
+  EXPECT_DOUBLE_EQ(dt, 0.005); // default: DeltaT / 100
+  ASSERT_EQ(TSVSHMMSetMicroStep(ts, 1e-3), 0);
+  ASSERT_EQ(TSVSHMMGetMicroStep(ts, &dt), 0);
+  EXPECT_EQ(dt, 1e-3);
+  const PetscInt m[] = {1, 2, 4};
+  ASSERT_EQ(TSVSHMMSetSubintervals(ts, 3, m), 0);
+  PetscInt        n;
+  const PetscInt *mm;
+  ASSERT_EQ(TSVSHMMGetSubintervals(ts, &n, &mm), 0);
+  ASSERT_EQ(n, 3);
+  EXPECT_EQ(mm[2], 4);
+  TSVSHMMKernelType kt;
+  ASSERT_EQ(TSVSHMMGetKernel(ts, &kt), 0);
+  EXPECT_EQ(kt, TSVSHMM_KERNEL_COSINE);
+  PetscInt q;
+  ASSERT_EQ(TSVSHMMGetKernelOrder(ts, &q), 0);
+  EXPECT_EQ(q, 1);
+  ASSERT_EQ(TSVSHMMSetKernel(ts, TSVSHMM_KERNEL_EXPONENTIAL), 0);
+  ASSERT_EQ(TSVSHMMGetKernelOrder(ts, &q), 0);
+  EXPECT_EQ(q, PETSC_MAX_INT);
+  ASSERT_EQ(TSVSHMMSetKernel(ts, TSVSHMM_KERNEL_CONSTANT), 0);
+  ASSERT_EQ(TSVSHMMGetKernelOrder(ts, &q), 0);
+  EXPECT_EQ(q, -1);
+  TSRKType rk;
+  ASSERT_EQ(TSVSHMMGetRKType(ts, &rk), 0);
+  EXPECT_STREQ(rk, "4");
+  const char *names[] = {"b", "a"};
+  ASSERT_EQ(TSVSHMMSetSplitOrder(ts, 2, names), 0);
+  const char *const *got;
+  ASSERT_EQ(TSVSHMMGetSplitOrder(ts, &n, &got), 0);
+  ASSERT_EQ(n, 2);
+  EXPECT_STREQ(got[0], "b");
+  ASSERT_EQ(TSDestroy(&ts), 0);
+}
+
 // ------------------------------------------------------------------------------------------
 // Bad input: each yields a PETSc error whose message names the option and the allowed values.
 
@@ -406,6 +665,26 @@ TEST(VSHMMBadInput, EachBadSettingIsAClearError)
     {"-ts_vshmm_kernel cosine -ts_vshmm_kernel_order 3", 3, "-ts_vshmm_kernel_order 3 does not apply to the cosine kernel"},
     {"-ts_vshmm_rk_type 9zz", 3, "Unknown inner Runge-Kutta type '9zz' in -ts_vshmm_rk_type"},
     {"-ts_dt -0.1", 3, "sampling interval DeltaT) is -0.1"},
+    {"-ts_vshmm_savings_factors 1e400,10", 3, "-ts_vshmm_savings_factors: '1e400' is not a real number"},
+    {"-ts_vshmm_savings_factors 100,,10", 3, "-ts_vshmm_savings_factors: '' is not a real number"},
+    {"-ts_vshmm_savings_factors -inf,10", 3, "must be positive and finite"},
+    {"-ts_vshmm_micro_dt 1e400", 3, "-ts_vshmm_micro_dt: '1e400' is not a real number"},
+    {"-ts_vshmm_micro_dt inf", 3, "-ts_vshmm_micro_dt must be positive and finite"},
+    {"-ts_vshmm_micro_dt", 3, "-ts_vshmm_micro_dt: '' is not a real number"},
+    {"-ts_vshmm_subintervals 1,99999999999999999999", 3, "-ts_vshmm_subintervals: '99999999999999999999' is not an integer"},
+    {"-ts_vshmm_subintervals -3,1", 3, "Subinterval count 1 is -3"},
+    {"-ts_vshmm_subintervals 1,2,3", 3, "-ts_vshmm_subintervals (TSVSHMMSetSubintervals()) has 3 values but the TS has 3 splits"},
+    {"-ts_vshmm_kernel", 3, "Unknown -ts_vshmm_kernel '': use cosine, constant, polynomial or exponential"},
+    {"-ts_vshmm_kernel COSINE", 3, "Unknown -ts_vshmm_kernel 'COSINE'"},
+    {"-ts_vshmm_kernel_order", 3, "-ts_vshmm_kernel_order: '' is not an integer"},
+    {"-ts_vshmm_kernel polynomial -ts_vshmm_kernel_order 2.5", 3, "-ts_vshmm_kernel_order: '2.5' is not an integer"},
+    {"-ts_vshmm_kernel exponential -ts_vshmm_kernel_order 2", 3, "does not apply to the exponential kernel"},
+    {"-ts_vshmm_kernel constant -ts_vshmm_kernel_order 0", 3, "does not apply to the constant kernel"},
+    {"-ts_vshmm_rk_type", 3, "-ts_vshmm_rk_type needs a TSRK type name"},
+    {"-ts_vshmm_rk_type beuler", 3, "Unknown inner Runge-Kutta type 'beuler'"},
+    {"-ts_vshmm_splits slow,,fast", 3, "-ts_vshmm_splits: name 2 is empty"},
+    {"-ts_vshmm_splits fast", 3, "-ts_vshmm_splits needs at least two split names"},
+    {"-ts_vshmm_splits SLOW,medium,fast", 3, "Unknown split 'SLOW'"},
     {"-ts_vshmm_check_stability maybe", 3, "-ts_vshmm_check_stability: 'maybe' is not a truth value: use true or false"},
     {"-ts_vshmm_check_stability_interval -1", 3, "-ts_vshmm_check_stability_interval takes 0 (never) or a number of macro steps >= 1"},
     {"-ts_vshmm_check_stability_interval two", 3, "-ts_vshmm_check_stability_interval: 'two' is not an integer"},
@@ -438,7 +717,7 @@ TEST(VSHMMBadInput, NonFiniteSplitOutputStopsTheSolveNamingSplitAndTime)
     const double t = std::atof(e.message.c_str() + at + head.size());
     EXPECT_GT(t, 0.35); // the first evaluation of 'fast' past 0.35: within one micro cycle of it
     EXPECT_LT(t, 0.38);
-    EXPECT_NE(e.message.find("macro step from t = 0.3 to 0.4"), std::string::npos) << e.message;
+    EXPECT_NE(e.message.find("evaluated for level 2, in the macro step from t = 0.3 to 0.4"), std::string::npos) << e.message;
     VecScatterDestroy(&p.gather);
     VecDestroy(&p.xall);
   }
@@ -455,6 +734,33 @@ TEST(VSHMMBadInput, NonFiniteSplitOutputStopsTheSolveNamingSplitAndTime)
     ASSERT_EQ(SolveDissipative(PETSC_COMM_WORLD, SplitKind::Additive, 0.3, 0.1, &clean), 0);
     for (int i = 0; i < 3; ++i) EXPECT_NEAR(run.x[i], clean.x[i], 1e-12 * std::abs(clean.x[i]));
   }
+}
+
+TEST(VSHMMBadInput, ZeroLengthLocalVectorsOnSomeRanks)
+{
+  // One component on every number of ranks: under mpiexec -n 2 rank 1 owns nothing.
+  Decay                  params;
+  std::vector<PetscReal> world, self;
+  for (MPI_Comm comm : {PETSC_COMM_WORLD, PETSC_COMM_SELF}) {
+    SplitProblem p;
+    TS           ts;
+    Vec          x;
+    PetscReal    alpha = 3;
+    p.n      = 1;
+    p.terms  = {DecaySlow, Nothing};
+    p.params = &params;
+    ASSERT_EQ(CreateSplitTS(comm, &p, SplitKind::Additive, {1.0}, {"slow", "fast"}, &ts, &x), 0);
+    ASSERT_EQ(TSSetTimeStep(ts, 0.25), 0);
+    ASSERT_EQ(TSSetMaxTime(ts, 1.0), 0);
+    ASSERT_EQ(TSVSHMMSetMicroStep(ts, 1e-3), 0);
+    ASSERT_EQ(TSVSHMMSetSavingsFactors(ts, 1, &alpha), 0);
+    ASSERT_EQ(TSVSHMMSetStabilityCheck(ts, PETSC_TRUE, 1), 0);
+    ASSERT_EQ(TSSolve(ts, x), 0);
+    ASSERT_EQ(GatherState(&p, x, comm == PETSC_COMM_WORLD ? world : self), 0);
+    ASSERT_EQ(DestroySplitTS(&p, &ts, &x), 0);
+  }
+  EXPECT_NEAR(world[0], std::exp(-1.0), 1e-9);
+  EXPECT_NEAR(world[0], self[0], 1e-14);
 }
 
 TEST(VSHMMBadInput, SplitsAddedAfterSetUpAreTakenUp)
