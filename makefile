@@ -3,6 +3,7 @@
 #   make check       install missing Debian packages, build, run all tests (ctest)
 #   make build       configure and build in $(BUILD_DIR)
 #   make install PREFIX=/some/prefix
+#   make figures     build, then regenerate docs/figures/*.png, *.svg (gnuplot; about a minute)
 #   make clean       remove $(BUILD_DIR)
 # Variables: BUILD_DIR (build), BUILD_TYPE (Release), JOBS (2), PREFIX (/usr/local),
 #            CMAKE_FLAGS (extra configure options), CTEST_FLAGS (extra ctest options).
@@ -15,9 +16,9 @@ CMAKE_FLAGS ?=
 CTEST_FLAGS ?=
 
 DEB_PACKAGES := petsc-dev libfftw3-dev libgtest-dev cmake pkg-config make g++ \
-                libpetsc3.18-dev-examples gnuplot-nox
+                libpetsc3.18-dev-examples gnuplot-nox valgrind
 
-.PHONY: all deps configure build check demo install clean
+.PHONY: all deps configure build check demo figures install clean
 .NOTPARALLEL:
 MAKEFLAGS += --no-print-directory
 
@@ -55,6 +56,9 @@ check: build
 
 demo: build
 	sh examples/ode/demo.sh $(BUILD_DIR)
+
+figures: build
+	sh docs/figures/make_figures.sh $(BUILD_DIR)
 
 install: build
 	cmake --install $(BUILD_DIR) --prefix $(PREFIX)

@@ -50,3 +50,8 @@ vshmm_example_test(NAME dissipative_vshmm_paper_vs_dns EXE dissipative NP 1
 vshmm_example_test(NAME dissipative_vshmm_alpha20_vs_dns_np2 EXE dissipative NP 2
                    ARGS ${_diss_vshmm} -ts_vshmm_savings_factors 20,5 -split_kind additive -no_timing
                    OUTPUT ode/output/dissipative_vshmm_alpha20_vs_dns.out RTOL 0 ATOL 2e-2)
+
+# PETSc's own allocations are all freed at PetscFinalize: -malloc_dump prints nothing more.
+vshmm_example_test(NAME dissipative_vshmm_malloc_dump EXE dissipative NP 1
+                   ARGS ${_diss_vshmm} -ts_vshmm_savings_factors 100,10 -no_timing -malloc_debug -malloc_dump
+                   OUTPUT ode/output/dissipative_vshmm_paper.out RTOL 1e-7 ATOL 1e-9)
