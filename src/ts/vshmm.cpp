@@ -155,6 +155,7 @@ static PetscErrorCode TSVSHMMTearDown_Private(TS ts)
   PetscCall(VecDestroy(&vs->X0));
   for (Vec &k : vs->K) PetscCall(VecDestroy(&k));
   vs->K.clear();
+  vs->schedule.reset();
   vs->tableau.reset();
   vs->kernel.reset();
   PetscFunctionReturn(0);
@@ -374,8 +375,8 @@ static PetscErrorCode TSStep_VSHMM(TS ts)
   PetscCheck(dt > kMinMicroStepFraction * DeltaT || last, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-ts_vshmm_micro_dt %g is below the time resolution of the macro step DeltaT = %g: the micro step must exceed %g DeltaT", (double)dt, (double)DeltaT, (double)kMinMicroStepFraction);
   if (vs->stability_interval > 0 && ts->steps > 0 && ts->steps % vs->stability_interval == 0) PetscCall(TSVSHMMCheckStability_Private(ts));
-  std::unique_ptr<vshmm::MesoscopicSchedule> schedule;
-  PetscCall(TSVSHMMCreateSchedule_Private(ts, dt, schedule));
+  if (!vs->schedule || vs->schedule->microStep() != dt) PetscCall(TSVSHMMCreateSchedule_Private(ts, dt, vs->schedule));
+  const vshmm::MesoscopicSchedule &schedule = *vs->schedule;
 
   PetscCall(VecCopy(ts->vec_sol, vs->X0));
   vs->nonfinite_split = -1;
@@ -383,7 +384,7 @@ static PetscErrorCode TSStep_VSHMM(TS ts)
   LevelStepOps          ops{vs, ts->vec_sol, 0};
   vshmm::MacroStepCounts counts;
   int                   err = vshmm::runMacroStep(
-    *schedule, DeltaT,
+    schedule, DeltaT,
     [&](int level, double tau, double h) -> int {
       ops.level = level;
       PetscCall(PetscLogEventBegin(vs->level_events[level], ts, 0, 0, 0));

@@ -42,6 +42,7 @@ struct TS_VSHMM {
   std::vector<VSHMMScale>                   scales;
   std::unique_ptr<vshmm::Tableau>           tableau;
   std::unique_ptr<vshmm::Kernel>            kernel;
+  std::unique_ptr<vshmm::MesoscopicSchedule> schedule; // for the current micro step; made at the first step
   std::vector<PetscReal>                    savings_used; // savings with defaults filled in
   std::vector<PetscInt>                     subintervals_used;
   Vec                                       Y  = nullptr; // stage state
