@@ -1,0 +1,110 @@
+# CTest runs of the sparse spectral examples (docs/spectral.md), at reduced sizes: a few
+# seconds in all. Included by the top-level CMakeLists.txt; vshmm_example_test() is in
+# cmake/VSHMMTesting.cmake. Each test runs in <build>/tests/output/<test>/; the reference runs
+# write grid solutions there and later tests read them (CTest fixtures order them).
+#
+# The reduced diffusion scene: N = 256, d = (exp(sin 16x) + exp(sin 64x))/4 (the paper's
+# wavenumbers 64, 256 divided by 4), u0 = exp(-(x - pi)^2), clusters scaled alike:
+# 0:3, 14:18, 48:49, 63:65. The reduced advection scene: N = 256, a with sin 16x, sin 64x in
+# the denominator, clusters 0:6, 10:22, 29:41, 62:66. (-grid_points is -N: `cmake -P`, which
+# runs these tests, would take -N for its own option.)
+
+set(_sp_dir ${PROJECT_BINARY_DIR}/tests/output)
+set(_sp_diff -grid_points 256 -diffusion_coefficient_wavenumbers 16,64 -output_times 0.125,0.25)
+set(_sp_diff_sparse -mode sparse -clusters 0:3,14:18,48:49,63:65)
+set(_sp_diff_vshmm -ts_type vshmm -ts_dt 0.125 -ts_vshmm_micro_dt 1e-4 -ts_vshmm_savings_factors 150,18,1.5 -ts_vshmm_rk_type 3)
+set(_sp_adv -grid_points 256 -velocity_denominator_wavenumbers 16,64 -output_times 2,4)
+set(_sp_adv_sparse -mode sparse -clusters 0:6,10:22,29:41,62:66)
+set(_sp_adv_vshmm -ts_type vshmm -ts_dt 1 -ts_vshmm_micro_dt 4e-3 -ts_vshmm_savings_factors 26,9,2 -ts_vshmm_rk_type 3)
+
+# --- reference runs (their output, with the work counts, must match exactly) -----------------
+# DNS, RK3 dt = 2e-5: converged in dt (dt = 1e-5 differs by < 1e-13).
+vshmm_example_test(NAME spectral_diffusion_dns_small EXE diffusion
+                   ARGS ${_sp_diff} -ts_dt 2e-5 -grid_solution_file dns -no_timing
+                   OUTPUT output/diffusion_dns_small.out RTOL 1e-9 ATOL 1e-12)
+# Explicit sparse spectral method on the clusters, RK3 dt = 1e-5.
+vshmm_example_test(NAME spectral_diffusion_sparse_small EXE diffusion
+                   ARGS ${_sp_diff} ${_sp_diff_sparse} -ts_dt 1e-5 -grid_solution_file sparse -no_timing
+                   OUTPUT output/diffusion_sparse_small.out RTOL 1e-9 ATOL 1e-12)
+vshmm_example_test(NAME spectral_advection_dns_small EXE advection
+                   ARGS ${_sp_adv} -ts_dt 2e-3 -grid_solution_file dns -no_timing
+                   OUTPUT output/advection_dns_small.out RTOL 1e-9 ATOL 1e-12)
+vshmm_example_test(NAME spectral_advection_sparse_small EXE advection
+                   ARGS ${_sp_adv} ${_sp_adv_sparse} -ts_dt 1e-3 -grid_solution_file sparse -no_timing
+                   OUTPUT output/advection_sparse_small.out RTOL 1e-9 ATOL 1e-12)
+set_tests_properties(spectral_diffusion_dns_small spectral_diffusion_sparse_small PROPERTIES FIXTURES_SETUP spectral_diffusion_refs)
+set_tests_properties(spectral_advection_dns_small spectral_advection_sparse_small PROPERTIES FIXTURES_SETUP spectral_advection_refs)
+
+# --- VSHMM against the references, with stated tolerances (relative L2 error of the grid
+# solution at t = 0.125, 0.25; measured in brackets) --------------------------------------------
+# against the DNS: the truncation to the clusters dominates (1.9e-2, 2.3e-2): tolerance 3e-2
+vshmm_example_test(NAME spectral_diffusion_vshmm_small_vs_dns EXE diffusion
+                   ARGS ${_sp_diff} ${_sp_diff_sparse} ${_sp_diff_vshmm}
+                        -compare_grid_solution ${_sp_dir}/spectral_diffusion_dns_small/dns -compare_tolerance 3e-2 -no_timing
+                   REGEX "compare t 0.25 relative_l2_error")
+# against the explicit sparse method on the same clusters: VSHMM's own error (3.9e-3, 3.5e-3):
+# tolerance 6e-3; the same on 2 ranks, with the dense-operator evaluation and with FFT projections.
+# (The work counts of VSHMM runs are not compared: they include TSVSHMM's own set-up work.)
+vshmm_example_test(NAME spectral_diffusion_vshmm_small_vs_sparse EXE diffusion
+                   ARGS ${_sp_diff} ${_sp_diff_sparse} ${_sp_diff_vshmm}
+                        -compare_grid_solution ${_sp_dir}/spectral_diffusion_sparse_small/sparse -compare_tolerance 6e-3 -no_timing
+                   REGEX "compare t 0.25 relative_l2_error")
+vshmm_example_test(NAME spectral_diffusion_vshmm_small_vs_sparse_np2 EXE diffusion NP 2
+                   ARGS ${_sp_diff} ${_sp_diff_sparse} ${_sp_diff_vshmm}
+                        -compare_grid_solution ${_sp_dir}/spectral_diffusion_sparse_small/sparse -compare_tolerance 6e-3 -no_timing
+                   REGEX "compare t 0.25 relative_l2_error")
+vshmm_example_test(NAME spectral_diffusion_vshmm_small_matrix EXE diffusion
+                   ARGS ${_sp_diff} ${_sp_diff_sparse} ${_sp_diff_vshmm} -spectral_evaluation matrix
+                        -compare_grid_solution ${_sp_dir}/spectral_diffusion_sparse_small/sparse -compare_tolerance 6e-3 -no_timing
+                   REGEX "inverse_ffts 0 forward_ffts 0")
+vshmm_example_test(NAME spectral_diffusion_vshmm_small_fftproj EXE diffusion
+                   ARGS ${_sp_diff} ${_sp_diff_sparse} ${_sp_diff_vshmm} -spectral_projection fft
+                        -compare_grid_solution ${_sp_dir}/spectral_diffusion_sparse_small/sparse -compare_tolerance 6e-3 -no_timing
+                   REGEX "direct_modes 0")
+# advection: against the DNS (4.6e-2, 1.2e-1 at t = 2, 4; the sparse method alone: 2.4e-2, 4.6e-2): tolerance 0.2
+vshmm_example_test(NAME spectral_advection_vshmm_small_vs_dns EXE advection
+                   ARGS ${_sp_adv} ${_sp_adv_sparse} ${_sp_adv_vshmm}
+                        -compare_grid_solution ${_sp_dir}/spectral_advection_dns_small/dns -compare_tolerance 0.2 -no_timing
+                   REGEX "compare t 4 relative_l2_error")
+set_tests_properties(spectral_diffusion_vshmm_small_vs_dns spectral_diffusion_vshmm_small_vs_sparse
+  spectral_diffusion_vshmm_small_vs_sparse_np2 spectral_diffusion_vshmm_small_matrix spectral_diffusion_vshmm_small_fftproj
+  PROPERTIES FIXTURES_REQUIRED spectral_diffusion_refs)
+set_tests_properties(spectral_advection_vshmm_small_vs_dns PROPERTIES FIXTURES_REQUIRED spectral_advection_refs)
+
+# --- cluster detection (soft thresholding, lambda = 10^-2.5, unitary normalisation) ----------
+vshmm_example_test(NAME spectral_detect_dns_small EXE diffusion
+                   ARGS -grid_points 256 -diffusion_coefficient_wavenumbers 16,64 -mode sparse -cluster_detect dns
+                        -cluster_detect_times 0.25 -cluster_gap 2 -output_times 0.001 -no_timing
+                   REGEX "K0 = {0..4}: 5 wavenumbers.*K1 = {13..15,17..19}.*K4 = {79,81}")
+vshmm_example_test(NAME spectral_detect_initial_buffers EXE diffusion
+                   ARGS -grid_points 256 -mode sparse -cluster_detect initial -cluster_buffers 2 -output_times 0.001 -no_timing
+                   REGEX "6 wavenumbers retained in 1 clusters.*K0 = {0..7}: 8 wavenumbers")
+set_tests_properties(spectral_detect_dns_small spectral_detect_initial_buffers PROPERTIES LABELS "example;spectral")
+
+# --- the paper's scenes parse and run (a short time: the full runs are in docs/spectral.md) ----
+vshmm_example_test(NAME spectral_scene_diffusion EXE diffusion
+                   ARGS -options_file_yaml ${PROJECT_SOURCE_DIR}/examples/scenes/diffusion.yaml -output_times 0.005 -no_timing
+                   REGEX "K1 = {62,63,65,66}.*K3 = {255,257}.*ts_type vshmm: sampling interval 0.25, micro step 1e-05.*output t 0.005")
+vshmm_example_test(NAME spectral_scene_advection EXE advection
+                   ARGS -options_file_yaml ${PROJECT_SOURCE_DIR}/examples/scenes/advection.yaml -output_times 0.5 -no_timing
+                   REGEX "K2 = {114..162}.*ts_type vshmm: sampling interval 1, micro step 0.001.*output t 0.5")
+
+# --- bad scene input: a clear error (the regular expression must match the PETSc error) -------
+vshmm_mpiexec_command(_sp_launch 1)
+function(_spectral_error_test name regex)
+  add_test(NAME spectral_error_${name} COMMAND ${_sp_launch} $<TARGET_FILE:diffusion> ${ARGN})
+  set_tests_properties(spectral_error_${name} PROPERTIES PASS_REGULAR_EXPRESSION "${regex}" LABELS "example;spectral" TIMEOUT 60)
+endfunction()
+_spectral_error_test(unknown_term "Unknown term 'reaction' in -terms: the known terms are diffusion" -terms diffusion,reaction)
+_spectral_error_test(empty_clusters "-clusters is empty" -mode sparse -clusters "")
+_spectral_error_test(no_clusters "-mode sparse needs clusters" -mode sparse)
+_spectral_error_test(overlapping_clusters "clusters K0 and K1 overlap: both contain wavenumber 2" -mode sparse -clusters 0:3,2:5)
+_spectral_error_test(cluster_above_nyquist "has wavenumber 300, outside 0..128" -grid_points 256 -mode sparse -clusters 0:3,300)
+_spectral_error_test(bad_cluster_item "'6x' is not a wavenumber" -mode sparse -clusters 0:3,6x)
+_spectral_error_test(threshold_no_mode "Soft thresholding with -cluster_lambda 100.* leaves no mode" -grid_points 256 -mode sparse -cluster_detect initial -cluster_lambda 100)
+_spectral_error_test(buffers_overlap "after adding the buffers: clusters K0 and K1 overlap" -grid_points 256 -mode sparse -clusters 0:3,10:12 -cluster_buffers 5)
+_spectral_error_test(unknown_form "-velocity: unknown field form 'wavelet'" -terms advection -velocity wavelet)
+_spectral_error_test(bad_denominator "exp_ratio: the denominator is .* <= 0" -grid_points 64 -terms advection -velocity_denominator_sin 0.6,0.6 -velocity_denominator_wavenumbers 1,2)
+_spectral_error_test(small_grid "-N 2 is too small" -N 2)
+_spectral_error_test(both_cluster_sources "Give either -clusters \\(explicit\\) or -cluster_detect initial" -grid_points 256 -mode sparse -clusters 0:3 -cluster_detect initial)
+_spectral_error_test(output_times_order "-output_times must be increasing" -grid_points 64 -output_times 0.2,0.1)

@@ -1,0 +1,359 @@
+// Unit tests of the sparse spectral core (src/spectral): transforms and projections against
+// direct sums, the sparse right-hand side against the full one, clusters, detection, fields.
+#include <gtest/gtest.h>
+
+#include "detect.hpp"
+#include "spectral.hpp"
+
+#include <cmath>
+#include <complex>
+#include <random>
+
+using namespace vshmm::spectral;
+using cplx = std::complex<double>;
+
+static constexpr double kPi = 3.14159265358979323846;
+
+static std::vector<double> randomVector(int n, unsigned seed)
+{
+  std::mt19937                           g(seed);
+  std::uniform_real_distribution<double> d(-1.0, 1.0);
+  std::vector<double>                    v(n);
+  for (double &x : v) x = d(g);
+  return v;
+}
+
+// Complex coefficients c_k (k = 0..N/2) of a real layout vector (zero for modes not retained).
+static std::vector<cplx> toComplex(const Layout &l, const std::vector<double> &v)
+{
+  std::vector<cplx> c(l.N() / 2 + 1, 0.0);
+  for (int i = 0; i < l.modeCount(); ++i) {
+    const int k = l.mode(i);
+    c[k]        = cplx(v[l.offset(i)], isRealOnly(l.N(), k) ? 0.0 : v[l.offset(i) + 1]);
+  }
+  return c;
+}
+
+// The pseudo-spectral operator by direct sums (O(N^2)):
+//   ux_j = sum_{k=-N/2+1}^{N/2} (i k c_k) e^{i k x_j} (Nyquist derivative zero),
+//   F_k = i k DFT(D ux)_k / N + DFT(A ux)_k / N.
+static std::vector<cplx> directOperator(int N, const std::vector<cplx> &c, const std::vector<double> &D, const std::vector<double> &A)
+{
+  std::vector<double> ux(N, 0.0);
+  for (int j = 0; j < N; ++j) {
+    const double x = gridPoint(N, j);
+    double       s = 0;
+    for (int k = 1; k <= N / 2; ++k) {
+      if (isRealOnly(N, k)) continue;
+      s += 2.0 * std::real(cplx(0, k) * c[k] * std::exp(cplx(0, k * x)));
+    }
+    ux[j] = s;
+  }
+  std::vector<cplx> F(N / 2 + 1, 0.0);
+  for (int k = 0; k <= N / 2; ++k) {
+    cplx s1 = 0, s0 = 0;
+    for (int j = 0; j < N; ++j) {
+      const cplx e = std::exp(cplx(0, -2.0 * kPi * (double)k * j / N));
+      if (!D.empty()) s1 += D[j] * ux[j] * e;
+      if (!A.empty()) s0 += A[j] * ux[j] * e;
+    }
+    const double kk = isRealOnly(N, k) ? 0.0 : (double)k;
+    F[k]            = cplx(0, kk) * s1 / (double)N + s0 / (double)N;
+    if (isRealOnly(N, k)) F[k] = cplx(F[k].real(), 0.0);
+  }
+  return F;
+}
+
+// ---------------------------------------------------------------------------------------------
+
+TEST(Layout, RealLayout)
+{
+  for (int N : {16, 15}) {
+    Layout full = Layout::full(N);
+    EXPECT_EQ(full.size(), N); // N reals: k = 0 (and k = N/2 for even N) store Re only
+    EXPECT_EQ(full.modeCount(), N / 2 + 1);
+    EXPECT_EQ(full.offset(0), 0);
+    EXPECT_EQ(full.offset(1), 1);
+    EXPECT_EQ(full.offset(2), 3);
+  }
+  ClusterSet cs = ClusterSet::parse("0:2,5+7,8", 16);
+  Layout     l(cs);
+  EXPECT_EQ(l.clusterCount(), 3);
+  EXPECT_EQ(l.modeCount(), 6);
+  EXPECT_EQ(l.size(), 1 + 2 + 2 + 2 + 2 + 1); // k = 8 = N/2 is real only
+  EXPECT_EQ(l.clusterOffsetBegin(0), 0);
+  EXPECT_EQ(l.clusterOffsetEnd(0), 5);
+  EXPECT_EQ(l.clusterOffsetBegin(1), 5);
+  EXPECT_EQ(l.clusterOffsetEnd(1), 9);
+  EXPECT_EQ(l.clusterOffsetBegin(2), 9);
+  EXPECT_EQ(l.clusterOffsetEnd(2), 10);
+  EXPECT_EQ(l.indexOf(7), 4);
+  EXPECT_EQ(l.indexOf(6), -1);
+}
+
+TEST(Transforms, AgainstDirectSums)
+{
+  for (int N : {16, 15, 64}) {
+    RealFFT             fft(N, Planner::Estimate);
+    std::vector<double> u = randomVector(N, 7 + N);
+    std::copy(u.begin(), u.end(), fft.real());
+    fft.forward();
+    for (int k = 0; k <= N / 2; ++k) {
+      cplx s = 0;
+      for (int j = 0; j < N; ++j) s += u[j] * std::exp(cplx(0, -2.0 * kPi * (double)k * j / N));
+      EXPECT_NEAR(fft.spectrum()[2 * k], s.real(), 1e-12 * N);
+      EXPECT_NEAR(fft.spectrum()[2 * k + 1], s.imag(), 1e-12 * N);
+    }
+    fft.inverse(); // unnormalised: N u
+    for (int j = 0; j < N; ++j) EXPECT_NEAR(fft.real()[j], N * u[j], 1e-11 * N);
+  }
+}
+
+TEST(Transforms, SynthesizeAnalyzeRoundTrip)
+{
+  const int            N = 32;
+  Layout               full = Layout::full(N);
+  SpectralOperator     op(full, std::vector<double>(N, 1.0), {}, Planner::Estimate);
+  std::vector<double>  c = randomVector(full.size(), 3), u(N), back(full.size());
+  op.synthesize(c.data(), u.data());
+  // u(x_j) = sum_k c_k e^{ikx_j} over k = -N/2+1..N/2
+  std::vector<cplx> cc = toComplex(full, c);
+  for (int j = 0; j < N; ++j) {
+    cplx s = cc[0];
+    for (int k = 1; k < N / 2; ++k) s += 2.0 * std::real(cc[k] * std::exp(cplx(0, k * gridPoint(N, j))));
+    s += cc[N / 2].real() * std::cos(N / 2 * gridPoint(N, j));
+    EXPECT_NEAR(u[j], s.real(), 1e-12);
+  }
+  op.analyze(u.data(), back.data());
+  for (int i = 0; i < full.size(); ++i) EXPECT_NEAR(back[i], c[i], 1e-13);
+}
+
+TEST(Operator, FullAgainstDirectSums)
+{
+  for (int N : {32, 31}) {
+    Layout              full = Layout::full(N);
+    std::vector<double> D    = randomVector(N, 11), A = randomVector(N, 12);
+    for (double &d : D) d += 2.0;
+    for (int terms = 0; terms < 3; ++terms) {
+      std::vector<double> Dt = terms == 1 ? std::vector<double>() : D, At = terms == 0 ? std::vector<double>() : A;
+      SpectralOperator    op(full, Dt, At, Planner::Estimate);
+      std::vector<double> c = randomVector(full.size(), 5), F(full.size());
+      op.apply(c.data(), F.data());
+      std::vector<cplx> ref = directOperator(N, toComplex(full, c), Dt, At), got = toComplex(full, F);
+      for (int k = 0; k <= N / 2; ++k) {
+        EXPECT_NEAR(got[k].real(), ref[k].real(), 1e-11 * N * N) << "N " << N << " k " << k;
+        EXPECT_NEAR(got[k].imag(), ref[k].imag(), 1e-11 * N * N) << "N " << N << " k " << k;
+      }
+    }
+  }
+}
+
+TEST(Operator, ConstantCoefficients)
+{
+  // d = 2: F_k = -2 k^2 c_k; a = 3 (A = -3): F_k = -3 i k c_k (Nyquist: derivative zero)
+  const int           N = 16;
+  Layout              full = Layout::full(N);
+  std::vector<double> c    = randomVector(full.size(), 9), F(full.size());
+  SpectralOperator    dif(full, std::vector<double>(N, 2.0), {}, Planner::Estimate);
+  dif.apply(c.data(), F.data());
+  std::vector<cplx> cc = toComplex(full, c), ff = toComplex(full, F);
+  for (int k = 0; k < N / 2; ++k) EXPECT_NEAR(std::abs(ff[k] - (-2.0 * k * k) * cc[k]), 0.0, 1e-12);
+  EXPECT_NEAR(std::abs(ff[N / 2]), 0.0, 1e-12);
+  SpectralOperator adv(full, {}, std::vector<double>(N, -3.0), Planner::Estimate);
+  adv.apply(c.data(), F.data());
+  ff = toComplex(full, F);
+  for (int k = 0; k < N / 2; ++k) EXPECT_NEAR(std::abs(ff[k] - cplx(0, -3.0 * k) * cc[k]), 0.0, 1e-12);
+}
+
+TEST(Operator, ProjectionsDirectEqualFFT)
+{
+  const int           N  = 64;
+  ClusterSet          cs = ClusterSet::parse("0:3,10:12+14,20,29:32", N);
+  Layout              l(cs);
+  std::vector<double> D = randomVector(N, 21), A = randomVector(N, 22);
+  SpectralOperator    op(l, D, A, Planner::Estimate);
+  std::vector<double> c = randomVector(l.size(), 23), viaFFT(l.size()), viaDirect(l.size());
+  op.computePhysical(c.data());
+  for (int j = 0; j < l.clusterCount(); ++j) {
+    // a cluster written into its own array (base = its first offset)
+    std::vector<double> own(l.clusterOffsetEnd(j) - l.clusterOffsetBegin(j));
+    op.projectDirect(l.clusterModeBegin(j), l.clusterModeEnd(j), own.data(), l.clusterOffsetBegin(j));
+    std::copy(own.begin(), own.end(), viaDirect.begin() + l.clusterOffsetBegin(j));
+  }
+  op.computeForward();
+  op.extractForward(0, l.modeCount(), viaFFT.data());
+  for (int i = 0; i < l.size(); ++i) EXPECT_NEAR(viaDirect[i], viaFFT[i], 1e-12);
+  EXPECT_EQ(op.counters().inverse, 1);
+  EXPECT_EQ(op.counters().forward, 2);
+  EXPECT_EQ(op.counters().directModes, l.modeCount());
+}
+
+TEST(Operator, SparseEqualsFullRestricted)
+{
+  // The sparse right-hand side is the full one, evaluated on a state that is zero outside the
+  // retained modes, restricted to the retained modes; the cluster projections add up to it.
+  const int           N  = 128;
+  ClusterSet          cs = ClusterSet::parse("0:3,14:18,48:49,63:64", N);
+  Layout              l(cs), full = Layout::full(N);
+  std::vector<double> D(N), A(N);
+  for (int j = 0; j < N; ++j) {
+    const double x = gridPoint(N, j);
+    D[j]           = 0.25 * (std::exp(std::sin(16 * x)) + std::exp(std::sin(64 * x)));
+    A[j]           = -0.25 * std::exp((0.6 + 0.2 * std::cos(3 * x)) / (1 + 0.35 * std::sin(16 * x) + 0.35 * std::sin(48 * x)));
+  }
+  SpectralOperator    sparse(l, D, A, Planner::Estimate), fullop(full, D, A, Planner::Estimate);
+  std::vector<double> c = randomVector(l.size(), 31), cfull(full.size(), 0.0), F(l.size()), Ffull(full.size());
+  for (int i = 0; i < l.modeCount(); ++i) {
+    const int fi = full.indexOf(l.mode(i));
+    for (int r = 0; r < realsOf(N, l.mode(i)); ++r) cfull[full.offset(fi) + r] = c[l.offset(i) + r];
+  }
+  sparse.apply(c.data(), F.data());
+  fullop.apply(cfull.data(), Ffull.data());
+  for (int i = 0; i < l.modeCount(); ++i) {
+    const int fi = full.indexOf(l.mode(i));
+    for (int r = 0; r < realsOf(N, l.mode(i)); ++r) EXPECT_NEAR(F[l.offset(i) + r], Ffull[full.offset(fi) + r], 1e-10) << "k = " << l.mode(i);
+  }
+  DenseOperator       M(sparse);
+  std::vector<double> G(l.size());
+  M.applyRows(0, l.size(), c.data(), G.data());
+  for (int i = 0; i < l.size(); ++i) EXPECT_NEAR(G[i], F[i], 1e-10);
+}
+
+// ---------------------------------------------------------------------------------------------
+
+TEST(Clusters, Parse)
+{
+  ClusterSet cs = ClusterSet::parse("0:3,62:66,192:193,255:257", 2048);
+  ASSERT_EQ(cs.size(), 4u);
+  EXPECT_EQ(cs.clusters[0], (std::vector<int>{0, 1, 2, 3}));
+  EXPECT_EQ(cs.clusters[1], (std::vector<int>{62, 63, 64, 65, 66}));
+  EXPECT_EQ(cs.clusters[3], (std::vector<int>{255, 256, 257}));
+  ClusterSet holes = ClusterSet::parse("0:3, 62:63+65:66 ,192:193,255+257", 2048);
+  EXPECT_EQ(holes.clusters[1], (std::vector<int>{62, 63, 65, 66}));
+  EXPECT_EQ(holes.clusters[3], (std::vector<int>{255, 257}));
+  EXPECT_EQ(holes.format(), "K0 = {0..3}, K1 = {62,63,65,66}, K2 = {192,193}, K3 = {255,257}");
+}
+
+static std::string parseError(const std::string &spec, int N)
+{
+  try {
+    ClusterSet::parse(spec, N);
+  } catch (const std::invalid_argument &e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Clusters, BadInput)
+{
+  EXPECT_NE(parseError("", 64).find("empty"), std::string::npos);
+  EXPECT_NE(parseError("0:3,,5", 64).find("empty cluster"), std::string::npos);
+  EXPECT_NE(parseError("0:3,2:5", 64).find("overlap"), std::string::npos);
+  EXPECT_NE(parseError("0:3,30:40", 64).find("outside 0..32"), std::string::npos);
+  EXPECT_NE(parseError("0:x", 64).find("not a wavenumber"), std::string::npos);
+  EXPECT_NE(parseError("5:3", 64).find("lo > hi"), std::string::npos);
+  EXPECT_NE(parseError("-1:3", 64).find("nonnegative"), std::string::npos);
+  EXPECT_NE(parseError("1+1", 64).find("twice"), std::string::npos);
+}
+
+TEST(Clusters, SortByLowest)
+{
+  ClusterSet cs = ClusterSet::parse("10:12,0:2", 64);
+  EXPECT_TRUE(cs.sortByLowest());
+  EXPECT_EQ(cs.clusters[0].front(), 0);
+  EXPECT_FALSE(cs.sortByLowest());
+}
+
+// ---------------------------------------------------------------------------------------------
+
+TEST(Detect, SoftThresholdAndMerge)
+{
+  EXPECT_DOUBLE_EQ(softThreshold(0.5, 0.2), 0.3);
+  EXPECT_DOUBLE_EQ(softThreshold(0.1, 0.2), 0.0);
+  // A synthetic spectrum of N = 512 (series coefficients): clusters near 0, 64 (with a hole
+  // at 64) and 200, plus noise below the threshold.
+  const int           N = 512;
+  std::vector<double> m(N / 2 + 1, 1e-6);
+  for (int k : {0, 1, 2, 3, 62, 63, 65, 66, 200, 201}) m[k] = 1e-2;
+  const double lambda = std::pow(10.0, -2.5);
+  // unitary: sqrt(512) * 1e-2 = 0.23 > lambda; sqrt(512) * 1e-6 = 2.3e-5 < lambda
+  std::vector<int> support = thresholdSupport({m}, N, lambda, Normalization::Unitary);
+  EXPECT_EQ(support, (std::vector<int>{0, 1, 2, 3, 62, 63, 65, 66, 200, 201}));
+  ClusterSet cs = mergeIntoClusters(support, N, 1);
+  EXPECT_EQ(cs.format(), "K0 = {0..3}, K1 = {62,63,65,66}, K2 = {200,201}");
+  EXPECT_EQ(mergeIntoClusters(support, N, 0).size(), 4u); // the hole at 64 splits K1
+  EXPECT_EQ(mergeIntoClusters(support, N, 60).size(), 2u); // 3 -> 62 is 58 missing: merged
+  // series normalisation: 1e-2 > lambda still, dft: noise N * 1e-6 = 5e-4 < lambda
+  EXPECT_EQ(thresholdSupport({m}, N, lambda, Normalization::Series).size(), 10u);
+  EXPECT_EQ(thresholdSupport({m}, N, 1e-3, Normalization::DFT).size(), 10u);
+  EXPECT_EQ(thresholdSupport({m}, N, 1e-4, Normalization::DFT).size(), (size_t)N / 2 + 1);
+  // union over snapshots
+  std::vector<double> m2(N / 2 + 1, 0.0);
+  m2[100] = 1.0;
+  EXPECT_EQ(thresholdSupport({m, m2}, N, lambda, Normalization::Unitary).size(), 11u);
+  // a threshold that leaves no mode
+  EXPECT_TRUE(thresholdSupport({m}, N, 10.0, Normalization::Unitary).empty());
+  EXPECT_THROW(mergeIntoClusters({}, N, 1), std::invalid_argument);
+}
+
+TEST(Detect, Buffers)
+{
+  ClusterSet cs = ClusterSet::parse("0,64,138,256", 1024);
+  ClusterSet b  = addBuffers(cs, {24, 24, 24, 10});
+  EXPECT_EQ(b.format(), "K0 = {0..24}, K1 = {40..88}, K2 = {114..162}, K3 = {246..266}");
+  EXPECT_EQ(addBuffers(cs, {3}).clusters[1].size(), 7u);
+  EXPECT_THROW(addBuffers(cs, {40}), std::invalid_argument); // 64+40 > 138-40: overlap
+  EXPECT_THROW(addBuffers(cs, {1, 2}), std::invalid_argument);
+  // holes are filled only within the buffer width
+  ClusterSet h = ClusterSet::parse("62:63+65:66", 256);
+  EXPECT_EQ(addBuffers(h, {1}).clusters[0], (std::vector<int>{61, 62, 63, 64, 65, 66, 67}));
+}
+
+// ---------------------------------------------------------------------------------------------
+
+TEST(Fields, Forms)
+{
+  const int N = 64;
+  Field     d;
+  d.form        = Field::Form::ExpSin;
+  d.weights     = {0.25, 0.25};
+  d.wavenumbers = {4, 16};
+  std::vector<double> v = d.sample(N);
+  for (int j = 0; j < N; ++j) {
+    const double x = gridPoint(N, j);
+    EXPECT_NEAR(v[j], 0.25 * (std::exp(std::sin(4 * x)) + std::exp(std::sin(16 * x))), 1e-14);
+  }
+  Field a;
+  a.form                  = Field::Form::ExpRatio;
+  a.scale                 = 0.25;
+  a.numerator.offset      = 0.6;
+  a.numerator.wavenumbers = {3};
+  a.numerator.cosines     = {0.2};
+  a.denominator.offset    = 1.0;
+  a.denominator.wavenumbers = {8, 32};
+  a.denominator.sines       = {0.35, 0.35};
+  v                         = a.sample(N);
+  for (int j = 0; j < N; ++j) {
+    const double x = gridPoint(N, j);
+    EXPECT_NEAR(v[j], 0.25 * std::exp((0.6 + 0.2 * std::cos(3 * x)) / (1 + 0.35 * std::sin(8 * x) + 0.35 * std::sin(32 * x))), 1e-13);
+  }
+  a.denominator.wavenumbers = {1};
+  a.denominator.sines       = {1.5}; // 1 + 1.5 sin(x) < 0 near x = 3 pi / 2
+  EXPECT_THROW(a.sample(N), std::invalid_argument);
+  Field g; // gaussian, default exp(-(x - pi)^2)
+  g.form = Field::Form::Gaussian;
+  v      = g.sample(N);
+  EXPECT_NEAR(v[N / 2], 1.0, 1e-15);
+  EXPECT_NEAR(v[0], std::exp(-kPi * kPi), 1e-15);
+  g.center   = 0.5;
+  g.periodic = true;
+  v          = g.sample(N);
+  EXPECT_NEAR(v[N - 1], std::exp(-std::pow(gridPoint(N, N - 1) - 2 * kPi - 0.5, 2)), 1e-15);
+  Field f;
+  f.form                  = Field::Form::Fourier;
+  f.numerator.offset      = 1;
+  f.numerator.wavenumbers = {2};
+  f.numerator.sines       = {0.5, 0.1};
+  EXPECT_THROW(f.sample(N), std::invalid_argument); // two sines for one wavenumber
+  EXPECT_THROW(Field::formFromName("wavelet"), std::invalid_argument);
+}
