@@ -1,6 +1,7 @@
 #include "stability.hpp"
 
 #include <cmath>
+#include <algorithm>
 #include <limits>
 
 namespace vshmm {
@@ -24,7 +25,10 @@ double StabilityFunction::rayLimit(std::complex<double> direction) const
 {
   const std::complex<double> d   = direction / std::abs(direction);
   const double               tol = 1e-12;
-  auto stable = [&](double x) { return std::abs((*this)(x * d)) <= 1.0 + tol; };
+  // A step is stable for the mode when it grows the mode no more than the exact flow does:
+  // |R(z)| <= max(1, |exp(z)|). For Re z <= 0 that is the usual |R(z)| <= 1; a growing mode
+  // (Re z > 0, e.g. a slightly unstable oscillation) may grow by its own exp(Re z).
+  auto stable = [&](double x) { return std::abs((*this)(x * d)) <= std::max(1.0, std::exp(x * d.real())) * (1.0 + tol); };
   // Scan outwards in steps small against the size of any stability region of an explicit method,
   // then bisect the first crossing.
   const double dx = 1e-3;
@@ -51,7 +55,7 @@ LevelAmplification levelAmplification(const StabilityFunction &R, const Mesoscop
   LevelAmplification a;
   runMacroStep(schedule, macroStep, [&](int l, double, double h) {
     if (l == level) {
-      a.logAmplification += std::log(std::abs(R(h * lambda)));
+      a.logAmplification += std::log(std::abs(R(h * lambda))) - h * std::max(lambda.real(), 0.0);
       a.steps++;
       a.largestStep = std::max(a.largestStep, h);
     }

@@ -18,7 +18,8 @@ public:
 
   std::complex<double> operator()(std::complex<double> z) const;
 
-  // The largest r with |R(x d)| <= 1 for every x in [0, r], d = direction / |direction|:
+  // The largest r with |R(x d)| <= max(1, |exp(x d)|) for every x in [0, r], d = direction / |direction|
+  // (a step may grow a growing mode by as much as the exact flow, no more):
   // along the negative real axis (d = -1) it is 2 for forward Euler and 2.785 for RK4, along the
   // imaginary axis 0 and 2.828. Bounded by kMaxRadius.
   double rayLimit(std::complex<double> direction) const;
@@ -37,9 +38,10 @@ private:
 
 // What the steps of one level do to a linear mode y' = lambda y over one macro step of
 // length macroStep, with the schedule's own step sequence (the shortened last step included):
-// the product of |R(h lambda)| over the level's steps, as its logarithm, and the step count.
+// the product of |R(h lambda)| over the level's steps, as its logarithm, beyond the mode's own
+// growth over those steps (sum of h max(Re lambda, 0)), and the step count.
 struct LevelAmplification {
-  double logAmplification = 0.0;
+  double logAmplification = 0.0; // log prod |R(h lambda)| - sum h max(Re lambda, 0)
   long   steps            = 0;
   double largestStep      = 0.0;
 };

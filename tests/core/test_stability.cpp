@@ -56,6 +56,19 @@ TEST(StabilityFunction, LargestStableStepScalesWithTheEigenvalue)
   EXPECT_GT(std::abs(R(1.01 * h * lambda)), 1.0);
 }
 
+TEST(StabilityFunction, SlightlyGrowingOscillationsAreJudgedAgainstTheirOwnGrowth)
+{
+  // An oscillation that grows slowly (Re lambda = 0.11, Im lambda = 1e6) is stable for RK4 up to
+  // about the imaginary-axis limit, not for no step at all.
+  vshmm::StabilityFunction R(RK4());
+  const cd                 lambda(0.11, 1e6);
+  EXPECT_NEAR(R.largestStableStep(lambda), 2 * std::sqrt(2.0) / 1e6, 1e-9);
+  // A real growing mode is never limited for RK4: R(z) < exp(z) for z > 0.
+  EXPECT_EQ(R.largestStableStep(2000.0), vshmm::StabilityFunction::kMaxRadius / 2000.0);
+  // Forward Euler grows y' = i y: for an oscillation with no growth of its own it has no stable step.
+  EXPECT_LT(vshmm::StabilityFunction(Euler()).largestStableStep(cd(0, 1)), 1e-5);
+}
+
 TEST(LevelAmplification, ConstantKernelGivesThePowerOfOneStep)
 {
   auto                      kernel = vshmm::Kernel::create(vshmm::KernelType::Constant);
