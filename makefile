@@ -3,7 +3,7 @@
 #   make check       install missing Debian packages, build, run all tests (ctest)
 #   make build       configure and build in $(BUILD_DIR)
 #   make install PREFIX=/some/prefix
-#   make figures     build, then regenerate docs/figures/*.png, *.svg (gnuplot; about a minute)
+#   make figures     build, then regenerate docs/figures/*.png, *.svg (gnuplot; a few minutes)
 #   make clean       remove $(BUILD_DIR)
 # Variables: BUILD_DIR (build), BUILD_TYPE (Release), JOBS (2), PREFIX (/usr/local),
 #            CMAKE_FLAGS (extra configure options), CTEST_FLAGS (extra ctest options).
@@ -59,6 +59,7 @@ demo: build
 
 figures: build
 	sh docs/figures/make_figures.sh $(BUILD_DIR)
+	sh docs/figures/spectral_figures.sh $(BUILD_DIR)
 
 install: build
 	cmake --install $(BUILD_DIR) --prefix $(PREFIX)
