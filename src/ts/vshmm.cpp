@@ -601,7 +601,10 @@ static PetscErrorCode TSView_VSHMM(TS ts, PetscViewer viewer)
   else PetscCall(PetscViewerASCIIPrintf(viewer, "  VSHMM: %" PetscInt_FMT " scales (RHS splits, slowest first), kernel %s (order q = %d)\n", nscales, vs->kernel->name().c_str(), q));
   if (vs->micro_dt > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "  micro step dt = %g, sampling interval DeltaT = %g\n", (double)vs->micro_dt, (double)ts->time_step));
   else PetscCall(PetscViewerASCIIPrintf(viewer, "  micro step dt = DeltaT/%d = %g (default), sampling interval DeltaT = %g\n", (int)kDefaultMicroStepsPerMacroStep, (double)(ts->time_step / kDefaultMicroStepsPerMacroStep), (double)ts->time_step));
-  PetscCall(PetscViewerASCIIPrintf(viewer, "  inner Runge-Kutta: TSRK %s (order %d, %d stages)\n", vs->tableau->name.c_str(), vs->tableau->order, vs->tableau->stages));
+  {
+    const vshmm::StabilityFunction R(*vs->tableau);
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  inner Runge-Kutta: TSRK %s (order %d, %d stages; stable for h |lambda| <= %.4g on the negative real axis, %.4g on the imaginary axis)\n", vs->tableau->name.c_str(), vs->tableau->order, vs->tableau->stages, R.realLimit(), R.imaginaryLimit()));
+  }
   PetscCall(PetscViewerASCIIPrintf(viewer, "  scale  split                 step         savings factor  subintervals  RHS evaluations\n"));
   for (PetscInt k = 0; k < nscales; ++k) {
     const VSHMMScale &sc = vs->scales[k];
