@@ -21,6 +21,7 @@ struct SolveResult {
   std::vector<PetscReal> x;
   PetscReal              time = 0;
   PetscInt64             split_evaluations = 0;
+  PetscInt64             stability_checks = 0, stability_warnings = 0, stability_evaluations = 0;
   TSConvergedReason      reason = TS_CONVERGED_ITERATING;
 };
 
@@ -58,7 +59,10 @@ PetscErrorCode SolveDissipative(MPI_Comm comm, SplitKind kind, PetscReal tfinal,
   PetscCall(TSGetConvergedReason(ts, &run->reason));
   PetscCall(GatherState(p, x, run->x));
   PetscCall(TSVSHMMGetStatistics(ts, &stats));
-  run->split_evaluations = std::accumulate(stats.rhs_evaluations, stats.rhs_evaluations + stats.nsplits, (PetscInt64)0);
+  run->split_evaluations     = std::accumulate(stats.rhs_evaluations, stats.rhs_evaluations + stats.nsplits, (PetscInt64)0);
+  run->stability_checks      = stats.stability_checks;
+  run->stability_warnings    = stats.stability_warnings;
+  run->stability_evaluations = stats.stability_evaluations;
   PetscCall(DestroySplitTS(p, &ts, &x));
   PetscFunctionReturn(0);
 }
@@ -261,39 +265,16 @@ TEST(VSHMMStabilityCheck, MarginalStabilityThatDevelopsIsReportedByThePeriodicCh
   // the largest steps of level 1 leave RK4's stability interval from t = 0.3 on. Over a macro step
   // the mode is still damped, but the growth near the kernel's peak holds the state at the edge:
   // xi(2) = 1.117 where alpha_2 = 20..40 give 1.358. Checked every macro step, the check reports it
-  // (a warning on stderr, counted in the statistics).
-  DissipativeParams params;
-  SplitProblem      p;
-  TS                ts;
-  Vec               x;
-  const PetscReal   alpha[] = {100, 50};
-  TSVSHMMStatistics stats;
-  DissipativeProblem(&p, &params);
-  ASSERT_EQ(CreateSplitTS(PETSC_COMM_WORLD, &p, SplitKind::Component, {0.5, 1.0, -0.5}, {"slow", "medium", "fast"}, &ts, &x), 0);
-  ASSERT_EQ(TSSetTimeStep(ts, 0.1), 0);
-  ASSERT_EQ(TSSetMaxTime(ts, 2.0), 0);
-  ASSERT_EQ(TSVSHMMSetMicroStep(ts, 1e-4), 0);
-  ASSERT_EQ(TSVSHMMSetSavingsFactors(ts, 2, alpha), 0);
-  ASSERT_EQ(TSVSHMMSetStabilityCheck(ts, PETSC_TRUE, 1), 0);
-  ASSERT_EQ(TSSolve(ts, x), 0);
-  ASSERT_EQ(TSVSHMMGetStatistics(ts, &stats), 0);
-  EXPECT_EQ(stats.stability_checks, 20); // at set-up and before the macro steps 2..20
-  EXPECT_GT(stats.stability_warnings, 0);
-  EXPECT_GT(stats.stability_evaluations, 0);
-  ASSERT_EQ(DestroySplitTS(&p, &ts, &x), 0);
-  // alpha_2 = 20 damps the mode all along: no warning.
-  const PetscReal alpha20[] = {100, 20};
-  DissipativeProblem(&p, &params);
-  ASSERT_EQ(CreateSplitTS(PETSC_COMM_WORLD, &p, SplitKind::Component, {0.5, 1.0, -0.5}, {"slow", "medium", "fast"}, &ts, &x), 0);
-  ASSERT_EQ(TSSetTimeStep(ts, 0.1), 0);
-  ASSERT_EQ(TSSetMaxTime(ts, 2.0), 0);
-  ASSERT_EQ(TSVSHMMSetMicroStep(ts, 1e-4), 0);
-  ASSERT_EQ(TSVSHMMSetSavingsFactors(ts, 2, alpha20), 0);
-  ASSERT_EQ(TSVSHMMSetStabilityCheck(ts, PETSC_TRUE, 1), 0);
-  ASSERT_EQ(TSSolve(ts, x), 0);
-  ASSERT_EQ(TSVSHMMGetStatistics(ts, &stats), 0);
-  EXPECT_EQ(stats.stability_warnings, 0);
-  ASSERT_EQ(DestroySplitTS(&p, &ts, &x), 0);
+  // (a warning on stderr, counted in the statistics); alpha_2 = 20 damps the mode all along.
+  SolveResult warned, quiet;
+  ASSERT_EQ(SolveDissipative(PETSC_COMM_WORLD, SplitKind::Component, 2.0, 0.1, &warned, "-ts_vshmm_savings_factors 100,50 -ts_vshmm_check_stability_interval 1", nullptr, {}, {0.5, 1.0, -0.5}), 0);
+  EXPECT_EQ(warned.stability_checks, 20); // at set-up and before the macro steps 2..20
+  EXPECT_GT(warned.stability_warnings, 0);
+  EXPECT_GT(warned.stability_evaluations, 0);
+  ASSERT_EQ(SolveDissipative(PETSC_COMM_WORLD, SplitKind::Component, 2.0, 0.1, &quiet, "-ts_vshmm_savings_factors 100,20 -ts_vshmm_check_stability_interval 1", nullptr, {}, {0.5, 1.0, -0.5}), 0);
+  EXPECT_EQ(quiet.stability_warnings, 0);
+  EXPECT_NEAR(quiet.x[0], 1.358, 5e-3);
+  EXPECT_NEAR(warned.x[0], 1.117, 5e-3);
 }
 
 TEST(VSHMMStabilityCheck, PaperParametersPassAtEveryMacroStep)
@@ -301,27 +282,11 @@ TEST(VSHMMStabilityCheck, PaperParametersPassAtEveryMacroStep)
   // The peak mesoscopic steps of level 1 exceed RK4's limit for a while (t = 0.1 to 0.5, where the
   // method's error is 0.12): the check warns, but the level's steps damp the mode over each macro
   // step, so it does not stop the paper's settings.
-  DissipativeParams params;
-  SplitProblem      p;
-  TS                ts;
-  Vec               x;
-  const PetscReal   alpha[] = {100, 10};
-  TSVSHMMStatistics stats;
-  std::vector<PetscReal> out;
-  DissipativeProblem(&p, &params);
-  ASSERT_EQ(CreateSplitTS(PETSC_COMM_WORLD, &p, SplitKind::Component, {5, -10, 5}, {"slow", "medium", "fast"}, &ts, &x), 0);
-  ASSERT_EQ(TSSetTimeStep(ts, 0.1), 0);
-  ASSERT_EQ(TSSetMaxTime(ts, 2.0), 0);
-  ASSERT_EQ(TSVSHMMSetMicroStep(ts, 1e-4), 0);
-  ASSERT_EQ(TSVSHMMSetSavingsFactors(ts, 2, alpha), 0);
-  ASSERT_EQ(TSVSHMMSetStabilityCheck(ts, PETSC_TRUE, 1), 0);
-  ASSERT_EQ(TSSolve(ts, x), 0);
-  ASSERT_EQ(GatherState(&p, x, out), 0);
-  EXPECT_NEAR(out[0], kXiAt2, 2e-2);
-  ASSERT_EQ(TSVSHMMGetStatistics(ts, &stats), 0);
-  EXPECT_GT(stats.stability_warnings, 0);
-  EXPECT_LT(stats.stability_warnings, 10);
-  ASSERT_EQ(DestroySplitTS(&p, &ts, &x), 0);
+  SolveResult run;
+  ASSERT_EQ(SolveDissipative(PETSC_COMM_WORLD, SplitKind::Component, 2.0, 0.1, &run, "-ts_vshmm_check_stability_interval 1"), 0);
+  EXPECT_NEAR(run.x[0], kXiAt2, 2e-2);
+  EXPECT_GT(run.stability_warnings, 0);
+  EXPECT_LT(run.stability_warnings, 10);
 }
 
 TEST(VSHMMSolver, ExactFinalTimeModes)
