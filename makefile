@@ -52,7 +52,7 @@ build: deps $(BUILD_DIR)/CMakeCache.txt
 	cmake --build $(BUILD_DIR) -j $(JOBS)
 
 check: build
-	ctest --test-dir $(BUILD_DIR) --output-on-failure $(CTEST_FLAGS)
+	ctest --test-dir $(BUILD_DIR) --output-on-failure -j $(JOBS) $(CTEST_FLAGS)
 
 demo: build
 	sh examples/ode/demo.sh $(BUILD_DIR)
