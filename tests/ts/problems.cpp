@@ -6,9 +6,10 @@
 namespace {
 
 struct SplitCtx {
-  SplitProblem *problem;
-  PetscInt      scale;
-  SplitKind     kind;
+  SplitProblem         *problem;
+  PetscInt              scale;
+  SplitKind             kind;
+  std::vector<PetscInt> components; // the split's IS on this rank: F's local entry i is component components[i]
 };
 
 std::vector<SplitCtx> &Contexts(SplitProblem *p)
@@ -27,7 +28,6 @@ PetscErrorCode SplitFunction(TS, PetscReal t, Vec X, Vec F, void *vctx)
   const PetscScalar *xa;
   PetscScalar       *fa;
   std::vector<PetscScalar> full(p->n);
-  PetscInt           rstart, rend, lo;
 
   PetscFunctionBeginUser;
   PetscCall(VecScatterBegin(p->gather, X, p->xall, INSERT_VALUES, SCATTER_FORWARD));
@@ -39,16 +39,8 @@ PetscErrorCode SplitFunction(TS, PetscReal t, Vec X, Vec F, void *vctx)
     p->calls++;
     if ((p->nan_after_calls >= 0 && p->calls > p->nan_after_calls) || t > p->nan_after_time) full[p->n - 1] = NAN;
   }
-  PetscCall(VecGetOwnershipRange(X, &rstart, &rend));
   PetscCall(VecGetArray(F, &fa));
-  if (ctx->kind == SplitKind::Additive || (ctx->kind == SplitKind::Mixed && ctx->scale % 2 == 0)) {
-    for (PetscInt i = rstart; i < rend; ++i) fa[i - rstart] = full[i];
-  } else { /* component split: scale k owns component k (and the rest of the components if it is the last scale) */
-    PetscInt nloc;
-    PetscCall(VecGetOwnershipRange(F, &lo, nullptr));
-    PetscCall(VecGetLocalSize(F, &nloc));
-    for (PetscInt i = 0; i < nloc; ++i) fa[i] = full[ctx->scale + lo + i];
-  }
+  for (size_t i = 0; i < ctx->components.size(); ++i) fa[i] = full[ctx->components[i]];
   PetscCall(VecRestoreArray(F, &fa));
   PetscFunctionReturn(0);
 }
@@ -98,18 +90,27 @@ PetscErrorCode CreateSplitTS(MPI_Comm comm, SplitProblem *p, SplitKind kind, con
   PetscCall(TSSetType(*ts, TSVSHMM));
   PetscCall(TSSetRHSFunction(*ts, nullptr, FullFunction, p));
   std::vector<SplitCtx> &ctxs = Contexts(p);
-  ctxs.assign(nscales, SplitCtx{p, 0, kind});
+  ctxs.assign(nscales, SplitCtx{p, 0, kind, {}});
+  PetscMPIInt rank, size;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCallMPI(MPI_Comm_size(comm, &size));
   for (PetscInt c = 0; c < nscales; ++c) {
-    const PetscInt k = creation.empty() ? c : creation[c];
-    IS             is;
+    const PetscInt         k = creation.empty() ? c : creation[c];
+    std::vector<PetscInt> &comps = ctxs[k].components;
+    IS                     is;
     ctxs[k].scale = k;
-    if (kind == SplitKind::Additive || (kind == SplitKind::Mixed && k % 2 == 0)) PetscCall(ISCreateStride(comm, rend - rstart, rstart, 1, &is));
-    else { /* component k; the last scale also takes the components beyond nscales - 1 */
-      PetscInt lo = k, hi = k == nscales - 1 ? p->n : k + 1;
-      lo = PetscMax(lo, rstart);
-      hi = PetscMin(hi, rend);
-      PetscCall(ISCreateStride(comm, PetscMax(hi - lo, 0), lo, 1, &is));
+    /* scale k's components: every component (additive) or component k, with the components beyond
+       nscales - 1 for the last scale (component) */
+    const bool     additive = kind == SplitKind::Additive || ((kind == SplitKind::Mixed || kind == SplitKind::Scattered) && k % 2 == 0);
+    const PetscInt lo = additive ? 0 : k, hi = additive || k == nscales - 1 ? p->n : k + 1;
+    if (kind == SplitKind::Scattered) {
+      /* all of them listed on the last rank, in decreasing order: owned by other ranks, and unsorted */
+      if (rank == size - 1)
+        for (PetscInt i = hi - 1; i >= lo; --i) comps.push_back(i);
+    } else {
+      for (PetscInt i = PetscMax(lo, rstart); i < PetscMin(hi, rend); ++i) comps.push_back(i);
     }
+    PetscCall(ISCreateGeneral(comm, (PetscInt)comps.size(), comps.data(), PETSC_COPY_VALUES, &is));
     PetscCall(TSRHSSplitSetIS(*ts, names[k].c_str(), is));
     PetscCall(TSRHSSplitSetRHSFunction(*ts, names[k].c_str(), nullptr, SplitFunction, &ctxs[k]));
     PetscCall(ISDestroy(&is));

@@ -8,8 +8,10 @@
 #include <string>
 #include <vector>
 
-// Mixed: even scales additive, odd scales component splits.
-enum class SplitKind { Additive, Component, Mixed };
+// Mixed: even scales additive, odd scales component splits. Scattered: the same, but every IS lists
+// its components in decreasing order, all on the last rank (unsorted, and on several ranks naming
+// components that other ranks own): TSVSHMM adds such splits with a VecScatter.
+enum class SplitKind { Additive, Component, Mixed, Scattered };
 
 // A small ODE dx/dt = sum_k f_k(x) whose split k writes the terms of scale k. The state lives on
 // `comm` (spread over its ranks); split functions gather it to every rank.

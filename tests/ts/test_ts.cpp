@@ -100,12 +100,18 @@ TEST(VSHMMSolver, DistributedRunMatchesSerialRun)
   }
 }
 
-TEST(VSHMMSolver, MixedAdditiveAndComponentSplitsAgree)
+TEST(VSHMMSolver, MixedAndScatteredSplitsAgree)
 {
-  SolveResult mixed, component;
+  // Mixed additive and component splits; component splits with unsorted ISs naming components
+  // that (under mpiexec -n 2) another rank owns.
+  SolveResult mixed, scattered, component;
   ASSERT_EQ(SolveDissipative(PETSC_COMM_WORLD, SplitKind::Mixed, 1.0, 0.1, &mixed), 0);
+  ASSERT_EQ(SolveDissipative(PETSC_COMM_WORLD, SplitKind::Scattered, 1.0, 0.1, &scattered), 0);
   ASSERT_EQ(SolveDissipative(PETSC_COMM_SELF, SplitKind::Component, 1.0, 0.1, &component), 0);
-  for (int i = 0; i < 3; ++i) EXPECT_NEAR(mixed.x[i], component.x[i], 1e-12 * std::abs(component.x[i])) << "component " << i;
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_NEAR(mixed.x[i], component.x[i], 1e-12 * std::abs(component.x[i])) << "component " << i;
+    EXPECT_NEAR(scattered.x[i], component.x[i], 1e-12 * std::abs(component.x[i])) << "component " << i;
+  }
 }
 
 // Four scales: x0 follows the averaged equation X' = sin(X) - X/2 (X(0) = 1) up to O(e1).
@@ -182,6 +188,8 @@ TEST(VSHMMSolver, FourScalesFollowTheAveragedEquation)
   ASSERT_EQ(SolveChain(PETSC_COMM_WORLD, SplitKind::Component, component, nullptr), 0);
   ASSERT_EQ(SolveChain(PETSC_COMM_WORLD, SplitKind::Mixed, mixed, nullptr), 0);
   ASSERT_EQ(SolveChain(PETSC_COMM_SELF, SplitKind::Additive, serial, nullptr), 0);
+  std::vector<PetscReal> scattered;
+  ASSERT_EQ(SolveChain(PETSC_COMM_WORLD, SplitKind::Scattered, scattered, nullptr), 0);
   EXPECT_NEAR(additive[0], dns, 2e-2);
   EXPECT_GT(std::abs(coarse[0] - dns), 2 * std::abs(additive[0] - dns));
   EXPECT_NEAR(additive[1], additive[0], 5e-2);
@@ -191,6 +199,7 @@ TEST(VSHMMSolver, FourScalesFollowTheAveragedEquation)
     EXPECT_NEAR(component[i], additive[i], 1e-12 * std::abs(additive[i]) + 1e-14) << i;
     EXPECT_NEAR(mixed[i], additive[i], 1e-12 * std::abs(additive[i]) + 1e-14) << i;
     EXPECT_NEAR(serial[i], additive[i], 1e-12 * std::abs(additive[i]) + 1e-14) << i;
+    EXPECT_NEAR(scattered[i], additive[i], 1e-12 * std::abs(additive[i]) + 1e-14) << i;
   }
 }
 
