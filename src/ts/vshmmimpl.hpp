@@ -4,6 +4,10 @@
 #include <petscvshmm.h>
 #include <petsc/private/tsimpl.h>
 
+#if defined(PETSC_USE_COMPLEX)
+  #error "petsc-vshmm needs PETSc built with real scalars (Debian: petsc-dev, PETSC_ARCH x86_64-linux-gnu-real)"
+#endif
+
 #include <memory>
 #include <string>
 #include <vector>
