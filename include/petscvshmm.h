@@ -52,10 +52,11 @@ PETSC_EXTERN const char *const TSVSHMMKernelTypes[];
    Fields:
 +  macro_steps      - macro steps taken (sampling intervals DeltaT)
 .  micro_cycles     - micro cycles: one micro step of the full field plus one mesoscopic step per slower level
-.  nsplits          - number of scales (RHS splits)
-.  rhs_evaluations  - calls of each split's right-hand-side function, in scale order (slowest first)
-.  level_steps      - Runge-Kutta steps taken on each level (level l integrates the splits 0..l)
-.  level_evaluations - evaluations of each level's field G_l = f_0 + ... + f_l (one per RK stage)
+.  nsplits          - number of RHS splits
+.  nscales          - number of scales (levels): one per split, unless -ts_vshmm_splits groups them
+.  rhs_evaluations  - calls of each split's right-hand-side function, in scale order (slowest first); nsplits entries
+.  level_steps      - Runge-Kutta steps taken on each level (level l integrates the scales 0..l); nscales entries
+.  level_evaluations - evaluations of each level's field G_l = f_0 + ... + f_l (one per RK stage); nscales entries
 .  stability_checks - stability checks run (see TSVSHMMSetStabilityCheck())
 .  stability_evaluations - split RHS evaluations spent by those checks (not in the counts above)
 -  stability_warnings - checks that found a level's largest step beyond its stable step, though damped over a macro step (warned on stderr)
@@ -68,6 +69,7 @@ typedef struct {
   PetscInt64        macro_steps;
   PetscInt64        micro_cycles;
   PetscInt          nsplits;
+  PetscInt          nscales;
   const PetscInt64 *rhs_evaluations;
   const PetscInt64 *level_steps;
   const PetscInt64 *level_evaluations;

@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <sstream>
+#include <string>
 #include <stdexcept>
 
 static constexpr PetscInt kMaxListOption = 256; /* longest list an option may hold */
@@ -55,7 +56,7 @@ static inline bool AllFinite(const PetscScalar *f, PetscInt n)
 /* G += F for one scale, checking F for Inf/NaN locally (no reduction) while no fault is known. */
 static PetscErrorCode AddScale(TS_VSHMM *vs, PetscInt k, PetscReal t, Vec F, Vec G)
 {
-  VSHMMScale        &sc = vs->scales[k];
+  VSHMMSplit        &sc = vs->splits[k];
   const PetscScalar *f;
   PetscInt           n;
 
@@ -94,8 +95,8 @@ PetscErrorCode TSVSHMMEvaluateLevel_Private(TS_VSHMM *vs, PetscInt level, PetscR
   vs->current_level = level;
   if (vs->counting) vs->level_evaluations[level]++;
   else vs->stability_evaluations += level + 1; /* split calls */
-  for (PetscInt k = 0; k <= level; ++k) {
-    VSHMMScale &sc = vs->scales[k];
+  for (PetscInt k = 0; k < vs->level_end[level]; ++k) {
+    VSHMMSplit &sc = vs->splits[k];
 
     if (k == 0 && sc.additive) { /* the slowest additive split writes G itself */
       PetscCall(TSComputeRHSFunction(sc.subts, t, Y, G));
@@ -146,11 +147,12 @@ static PetscErrorCode TSVSHMMTearDown_Private(TS ts)
   TS_VSHMM *vs = (TS_VSHMM *)ts->data;
 
   PetscFunctionBegin;
-  for (VSHMMScale &sc : vs->scales) {
+  for (VSHMMSplit &sc : vs->splits) {
     PetscCall(VecDestroy(&sc.F));
     PetscCall(VecScatterDestroy(&sc.scatter));
   }
-  vs->scales.clear();
+  vs->splits.clear();
+  vs->level_end.clear();
   PetscCall(VecDestroy(&vs->Y));
   PetscCall(VecDestroy(&vs->X0));
   for (Vec &k : vs->K) PetscCall(VecDestroy(&k));
@@ -169,29 +171,42 @@ static std::string SplitNames(TS ts)
   return s.empty() ? std::string("none") : s;
 }
 
-/* The splits in scale order (slowest first): the creation order or -ts_vshmm_splits. */
-static PetscErrorCode OrderSplits(TS ts, std::vector<TS_RHSSplitLink> &links)
+/* The splits in scale order (slowest first) and where each scale's group of splits ends: one
+   split per scale in creation order, or the scales of -ts_vshmm_splits ("a,b+c,d"). */
+static PetscErrorCode OrderSplits(TS ts, std::vector<TS_RHSSplitLink> &links, std::vector<PetscInt> &scale_end)
 {
   TS_VSHMM *vs   = (TS_VSHMM *)ts->data;
   MPI_Comm  comm = PetscObjectComm((PetscObject)ts);
 
   PetscFunctionBegin;
   links.clear();
+  scale_end.clear();
   PetscCheck(ts->num_rhs_splits >= 2, comm, PETSC_ERR_ARG_WRONGSTATE,
              "TSVSHMM needs at least two RHS splits, one per time scale, but the TS has %" PetscInt_FMT ": declare each scale with TSRHSSplitSetIS() and TSRHSSplitSetRHSFunction()", ts->num_rhs_splits);
   if (vs->split_order.empty()) {
-    for (TS_RHSSplitLink l = ts->tsrhssplit; l; l = l->next) links.push_back(l);
-  } else {
-    PetscCheck((PetscInt)vs->split_order.size() == ts->num_rhs_splits, comm, PETSC_ERR_ARG_SIZ,
-               "-ts_vshmm_splits (TSVSHMMSetSplitOrder()) names %d splits but the TS has %" PetscInt_FMT " (%s): list every split once, slowest scale first", (int)vs->split_order.size(), ts->num_rhs_splits, SplitNames(ts).c_str());
-    for (const std::string &name : vs->split_order) {
-      TS_RHSSplitLink found = nullptr;
-      for (TS_RHSSplitLink l = ts->tsrhssplit; l; l = l->next)
-        if (name == l->splitname) found = l;
-      PetscCheck(found, comm, PETSC_ERR_ARG_WRONG, "Unknown split '%s' in -ts_vshmm_splits (TSVSHMMSetSplitOrder()): the TS's splits are %s", name.c_str(), SplitNames(ts).c_str());
-      for (TS_RHSSplitLink l : links) PetscCheck(l != found, comm, PETSC_ERR_ARG_WRONG, "Split '%s' appears twice in -ts_vshmm_splits (TSVSHMMSetSplitOrder()): list every split once", name.c_str());
-      links.push_back(found);
+    for (TS_RHSSplitLink l = ts->tsrhssplit; l; l = l->next) {
+      links.push_back(l);
+      scale_end.push_back((PetscInt)links.size());
     }
+  } else {
+    for (const std::string &scale : vs->split_order) {
+      std::stringstream in(scale);
+      std::string       name;
+      while (std::getline(in, name, '+')) {
+        TS_RHSSplitLink found = nullptr;
+        PetscCheck(!name.empty(), comm, PETSC_ERR_ARG_WRONG, "-ts_vshmm_splits (TSVSHMMSetSplitOrder()): scale '%s' has an empty split name", scale.c_str());
+        for (TS_RHSSplitLink l = ts->tsrhssplit; l; l = l->next)
+          if (name == l->splitname) found = l;
+        PetscCheck(found, comm, PETSC_ERR_ARG_WRONG, "Unknown split '%s' in -ts_vshmm_splits (TSVSHMMSetSplitOrder()): the TS's splits are %s", name.c_str(), SplitNames(ts).c_str());
+        for (TS_RHSSplitLink l : links) PetscCheck(l != found, comm, PETSC_ERR_ARG_WRONG, "Split '%s' appears twice in -ts_vshmm_splits (TSVSHMMSetSplitOrder()): list every split once", name.c_str());
+        links.push_back(found);
+      }
+      PetscCheck(!scale.empty() && scale.back() != '+', comm, PETSC_ERR_ARG_WRONG, "-ts_vshmm_splits (TSVSHMMSetSplitOrder()): scale '%s' has an empty split name", scale.c_str());
+      scale_end.push_back((PetscInt)links.size());
+    }
+    PetscCheck((PetscInt)links.size() == ts->num_rhs_splits, comm, PETSC_ERR_ARG_SIZ,
+               "-ts_vshmm_splits (TSVSHMMSetSplitOrder()) names %d splits but the TS has %" PetscInt_FMT " (%s): list every split once, slowest scale first (a+b puts two splits in one scale)", (int)links.size(), ts->num_rhs_splits, SplitNames(ts).c_str());
+    PetscCheck(scale_end.size() >= 2, comm, PETSC_ERR_ARG_WRONG, "-ts_vshmm_splits (TSVSHMMSetSplitOrder()) puts every split in one scale: TSVSHMM needs at least two scales");
   }
   for (TS_RHSSplitLink l : links) {
     TSRHSFunction f;
@@ -204,7 +219,7 @@ static PetscErrorCode OrderSplits(TS ts, std::vector<TS_RHSSplitLink> &links)
 
 /* How a split's output is added into a full vector: in place (its IS is a contiguous run of
    locally owned components on every rank) or by a scatter. */
-static PetscErrorCode SetUpScale(TS ts, TS_RHSSplitLink link, VSHMMScale &sc)
+static PetscErrorCode SetUpSplit(TS ts, TS_RHSSplitLink link, VSHMMSplit &sc)
 {
   Vec             X    = ts->vec_sol;
   MPI_Comm        comm = PetscObjectComm((PetscObject)X);
@@ -282,20 +297,21 @@ static PetscErrorCode TSSetUp_VSHMM(TS ts)
 
   PetscFunctionBegin;
   PetscCall(TSVSHMMTearDown_Private(ts));
-  PetscCall(OrderSplits(ts, links));
-  const PetscInt nscales = (PetscInt)links.size(), K = nscales - 1;
+  std::vector<PetscInt> scale_end;
+  PetscCall(OrderSplits(ts, links, scale_end));
+  const PetscInt nscales = (PetscInt)scale_end.size(), K = nscales - 1;
 
   /* Method parameters */
   if (vs->savings.empty()) vs->savings_used.assign(K, 1.0);
   else {
     PetscCheck((PetscInt)vs->savings.size() == K, comm, PETSC_ERR_ARG_SIZ,
-               "-ts_vshmm_savings_factors (TSVSHMMSetSavingsFactors()) has %d values but the TS has %" PetscInt_FMT " splits, so it needs %" PetscInt_FMT ": one savings factor alpha_j per scale except the fastest, slowest first", (int)vs->savings.size(), nscales, K);
+               "-ts_vshmm_savings_factors (TSVSHMMSetSavingsFactors()) has %d values but there are %" PetscInt_FMT " scales (RHS splits), so it needs %" PetscInt_FMT ": one savings factor alpha_j per scale except the fastest, slowest first", (int)vs->savings.size(), nscales, K);
     vs->savings_used = vs->savings;
   }
   if (vs->subintervals.empty()) vs->subintervals_used.assign(K, 1);
   else {
     PetscCheck((PetscInt)vs->subintervals.size() == K, comm, PETSC_ERR_ARG_SIZ,
-               "-ts_vshmm_subintervals (TSVSHMMSetSubintervals()) has %d values but the TS has %" PetscInt_FMT " splits, so it needs %" PetscInt_FMT ": one subinterval count m_j >= 1 per scale except the fastest, slowest first", (int)vs->subintervals.size(), nscales, K);
+               "-ts_vshmm_subintervals (TSVSHMMSetSubintervals()) has %d values but there are %" PetscInt_FMT " scales (RHS splits), so it needs %" PetscInt_FMT ": one subinterval count m_j >= 1 per scale except the fastest, slowest first", (int)vs->subintervals.size(), nscales, K);
     vs->subintervals_used = vs->subintervals;
   }
   PetscCheck(std::isfinite(ts->time_step) && ts->time_step > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "TSVSHMM: the TS time step (the sampling interval DeltaT) is %g: set a positive one with TSSetTimeStep() or -ts_dt", (double)ts->time_step);
@@ -323,8 +339,9 @@ static PetscErrorCode TSSetUp_VSHMM(TS ts)
   PetscCall(VecDuplicate(ts->vec_sol, &vs->X0));
   vs->K.assign(vs->tableau->stages, nullptr);
   for (Vec &k : vs->K) PetscCall(VecDuplicate(ts->vec_sol, &k));
-  vs->scales.resize(nscales);
-  for (PetscInt k = 0; k < nscales; ++k) PetscCall(SetUpScale(ts, links[k], vs->scales[k]));
+  vs->splits.resize(links.size());
+  for (size_t k = 0; k < links.size(); ++k) PetscCall(SetUpSplit(ts, links[k], vs->splits[k]));
+  vs->level_end = scale_end;
 
   vs->level_events.resize(nscales);
   for (PetscInt l = 0; l < nscales; ++l) PetscCall(TSVSHMMGetLevelEvent_Private(l, &vs->level_events[l]));
@@ -362,8 +379,8 @@ static PetscErrorCode TSStep_VSHMM(TS ts)
   PetscBool last = PETSC_FALSE;
 
   PetscFunctionBegin;
-  if ((PetscInt)vs->scales.size() != ts->num_rhs_splits) { /* splits added after set-up */
-    PetscCall(PetscInfo(ts, "The TS has %" PetscInt_FMT " RHS splits, %d at set-up: setting up again\n", ts->num_rhs_splits, (int)vs->scales.size()));
+  if ((PetscInt)vs->splits.size() != ts->num_rhs_splits) { /* splits added after set-up */
+    PetscCall(PetscInfo(ts, "The TS has %" PetscInt_FMT " RHS splits, %d at set-up: setting up again\n", ts->num_rhs_splits, (int)vs->splits.size()));
     PetscCall(TSSetUp_VSHMM(ts));
   }
   PetscCheck(std::isfinite(DeltaT) && DeltaT > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "TSVSHMM: the TS time step (the sampling interval DeltaT) is %g: it must be positive", (double)DeltaT);
@@ -399,23 +416,25 @@ static PetscErrorCode TSStep_VSHMM(TS ts)
   for (size_t l = 0; l < counts.levelSteps.size(); ++l) vs->level_steps[l] += counts.levelSteps[l];
 
   /* One reduction per macro step: the earliest Inf/NaN of any split on any rank. */
-  const int nscales = (int)vs->scales.size();
+  const int nsplits = (int)vs->splits.size();
   struct {
     double t;
-    int    where; /* level * nscales + split, or -1 */
-  } fault = {(double)vs->nonfinite_time, vs->nonfinite_split < 0 ? -1 : (int)(vs->nonfinite_level * nscales + vs->nonfinite_split)};
+    int    where; /* level * nsplits + split, or -1 */
+  } fault = {(double)vs->nonfinite_time, vs->nonfinite_split < 0 ? -1 : (int)(vs->nonfinite_level * nsplits + vs->nonfinite_split)};
   if (fault.where < 0) fault.t = PETSC_MAX_REAL; /* ranks without a fault lose the MINLOC */
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &fault, 1, MPI_DOUBLE_INT, MPI_MINLOC, comm));
   if (fault.where >= 0 && fault.t < PETSC_MAX_REAL) {
-    const int   split = fault.where % nscales, level = fault.where / nscales;
-    const char *name  = vs->scales[split].name.c_str();
+    const int   split = fault.where % nsplits, level = fault.where / nsplits;
+    const char *name  = vs->splits[split].name.c_str();
+    int         scale = 0; /* the scale the split belongs to */
+    while (vs->level_end[scale] <= split) scale++;
 
     PetscCall(VecCopy(vs->X0, ts->vec_sol)); /* keep the last good sampled state */
     ts->reason = TS_DIVERGED_STEP_REJECTED;
     PetscCheck(!ts->errorifstepfailed, comm, PETSC_ERR_FP,
-               "TSVSHMM: split '%s' (scale %d) produced Inf or NaN at t = %.17g, evaluated for level %d, in the macro step from t = %g to %g; the solution was left at t = %g (use -ts_error_if_step_fails false to stop with TS_DIVERGED_STEP_REJECTED instead)", name, split, fault.t, level, (double)t0, (double)(t0 + DeltaT), (double)t0);
-    PetscCall(PetscInfo(ts, "Split '%s' (scale %d) produced Inf or NaN at t = %.17g, evaluated for level %d; stopping with TS_DIVERGED_STEP_REJECTED at t = %g\n", name, split, fault.t, level, (double)t0));
-    PetscCall(PetscFPrintf(comm, PETSC_STDERR, "TSVSHMM: split '%s' (scale %d) produced Inf or NaN at t = %.17g, evaluated for level %d; the solve stops with TS_DIVERGED_STEP_REJECTED at t = %g\n", name, split, fault.t, level, (double)t0));
+               "TSVSHMM: split '%s' (scale %d) produced Inf or NaN at t = %.17g, evaluated for level %d, in the macro step from t = %g to %g; the solution was left at t = %g (use -ts_error_if_step_fails false to stop with TS_DIVERGED_STEP_REJECTED instead)", name, scale, fault.t, level, (double)t0, (double)(t0 + DeltaT), (double)t0);
+    PetscCall(PetscInfo(ts, "Split '%s' (scale %d) produced Inf or NaN at t = %.17g, evaluated for level %d; stopping with TS_DIVERGED_STEP_REJECTED at t = %g\n", name, scale, fault.t, level, (double)t0));
+    PetscCall(PetscFPrintf(comm, PETSC_STDERR, "TSVSHMM: split '%s' (scale %d) produced Inf or NaN at t = %.17g, evaluated for level %d; the solve stops with TS_DIVERGED_STEP_REJECTED at t = %g\n", name, scale, fault.t, level, (double)t0));
     PetscFunctionReturn(0);
   }
   ts->ptime = last ? ts->max_time : t0 + DeltaT;
@@ -572,7 +591,7 @@ static PetscErrorCode TSSetFromOptions_VSHMM(TS ts, PetscOptionItems *PetscOptio
     if (iset) PetscCall(ParseInt(comm, "-ts_vshmm_check_stability_interval", text, &interval));
     if (set || iset) PetscCall(TSVSHMMSetStabilityCheck(ts, check, interval));
 
-    PetscCall(ReadList(PetscOptionsObject, comm, "-ts_vshmm_splits", "RHS split names, slowest scale first", "TSVSHMMSetSplitOrder", items, &set));
+    PetscCall(ReadList(PetscOptionsObject, comm, "-ts_vshmm_splits", "The scales, slowest first: RHS split names, or groups of them joined by +", "TSVSHMMSetSplitOrder", items, &set));
     if (set) {
       std::vector<const char *> names;
       for (const std::string &s : items) names.push_back(s.c_str());
@@ -591,11 +610,11 @@ static PetscErrorCode TSView_VSHMM(TS ts, PetscViewer viewer)
   PetscFunctionBegin;
   PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &iascii));
   if (!iascii) PetscFunctionReturn(0);
-  if (vs->scales.empty() || !vs->kernel || !vs->tableau) {
+  if (vs->splits.empty() || !vs->kernel || !vs->tableau) {
     PetscCall(PetscViewerASCIIPrintf(viewer, "  VSHMM: not set up yet; kernel %s, inner Runge-Kutta type %s\n", TSVSHMMKernelTypes[vs->kernel_type], vs->rk_type.c_str()));
     PetscFunctionReturn(0);
   }
-  const PetscInt nscales = (PetscInt)vs->scales.size();
+  const PetscInt nscales = (PetscInt)vs->level_end.size();
   const int      q       = vs->kernel->order();
   if (q == vshmm::Kernel::kInfiniteOrder) PetscCall(PetscViewerASCIIPrintf(viewer, "  VSHMM: %" PetscInt_FMT " scales (RHS splits, slowest first), kernel %s (infinitely smooth)\n", nscales, vs->kernel->name().c_str()));
   else PetscCall(PetscViewerASCIIPrintf(viewer, "  VSHMM: %" PetscInt_FMT " scales (RHS splits, slowest first), kernel %s (order q = %d)\n", nscales, vs->kernel->name().c_str(), q));
@@ -606,17 +625,17 @@ static PetscErrorCode TSView_VSHMM(TS ts, PetscViewer viewer)
     PetscCall(PetscViewerASCIIPrintf(viewer, "  inner Runge-Kutta: TSRK %s (order %d, %d stages; stable for h |lambda| <= %.4g on the negative real axis, %.4g on the imaginary axis)\n", vs->tableau->name.c_str(), vs->tableau->order, vs->tableau->stages, R.realLimit(), R.imaginaryLimit()));
   }
   PetscCall(PetscViewerASCIIPrintf(viewer, "  scale  split                 step         savings factor  subintervals  RHS evaluations\n"));
-  for (PetscInt k = 0; k < nscales; ++k) {
-    const VSHMMScale &sc = vs->scales[k];
-    if (k < nscales - 1)
-      PetscCall(PetscViewerASCIIPrintf(viewer, "  %5" PetscInt_FMT "  %-20s  h_%-3" PetscInt_FMT "        %-14g  %-12" PetscInt_FMT "  %" PetscInt64_FMT "\n", k, sc.name.c_str(), k + 1, (double)vs->savings_used[k], vs->subintervals_used[k], vs->rhs_evaluations[k]));
-    else PetscCall(PetscViewerASCIIPrintf(viewer, "  %5" PetscInt_FMT "  %-20s  dt (micro)   %-14s  %-12s  %" PetscInt64_FMT "\n", k, sc.name.c_str(), "-", "-", vs->rhs_evaluations[k]));
+  for (PetscInt l = 0, k = 0; l < nscales; ++l) {
+    for (; k < vs->level_end[l]; ++k) {
+      const VSHMMSplit &sc = vs->splits[k];
+      if (l < nscales - 1)
+        PetscCall(PetscViewerASCIIPrintf(viewer, "  %5" PetscInt_FMT "  %-20s  h_%-3" PetscInt_FMT "        %-14g  %-12" PetscInt_FMT "  %" PetscInt64_FMT "\n", l, sc.name.c_str(), l + 1, (double)vs->savings_used[l], vs->subintervals_used[l], vs->rhs_evaluations[k]));
+      else PetscCall(PetscViewerASCIIPrintf(viewer, "  %5" PetscInt_FMT "  %-20s  dt (micro)   %-14s  %-12s  %" PetscInt64_FMT "\n", l, sc.name.c_str(), "-", "-", vs->rhs_evaluations[k]));
+    }
   }
   PetscInt64 steps = 0, evals = 0;
-  for (PetscInt l = 0; l < nscales; ++l) {
-    steps += vs->level_steps[l];
-    evals += vs->rhs_evaluations[l];
-  }
+  for (PetscInt64 n : vs->level_steps) steps += n;
+  for (PetscInt64 n : vs->rhs_evaluations) evals += n;
   PetscCall(PetscViewerASCIIPrintf(viewer, "  work: %" PetscInt64_FMT " macro steps, %" PetscInt64_FMT " micro cycles, %" PetscInt64_FMT " Runge-Kutta steps, %" PetscInt64_FMT " split RHS evaluations\n", vs->macro_steps, vs->micro_cycles, steps, evals));
   if (!vs->check_stability && vs->stability_interval == 0) PetscCall(PetscViewerASCIIPrintf(viewer, "  stability check: off\n"));
   else if (vs->stability_interval > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "  stability check: %s set-up and every %" PetscInt_FMT " macro steps; %" PetscInt64_FMT " checks, %" PetscInt64_FMT " split RHS evaluations, %" PetscInt64_FMT " warnings\n", vs->check_stability ? "at" : "not at", vs->stability_interval, vs->stability_checks, vs->stability_evaluations, vs->stability_warnings));
@@ -745,13 +764,18 @@ static PetscErrorCode TSVSHMMGetSplitOrder_VSHMM(TS ts, PetscInt *n, const char 
   TS_VSHMM *vs = (TS_VSHMM *)ts->data;
 
   PetscFunctionBegin;
-  vs->split_order_c.clear();
-  if (!vs->scales.empty())
-    for (const VSHMMScale &sc : vs->scales) vs->split_order_c.push_back(sc.name.c_str());
-  else if (!vs->split_order.empty())
-    for (const std::string &s : vs->split_order) vs->split_order_c.push_back(s.c_str());
+  vs->split_order_out.clear();
+  if (!vs->splits.empty()) { /* as set up: one entry per scale, "a" or "a+b" */
+    for (size_t l = 0, k = 0; l < vs->level_end.size(); ++l) {
+      std::string scale;
+      for (; (PetscInt)k < vs->level_end[l]; ++k) scale += (scale.empty() ? "" : "+") + vs->splits[k].name;
+      vs->split_order_out.push_back(scale);
+    }
+  } else if (!vs->split_order.empty()) vs->split_order_out = vs->split_order;
   else
-    for (TS_RHSSplitLink l = ts->tsrhssplit; l; l = l->next) vs->split_order_c.push_back(l->splitname);
+    for (TS_RHSSplitLink l = ts->tsrhssplit; l; l = l->next) vs->split_order_out.push_back(l->splitname);
+  vs->split_order_c.clear();
+  for (const std::string &scale : vs->split_order_out) vs->split_order_c.push_back(scale.c_str());
   if (n) *n = (PetscInt)vs->split_order_c.size();
   if (names) *names = vs->split_order_c.empty() ? nullptr : vs->split_order_c.data();
   PetscFunctionReturn(0);
@@ -785,6 +809,7 @@ static PetscErrorCode TSVSHMMGetStatistics_VSHMM(TS ts, TSVSHMMStatistics *stats
   stats->macro_steps       = vs->macro_steps;
   stats->micro_cycles      = vs->micro_cycles;
   stats->nsplits           = (PetscInt)vs->rhs_evaluations.size();
+  stats->nscales           = (PetscInt)vs->level_steps.size();
   stats->rhs_evaluations   = vs->rhs_evaluations.empty() ? nullptr : vs->rhs_evaluations.data();
   stats->level_steps       = vs->level_steps.empty() ? nullptr : vs->level_steps.data();
   stats->level_evaluations = vs->level_evaluations.empty() ? nullptr : vs->level_evaluations.data();
@@ -797,7 +822,7 @@ static PetscErrorCode TSVSHMMGetStatistics_VSHMM(TS ts, TSVSHMMStatistics *stats
 static PetscErrorCode TSVSHMMResetStatistics_VSHMM(TS ts)
 {
   TS_VSHMM *vs = (TS_VSHMM *)ts->data;
-  size_t    n  = vs->scales.size();
+  size_t    n = vs->splits.size(), nscales = vs->level_end.size();
 
   PetscFunctionBegin;
   vs->macro_steps           = 0;
@@ -805,10 +830,10 @@ static PetscErrorCode TSVSHMMResetStatistics_VSHMM(TS ts)
   vs->stability_checks      = 0;
   vs->stability_evaluations = 0;
   vs->stability_warnings    = 0;
-  vs->warned_ratio.assign(n, 0.0);
+  vs->warned_ratio.assign(nscales, 0.0);
   vs->rhs_evaluations.assign(n, 0);
-  vs->level_steps.assign(n, 0);
-  vs->level_evaluations.assign(n, 0);
+  vs->level_steps.assign(nscales, 0);
+  vs->level_evaluations.assign(nscales, 0);
   PetscFunctionReturn(0);
 }
 
@@ -873,7 +898,7 @@ $    h_j(t) = alpha_j dt K(Theta^{-1}(((t - t_n) mod P_j) / P_j)),   P_j = Delta
 .  -ts_vshmm_kernel <cosine,constant,polynomial,exponential> - kernel (default cosine)
 .  -ts_vshmm_kernel_order <q> - order of the polynomial kernel (default 1)
 .  -ts_vshmm_rk_type <type> - TSRK type of every inner step (default 4)
-.  -ts_vshmm_splits <a,b,...> - the splits in scale order, slowest first (default creation order)
+.  -ts_vshmm_splits <a,b+c,...> - the scales, slowest first: split names, or groups joined by '+' (default: each split a scale, in creation order)
 .  -ts_vshmm_check_stability <true,false> - check the steps against the stability region at set-up (default true)
 -  -ts_vshmm_check_stability_interval <N> - also check every N macro steps (default 0: never)
 

@@ -343,20 +343,23 @@ PetscErrorCode TSVSHMMGetRKType(TS ts, TSRKType *type)
 }
 
 /*@C
-   TSVSHMMSetSplitOrder - Names the RHS splits in scale order, slowest first
+   TSVSHMMSetSplitOrder - Names the RHS splits of each scale, slowest scale first
 
    Logically Collective
 
    Input Parameters:
 +  ts - the `TS` of type `TSVSHMM`
-.  n - the number of names: every split of the TS, once (checked at set-up)
--  names - the split names given to `TSRHSSplitSetIS()`
+.  n - the number of scales, at least two
+-  names - for each scale a split name given to `TSRHSSplitSetIS()`, or several joined by '+'
+           ("slow+slowbuffer"): every split of the TS appears once (checked at set-up)
 
    Options Database Key:
-.  -ts_vshmm_splits <a,b,...> - the split names, slowest first
+.  -ts_vshmm_splits <a,b+c,...> - the scales, slowest first
 
    Notes:
-   By default the scales are the splits in the order in which they were created.
+   By default each split is one scale, in the order in which the splits were created. A group
+   a+b makes one scale whose field is the sum of the splits' outputs, e.g. TSMPRK's "slow" and
+   "slowbuffer" splits of PETSc's multirate tutorials.
 
    Level: beginner
 
@@ -369,7 +372,7 @@ PetscErrorCode TSVSHMMSetSplitOrder(TS ts, PetscInt n, const char *const names[]
   PetscFunctionBegin;
   PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
   comm = PetscObjectComm((PetscObject)ts);
-  PetscCheck(n >= 2, comm, PETSC_ERR_ARG_SIZ, "-ts_vshmm_splits needs at least two split names (one per scale, slowest first), got %" PetscInt_FMT, n);
+  PetscCheck(n >= 2, comm, PETSC_ERR_ARG_SIZ, "-ts_vshmm_splits needs at least two scales, slowest first (split names, or groups of them as a+b), got %" PetscInt_FMT, n);
   PetscValidPointer(names, 3);
   for (PetscInt i = 0; i < n; ++i) PetscCheck(names[i] && names[i][0], comm, PETSC_ERR_ARG_WRONG, "-ts_vshmm_splits: name %" PetscInt_FMT " is empty", i + 1);
   PetscTryMethod(ts, "TSVSHMMSetSplitOrder_C", (TS, PetscInt, const char *const[]), (ts, n, names));
@@ -377,7 +380,7 @@ PetscErrorCode TSVSHMMSetSplitOrder(TS ts, PetscInt n, const char *const names[]
 }
 
 /*@C
-   TSVSHMMGetSplitOrder - Gets the split names in scale order, slowest first
+   TSVSHMMGetSplitOrder - Gets the scales, slowest first, each as a split name or names joined by '+'
 
    Not Collective
 
@@ -386,7 +389,7 @@ PetscErrorCode TSVSHMMSetSplitOrder(TS ts, PetscInt n, const char *const names[]
 
    Output Parameters:
 +  n - the number of scales
--  names - the split names (owned by the TS; valid until the next call or a change of the splits)
+-  names - each scale's split name, or names joined by '+' (owned by the TS; valid until the next call)
 
    Level: beginner
 

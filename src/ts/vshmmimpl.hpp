@@ -17,8 +17,9 @@
 #include "schedule.hpp"
 #include "stability.hpp"
 
-// One scale: one RHS split, with what it takes to add its output into a level's field.
-struct VSHMMScale {
+// One RHS split, with what it takes to add its output into a level's field. A scale is one split
+// or a group of them (-ts_vshmm_splits a+b,c).
+struct VSHMMSplit {
   std::string name;
   TS          subts = nullptr;   // the split's sub-TS (owned by the TS's split list)
   IS          is    = nullptr;   // its components (owned by the split list)
@@ -37,13 +38,15 @@ struct TS_VSHMM {
   TSVSHMMKernelType        kernel_type  = TSVSHMM_KERNEL_COSINE;
   PetscInt                 kernel_order = PETSC_DEFAULT; // PETSC_DEFAULT: the kernel's own
   std::string              rk_type      = TSRK4;
-  std::vector<std::string> split_order;                  // empty: creation order
+  std::vector<std::string> split_order;                  // one entry per scale, "a" or "a+b"; empty: creation order
+  std::vector<std::string> split_order_out;              // for TSVSHMMGetSplitOrder()
   PetscBool                check_stability    = PETSC_TRUE; // at set-up
   PetscInt                 stability_interval = 0;          // also every that many macro steps (0: never)
   std::vector<const char *> split_order_c;               // for TSVSHMMGetSplitOrder()
 
   // Set-up state
-  std::vector<VSHMMScale>                   scales;
+  std::vector<VSHMMSplit>                   splits;    // in scale order
+  std::vector<PetscInt>                     level_end; // level l evaluates splits [0, level_end[l])
   std::unique_ptr<vshmm::Tableau>           tableau;
   std::unique_ptr<vshmm::Kernel>            kernel;
   std::unique_ptr<vshmm::MesoscopicSchedule> schedule; // for the current micro step; made at the first step
@@ -60,7 +63,8 @@ struct TS_VSHMM {
   PetscInt64                micro_cycles = 0;
   PetscInt64                stability_checks = 0, stability_evaluations = 0, stability_warnings = 0;
   std::vector<PetscReal>    warned_ratio; // per level: largest step / stable step when last warned
-  std::vector<PetscInt64>   rhs_evaluations, level_steps, level_evaluations;
+  std::vector<PetscInt64>   rhs_evaluations;                  // per split
+  std::vector<PetscInt64>   level_steps, level_evaluations;   // per level (scale)
 
   // First non-finite split output seen on this rank in the current macro step
   PetscReal nonfinite_time  = PETSC_MAX_REAL;

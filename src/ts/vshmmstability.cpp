@@ -114,7 +114,7 @@ static PetscErrorCode LevelRitzValues(TS ts, PetscInt level, PetscReal t, Vec X,
 static std::string LevelSplits(const TS_VSHMM *vs, PetscInt level)
 {
   std::string s;
-  for (PetscInt k = 0; k <= level; ++k) s += (k ? ", " : "") + vs->scales[k].name;
+  for (PetscInt k = 0; k < vs->level_end[level]; ++k) s += (k ? ", " : "") + vs->splits[k].name;
   return s;
 }
 
@@ -143,7 +143,7 @@ PetscErrorCode TSVSHMMCheckStability_Private(TS ts)
 {
   TS_VSHMM       *vs      = (TS_VSHMM *)ts->data;
   MPI_Comm        comm    = PetscObjectComm((PetscObject)ts);
-  const PetscInt  nscales = (PetscInt)vs->scales.size(), top = nscales - 1;
+  const PetscInt  nscales = (PetscInt)vs->level_end.size(), top = nscales - 1;
   const PetscReal t = ts->ptime, DeltaT = ts->time_step;
   const PetscReal dt = vs->micro_dt > 0 ? vs->micro_dt : DeltaT / kDefaultMicroStepsPerMacroStep;
   const char     *rk = vs->tableau->name.c_str();

@@ -163,6 +163,19 @@ static void DissipativeFast(const void *vp, PetscReal, const PetscScalar *x, Pet
   f[2]        = (x[0] - x[1] - x[2]) / (eps * eps);
 }
 
+static void DissipativeSlowHalf(const void *vp, PetscReal t, const PetscScalar *x, PetscScalar *f)
+{
+  DissipativeSlow(vp, t, x, f);
+  for (int i = 0; i < 3; ++i) f[i] /= 2;
+}
+
+void DissipativeProblemWithSlowHalves(SplitProblem *p, const DissipativeParams *params)
+{
+  p->n      = 3;
+  p->terms  = {DissipativeSlowHalf, DissipativeSlowHalf, DissipativeMedium, DissipativeFast};
+  p->params = params;
+}
+
 void DissipativeProblem(SplitProblem *p, const DissipativeParams *params)
 {
   p->n      = 3;

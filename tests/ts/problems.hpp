@@ -41,6 +41,8 @@ struct DissipativeParams {
   PetscReal eps = 1e-2;
 };
 void DissipativeProblem(SplitProblem *p, const DissipativeParams *params);
+// The same with the slow term given as two splits of one half each (four splits, three scales).
+void DissipativeProblemWithSlowHalves(SplitProblem *p, const DissipativeParams *params);
 
 // A four-scale dissipative chain with a known averaged equation:
 //   x0' = sin(x1) - x0/2,  x1' = (x0 - x1)/e1,  x2' = (x1 + x0 - x2)/e2,  x3' = (x2 - x3)/e3,

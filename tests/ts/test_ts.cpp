@@ -203,6 +203,61 @@ TEST(VSHMMSolver, FourScalesFollowTheAveragedEquation)
   }
 }
 
+// A scale may be a group of splits: -ts_vshmm_splits slowA+slowB,medium,fast.
+struct GroupedStatistics {
+  PetscInt                nsplits = 0, nscales = 0;
+  std::vector<PetscInt64> rhs_evaluations;
+};
+
+PetscErrorCode SolveGrouped(const char *order, std::vector<PetscReal> &out, GroupedStatistics *stats, std::vector<std::string> *scales)
+{
+  DissipativeParams params;
+  SplitProblem      p;
+  TS                ts;
+  Vec               x;
+  const PetscReal   alpha[] = {100, 10};
+
+  PetscFunctionBeginUser;
+  DissipativeProblemWithSlowHalves(&p, &params);
+  PetscCall(CreateSplitTS(PETSC_COMM_WORLD, &p, SplitKind::Additive, {5, -10, 5}, {"slowA", "slowB", "medium", "fast"}, &ts, &x));
+  PetscCall(TSSetTimeStep(ts, 0.1));
+  PetscCall(TSSetMaxTime(ts, 1.0));
+  PetscCall(TSVSHMMSetMicroStep(ts, 1e-4));
+  PetscCall(TSVSHMMSetSavingsFactors(ts, 2, alpha));
+  PetscCall(PetscOptionsSetValue(nullptr, "-ts_vshmm_splits", order));
+  PetscCall(TSSetFromOptions(ts));
+  PetscCall(PetscOptionsClearValue(nullptr, "-ts_vshmm_splits"));
+  PetscCall(TSSolve(ts, x));
+  PetscCall(GatherState(&p, x, out));
+  TSVSHMMStatistics st;
+  PetscCall(TSVSHMMGetStatistics(ts, &st));
+  stats->nsplits = st.nsplits;
+  stats->nscales = st.nscales;
+  stats->rhs_evaluations.assign(st.rhs_evaluations, st.rhs_evaluations + st.nsplits);
+  PetscInt           n;
+  const char *const *names;
+  PetscCall(TSVSHMMGetSplitOrder(ts, &n, &names));
+  scales->assign(names, names + n);
+  PetscCall(DestroySplitTS(&p, &ts, &x));
+  PetscFunctionReturn(0);
+}
+
+TEST(VSHMMSolver, ScalesCanBeGroupsOfSplits)
+{
+  SolveResult            reference;
+  std::vector<PetscReal>   grouped;
+  GroupedStatistics        stats;
+  std::vector<std::string> scales;
+  ASSERT_EQ(SolveDissipative(PETSC_COMM_WORLD, SplitKind::Additive, 1.0, 0.1, &reference), 0);
+  ASSERT_EQ(SolveGrouped("slowA+slowB,medium,fast", grouped, &stats, &scales), 0);
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(grouped[i], reference.x[i], 1e-13 * std::abs(reference.x[i])) << i;
+  EXPECT_EQ(stats.nsplits, 4);
+  EXPECT_EQ(stats.nscales, 3);
+  EXPECT_EQ(stats.rhs_evaluations[0], stats.rhs_evaluations[1]); // both halves belong to scale 0
+  EXPECT_EQ(stats.rhs_evaluations[0] + stats.rhs_evaluations[2] + stats.rhs_evaluations[3], reference.split_evaluations); // the same steps as ungrouped
+  EXPECT_EQ(scales, (std::vector<std::string>{"slowA+slowB", "medium", "fast"}));
+}
+
 TEST(VSHMMSolver, LogEventsPerLevel)
 {
   for (const char *name : {"VSHMMLevel0", "VSHMMLevel1", "VSHMMLevel2"}) {
@@ -610,7 +665,7 @@ TEST(VSHMMBadInput, EachBadSettingIsAClearError)
   const BadInput cases[] = {
     {nullptr, 1, "at least two RHS splits"},
     {"-ts_vshmm_savings_factors 100", 3, "needs 2: one savings factor"},
-    {"-ts_vshmm_savings_factors 100,10,1", 3, "has 3 values but the TS has 3 splits"},
+    {"-ts_vshmm_savings_factors 100,10,1", 3, "has 3 values but there are 3 scales (RHS splits), so it needs 2"},
     {"-ts_vshmm_savings_factors 100,-10", 3, "Savings factor 2 is -10"},
     {"-ts_vshmm_savings_factors 100,-10", 3, "-ts_vshmm_savings_factors values must be positive and finite"},
     {"-ts_vshmm_savings_factors 0,10", 3, "Savings factor 1 is 0"},
@@ -628,7 +683,7 @@ TEST(VSHMMBadInput, EachBadSettingIsAClearError)
     {"-ts_vshmm_subintervals 1,0", 3, "Subinterval count 2 is 0: -ts_vshmm_subintervals values must be integers >= 1"},
     {"-ts_vshmm_subintervals", 3, "-ts_vshmm_subintervals needs a comma-separated list"},
     {"-ts_vshmm_splits", 3, "-ts_vshmm_splits needs a comma-separated list"},
-    {"-ts_vshmm_subintervals 1", 3, "-ts_vshmm_subintervals (TSVSHMMSetSubintervals()) has 1 values but the TS has 3 splits"},
+    {"-ts_vshmm_subintervals 1", 3, "-ts_vshmm_subintervals (TSVSHMMSetSubintervals()) has 1 values but there are 3 scales"},
     {"-ts_vshmm_subintervals 1.5,2", 3, "-ts_vshmm_subintervals: '1.5' is not an integer"},
     {"-ts_vshmm_splits slow,medium,bogus", 3, "Unknown split 'bogus' in -ts_vshmm_splits (TSVSHMMSetSplitOrder()): the TS's splits are slow, medium, fast"},
     {"-ts_vshmm_splits slow,fast", 3, "names 2 splits but the TS has 3 (slow, medium, fast)"},
@@ -647,7 +702,7 @@ TEST(VSHMMBadInput, EachBadSettingIsAClearError)
     {"-ts_vshmm_micro_dt", 3, "-ts_vshmm_micro_dt: '' is not a real number"},
     {"-ts_vshmm_subintervals 1,99999999999999999999", 3, "-ts_vshmm_subintervals: '99999999999999999999' is not an integer"},
     {"-ts_vshmm_subintervals -3,1", 3, "Subinterval count 1 is -3"},
-    {"-ts_vshmm_subintervals 1,2,3", 3, "-ts_vshmm_subintervals (TSVSHMMSetSubintervals()) has 3 values but the TS has 3 splits"},
+    {"-ts_vshmm_subintervals 1,2,3", 3, "-ts_vshmm_subintervals (TSVSHMMSetSubintervals()) has 3 values but there are 3 scales"},
     {"-ts_vshmm_kernel", 3, "Unknown -ts_vshmm_kernel '': use cosine, constant, polynomial or exponential"},
     {"-ts_vshmm_kernel COSINE", 3, "Unknown -ts_vshmm_kernel 'COSINE'"},
     {"-ts_vshmm_kernel_order", 3, "-ts_vshmm_kernel_order: '' is not an integer"},
@@ -657,7 +712,7 @@ TEST(VSHMMBadInput, EachBadSettingIsAClearError)
     {"-ts_vshmm_rk_type", 3, "-ts_vshmm_rk_type needs a TSRK type name"},
     {"-ts_vshmm_rk_type beuler", 3, "Unknown inner Runge-Kutta type 'beuler'"},
     {"-ts_vshmm_splits slow,,fast", 3, "-ts_vshmm_splits: name 2 is empty"},
-    {"-ts_vshmm_splits fast", 3, "-ts_vshmm_splits needs at least two split names"},
+    {"-ts_vshmm_splits fast", 3, "-ts_vshmm_splits needs at least two scales"},
     {"-ts_vshmm_splits SLOW,medium,fast", 3, "Unknown split 'SLOW'"},
     {"-ts_vshmm_check_stability maybe", 3, "-ts_vshmm_check_stability: 'maybe' is not a truth value: use true or false"},
     {"-ts_vshmm_check_stability_interval -1", 3, "-ts_vshmm_check_stability_interval takes 0 (never) or a number of macro steps >= 1"},
@@ -707,6 +762,28 @@ TEST(VSHMMBadInput, NonFiniteSplitOutputStopsTheSolveNamingSplitAndTime)
     SolveResult clean;
     ASSERT_EQ(SolveDissipative(PETSC_COMM_WORLD, SplitKind::Additive, 0.3, 0.1, &clean), 0);
     for (int i = 0; i < 3; ++i) EXPECT_NEAR(run.x[i], clean.x[i], 1e-12 * std::abs(clean.x[i]));
+  }
+}
+
+TEST(VSHMMBadInput, GroupedScalesAreChecked)
+{
+  std::vector<PetscReal>   grouped;
+  GroupedStatistics        stats;
+  std::vector<std::string> scales;
+  // Without the grouping each half would be a scale of its own: four scales need three factors.
+  CapturedError e = CaptureError([&]() { return SolveGrouped("slowA,slowB,medium,fast", grouped, &stats, &scales); });
+  EXPECT_NE(e.message.find("has 2 values but there are 4 scales (RHS splits), so it needs 3"), std::string::npos) << e.message;
+  for (const auto &bad : std::vector<std::pair<const char *, const char *>>{
+         {"slowA+,medium,fast", "scale 'slowA+' has an empty split name"},
+         {"slowA++slowB,medium,fast", "scale 'slowA++slowB' has an empty split name"},
+         {"slowA+slowB+medium+fast", "-ts_vshmm_splits needs at least two scales"},
+         {"slowA+slowB,medium", "names 3 splits but the TS has 4 (slowA, slowB, medium, fast)"},
+         {"slowA+slowA,medium,fast", "Split 'slowA' appears twice"},
+         {"slowA+slowC,medium,fast", "Unknown split 'slowC'"}}) {
+    e = CaptureError([&]() { return SolveGrouped(bad.first, grouped, &stats, &scales); });
+    EXPECT_NE(e.code, 0) << bad.first;
+    EXPECT_NE(e.message.find(bad.second), std::string::npos) << bad.first << ": " << e.message;
+    PetscOptionsClearValue(nullptr, "-ts_vshmm_splits");
   }
 }
 
