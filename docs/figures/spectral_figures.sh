@@ -20,7 +20,7 @@ if [ $# -ne 1 ]; then
   echo "usage: $0 BUILD_DIR" >&2
   exit 2
 fi
-build=$1
+build=$(cd "$1" && pwd) # absolute: the runs start in a temporary directory
 outdir=$(cd "$(dirname "$0")" && pwd)
 scenes=$(cd "$outdir/../../examples/scenes" && pwd)
 diff=$build/examples/spectral/diffusion
