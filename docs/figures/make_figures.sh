@@ -24,27 +24,11 @@ diss=$build/examples/ode/dissipative
 osc=$build/examples/ode/oscillatory
 oref=$build/tools/oscillatory_reference
 torus=$build/tools/torus_sampling
-for exe in "$diss" "$osc" "$oref" "$torus"; do
-  if [ ! -x "$exe" ]; then
-    echo "$0: $exe not found: build the project first (cmake --build $build)" >&2
-    exit 1
-  fi
-done
-if ! command -v gnuplot >/dev/null 2>&1; then
-  echo "$0: gnuplot not found (Debian: apt-get install gnuplot-nox)" >&2
-  exit 1
-fi
-
-if [ -z "${MPIEXEC:-}" ]; then
-  MPIEXEC="mpiexec -n 1"
-  if [ "$(id -u)" = 0 ] && mpiexec --version 2>/dev/null | grep -q -e "Open MPI" -e "OpenRTE"; then
-    MPIEXEC="$MPIEXEC --allow-run-as-root --oversubscribe"
-  fi
-fi
-
-tmp=$(mktemp -d "${TMPDIR:-/tmp}/vshmm-figures.XXXXXX")
-trap 'rm -rf "$tmp"' EXIT
-trap 'exit 130' INT TERM
+. "$outdir/../../tools/script_common.sh"
+require_built "$diss" "$osc" "$oref" "$torus"
+require_gnuplot
+set_mpiexec
+make_workdir vshmm-figures
 
 run() { # run NAME EXE OPTIONS...: stdout to $tmp/NAME.out; stop on failure
   name=$1

@@ -9,7 +9,7 @@
 #
 # Usage: docs/figures/spectral_figures.sh BUILD_DIR      (called by `make figures`)
 #   BUILD_DIR is the CMake build tree (examples/spectral/diffusion, examples/spectral/advection).
-#   Needs gnuplot (pngcairo and svg terminals). MPIEXEC as in make_figures.sh. Takes about two
+#   Needs gnuplot (pngcairo and svg terminals). MPIEXEC as in tools/script_common.sh. Takes about two
 #   minutes, most of it the diffusion DNS (3e6 RK3 stages with N = 2048). With
 #   SPECTRAL_CONVERGENCE=1 it also runs the refinement studies of the references (dt halved;
 #   N doubled), about 15 minutes more.
@@ -25,26 +25,11 @@ outdir=$(cd "$(dirname "$0")" && pwd)
 scenes=$(cd "$outdir/../../examples/scenes" && pwd)
 diff=$build/examples/spectral/diffusion
 adv=$build/examples/spectral/advection
-for exe in "$diff" "$adv"; do
-  if [ ! -x "$exe" ]; then
-    echo "$0: $exe not found: build the project first (cmake --build $build)" >&2
-    exit 1
-  fi
-done
-if ! command -v gnuplot >/dev/null 2>&1; then
-  echo "$0: gnuplot not found (Debian: apt-get install gnuplot-nox)" >&2
-  exit 1
-fi
-if [ -z "${MPIEXEC:-}" ]; then
-  MPIEXEC="mpiexec -n 1"
-  if [ "$(id -u)" = 0 ] && mpiexec --version 2>/dev/null | grep -q -e "Open MPI" -e "OpenRTE"; then
-    MPIEXEC="$MPIEXEC --allow-run-as-root --oversubscribe"
-  fi
-fi
-
-tmp=$(mktemp -d "${TMPDIR:-/tmp}/vshmm-spectral-figures.XXXXXX")
-trap 'rm -rf "$tmp"' EXIT
-trap 'exit 130' INT TERM
+. "$outdir/../../tools/script_common.sh"
+require_built "$diff" "$adv"
+require_gnuplot
+set_mpiexec
+make_workdir vshmm-spectral-figures
 results=$outdir/spectral_results.txt
 
 run() { # run NAME EXE OPTIONS...: stdout to $tmp/NAME.out, its work/error lines to the results

@@ -20,21 +20,10 @@ fi
 build=$1
 shift
 exe=$build/examples/ode/dissipative
-if [ ! -x "$exe" ]; then
-  echo "$0: $exe not found: build the project first (cmake --build $build)" >&2
-  exit 1
-fi
-
-if [ -z "${MPIEXEC:-}" ]; then
-  MPIEXEC="mpiexec -n 1"
-  if [ "$(id -u)" = 0 ] && mpiexec --version 2>/dev/null | grep -q -e "Open MPI" -e "OpenRTE"; then
-    MPIEXEC="$MPIEXEC --allow-run-as-root --oversubscribe"
-  fi
-fi
-
-tmp=$(mktemp -d "${TMPDIR:-/tmp}/vshmm-demo.XXXXXX")
-trap 'rm -rf "$tmp"' EXIT
-trap 'exit 130' INT TERM
+. "$(cd "$(dirname "$0")" && pwd)/../../tools/script_common.sh"
+require_built "$exe"
+set_mpiexec
+make_workdir vshmm-demo
 
 run() { # run NAME OPTIONS...: run the example, stdout to $tmp/NAME.out, CSV to $tmp/NAME.csv
   name=$1
