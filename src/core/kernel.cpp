@@ -147,10 +147,31 @@ double RootTable::invert(double v, ThetaAndValue thetaAndValue) const
   return safeguardedNewton(residual, std::clamp(start, lo, hi), lo, hi);
 }
 
+// A kernel that computes Theta and K together (Derived::thetaAndValue) and inverts Theta from a
+// RootTable (Derived::inverse_): the cosine and polynomial kernels.
+template <class Derived>
+class RootTabulatedKernel : public Kernel {
+protected:
+  double lowerTheta(double s) const final
+  {
+    double k;
+    return s <= 0 ? 0.0 : self().thetaAndValue(s, k);
+  }
+  double lowerThetaInverse(double v) const final
+  {
+    if (!(v > 0)) return 0;
+    if (v >= 0.5) return 0.5;
+    return self().inverse_.invert(v, [this](double s, double &k) { return self().thetaAndValue(s, k); });
+  }
+
+private:
+  const Derived &self() const { return static_cast<const Derived &>(*this); }
+};
+
 // ---------------------------------------------------------------------------------------------
 // Cosine kernel K(s) = 1 - cos(2 pi s) = 2 sin^2(pi s), Theta(s) = (x - sin x) / (2 pi), x = 2 pi s.
 
-class CosineKernel final : public Kernel {
+class CosineKernel final : public RootTabulatedKernel<CosineKernel> {
 public:
   CosineKernel() : inverse_(3, 2 * kPi * kPi / 3, thetaAndValue) { }
   KernelType  type() const override { return KernelType::Cosine; }
@@ -163,20 +184,8 @@ public:
     return 2 * sine * sine;
   }
 
-protected:
-  double lowerTheta(double s) const override
-  {
-    double k;
-    return s <= 0 ? 0.0 : thetaAndValue(s, k);
-  }
-  double lowerThetaInverse(double v) const override
-  {
-    if (!(v > 0)) return 0;
-    if (v >= 0.5) return 0.5;
-    return inverse_.invert(v, thetaAndValue);
-  }
-
 private:
+  friend class RootTabulatedKernel<CosineKernel>;
   static double thetaAndValue(double s, double &k);
 
   RootTable inverse_;
@@ -218,7 +227,7 @@ double CosineKernel::thetaAndValue(double s, double &k)
 // incomplete beta function I_s(n, n) = sum_{j=n}^{2n-1} C(2n-1, j) s^j (1-s)^{2n-1-j}, a sum of
 // positive terms, evaluated as s (s(1-s))^{n-1} sum_{i<n} C(2n-1, n+i) r^i with r = s/(1-s) <= 1.
 
-class PolynomialKernel final : public Kernel {
+class PolynomialKernel final : public RootTabulatedKernel<PolynomialKernel> {
 public:
   explicit PolynomialKernel(int order);
   KernelType  type() const override { return KernelType::Polynomial; }
@@ -231,20 +240,8 @@ public:
     return integerPower(t * (1 - t), n_ - 1) * inverseBeta_;
   }
 
-protected:
-  double lowerTheta(double s) const override
-  {
-    double k;
-    return s <= 0 ? 0.0 : thetaAndValue(s, k);
-  }
-  double lowerThetaInverse(double v) const override
-  {
-    if (!(v > 0)) return 0;
-    if (v >= 0.5) return 0.5;
-    return inverse_.invert(v, [this](double s, double &k) { return thetaAndValue(s, k); });
-  }
-
 private:
+  friend class RootTabulatedKernel<PolynomialKernel>;
   double                     thetaAndValue(double s, double &k) const;
   static std::vector<double> binomialTail(int n);
 
