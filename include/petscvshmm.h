@@ -45,6 +45,27 @@ typedef enum {
 } TSVSHMMKernelType;
 PETSC_EXTERN const char *const TSVSHMMKernelTypes[];
 
+/*E
+   TSVSHMMSeparationCheck - what TSVSHMM does when no pair of consecutive levels is separated in time scale
+
+$  TSVSHMM_SEPARATION_OFF   - do not check
+$  TSVSHMM_SEPARATION_WARN  - say so on stderr at set-up (the default)
+$  TSVSHMM_SEPARATION_ERROR - stop with an error at set-up
+
+   Options Database Key:
+.  -ts_vshmm_check_separation <off,warn,error> - choose
+
+   Level: intermediate
+
+.seealso: `TSVSHMMSetSeparationCheck()`, `TSVSHMMSetAdapt()`
+E*/
+typedef enum {
+  TSVSHMM_SEPARATION_OFF,
+  TSVSHMM_SEPARATION_WARN,
+  TSVSHMM_SEPARATION_ERROR
+} TSVSHMMSeparationCheck;
+PETSC_EXTERN const char *const TSVSHMMSeparationChecks[];
+
 /*S
    TSVSHMMStatistics - the work a TSVSHMM has done since its set-up (or the last
    TSVSHMMResetStatistics())
@@ -59,7 +80,12 @@ PETSC_EXTERN const char *const TSVSHMMKernelTypes[];
 .  level_evaluations - evaluations of each level's field G_l = f_0 + ... + f_l (one per RK stage); nscales entries
 .  stability_checks - stability checks run (see TSVSHMMSetStabilityCheck())
 .  stability_evaluations - split RHS evaluations spent by those checks (not in the counts above)
--  stability_warnings - checks that found a level's largest step beyond its stable step, though damped over a macro step (warned on stderr)
+.  stability_warnings - checks that found a level's largest step beyond its stable step, though damped over a macro step (warned on stderr)
+.  error_estimate   - estimated error of the last macro step in the observables, in the TS's weighted norm (1 = the tolerance); 0 without -ts_vshmm_adapt
+.  error_estimate_total - the sum of error_estimate over the macro steps: an estimate of the error at the current time
+.  adapt_evaluations - split RHS evaluations spent on error estimation and rejected macro steps (not in rhs_evaluations)
+.  adapt_rejections - macro steps redone with finer parameters
+-  adapt_calibrations - macro steps at which every parameter's error term was measured
 
    Level: intermediate
 
@@ -76,6 +102,11 @@ typedef struct {
   PetscInt64        stability_checks;
   PetscInt64        stability_evaluations;
   PetscInt64        stability_warnings;
+  PetscReal         error_estimate;
+  PetscReal         error_estimate_total;
+  PetscInt64        adapt_evaluations;
+  PetscInt64        adapt_rejections;
+  PetscInt64        adapt_calibrations;
 } TSVSHMMStatistics;
 
 PETSC_EXTERN PetscErrorCode TSVSHMMInitializePackage(void);
@@ -97,6 +128,11 @@ PETSC_EXTERN PetscErrorCode TSVSHMMSetSplitOrder(TS, PetscInt, const char *const
 PETSC_EXTERN PetscErrorCode TSVSHMMGetSplitOrder(TS, PetscInt *, const char *const *[]);
 PETSC_EXTERN PetscErrorCode TSVSHMMSetStabilityCheck(TS, PetscBool, PetscInt);
 PETSC_EXTERN PetscErrorCode TSVSHMMGetStabilityCheck(TS, PetscBool *, PetscInt *);
+PETSC_EXTERN PetscErrorCode TSVSHMMSetAdapt(TS, PetscBool);
+PETSC_EXTERN PetscErrorCode TSVSHMMGetAdapt(TS, PetscBool *);
+PETSC_EXTERN PetscErrorCode TSVSHMMSetObservables(TS, PetscInt, PetscErrorCode (*)(TS, PetscReal, Vec, PetscReal[], void *), void *);
+PETSC_EXTERN PetscErrorCode TSVSHMMSetSeparationCheck(TS, TSVSHMMSeparationCheck);
+PETSC_EXTERN PetscErrorCode TSVSHMMGetSeparationCheck(TS, TSVSHMMSeparationCheck *);
 PETSC_EXTERN PetscErrorCode TSVSHMMGetStatistics(TS, TSVSHMMStatistics *);
 PETSC_EXTERN PetscErrorCode TSVSHMMResetStatistics(TS);
 

@@ -251,6 +251,14 @@ static PetscErrorCode SlowVariables(AppCtx *user, Vec U, PetscReal *I1, PetscRea
   PetscFunctionReturn(0);
 }
 
+/* The observables of -ts_vshmm_adapt: the slow variables I1, I2 (TSVSHMMSetObservables()). */
+static PetscErrorCode Observables(TS ts, PetscReal t, Vec U, PetscReal q[], void *ctx)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SlowVariables((AppCtx *)ctx, U, &q[0], &q[1]));
+  PetscFunctionReturn(0);
+}
+
 /* Print I1, I2 at the sampled times that are multiples of print_interval; write the CSV file. */
 static PetscErrorCode Monitor(TS ts, PetscInt step, PetscReal t, Vec U, void *ctx)
 {
@@ -365,6 +373,7 @@ int main(int argc, char **argv)
   PetscCall(TSSetExactFinalTime(ts, TS_EXACTFINALTIME_MATCHSTEP));
   PetscCall(TSMonitorSet(ts, Monitor, &user, NULL));
   PetscCall(TSSetFromOptions(ts));
+  PetscCall(TSVSHMMSetObservables(ts, 2, Observables, &user)); /* the tolerance of -ts_vshmm_adapt applies to I1, I2 */
   PetscCall(PetscObjectTypeCompare((PetscObject)ts, TSVSHMM, &isvshmm));
   PetscCall(PetscObjectTypeCompare((PetscObject)ts, TSMPRK, &ismprk));
   PetscCheck(!isvshmm || user.split_kind == SPLIT_ADDITIVE, PETSC_COMM_WORLD, PETSC_ERR_ARG_INCOMP, "TSVSHMM needs -split_kind additive: every component has a term of every scale");
@@ -402,6 +411,8 @@ int main(int argc, char **argv)
        own count of split calls, which may be larger: set-up work such as the library's stability
        check also calls the splits (-ts_view shows how often). */
     if (nevals > user.nsplit) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "note: statistics count %lld split evaluations, the split functions counted only %lld\n", (long long)nevals, (long long)user.nsplit));
+    PetscCall(TSVSHMMGetAdapt(ts, &flg));
+    if (flg) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "adapt: error_estimate %.3e (sum over the run; 1 = the tolerance) estimation_evaluations %lld rejections %lld\n", (double)stats.error_estimate_total, (long long)stats.adapt_evaluations, (long long)stats.adapt_rejections));
   } else {
     /* full-field evaluations, plus the split calls of types that use the splits (e.g. mprk) */
     nevals = user.nrhs + user.nsplit;

@@ -25,7 +25,7 @@ void checkSavingsFactors(const std::vector<double> &savings)
 {
   for (std::size_t j = 1; j <= savings.size(); ++j) {
     const double alpha = savings[j - 1];
-    if (!(alpha > 0 && std::isfinite(alpha))) throw std::invalid_argument("savings factor " + std::to_string(j) + " is " + show(alpha) + ": must be positive and finite");
+    if (!(alpha >= 0 && std::isfinite(alpha))) throw std::invalid_argument("savings factor " + std::to_string(j) + " is " + show(alpha) + ": must be non-negative and finite");
   }
 }
 

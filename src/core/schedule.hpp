@@ -16,7 +16,7 @@ namespace vshmm {
 class MesoscopicSchedule {
 public:
   // Throws std::invalid_argument unless dt > 0 and finite, savings.size() == subintervals.size(),
-  // every alpha_j > 0 and finite, every m_j >= 1.
+  // every alpha_j >= 0 and finite (alpha_j = 0: level j-1 takes no steps of its own), every m_j >= 1.
   MesoscopicSchedule(const Kernel &kernel, double microStep, std::vector<double> savings, std::vector<int> subintervals);
 
   int numScales() const;  // K + 1

@@ -56,6 +56,7 @@ LevelAmplification levelAmplification(const StabilityFunction &R, const Mesoscop
   runMacroStep(schedule, macroStep, [&](int l, double, double h) {
     if (l == level) {
       a.logAmplification += std::log(std::abs(R(h * lambda))) - h * std::max(lambda.real(), 0.0);
+      a.largestGrowth = std::max(a.largestGrowth, a.logAmplification);
       a.steps++;
       a.largestStep = std::max(a.largestStep, h);
     }

@@ -42,6 +42,7 @@ private:
 // growth over those steps (sum of h max(Re lambda, 0)), and the step count.
 struct LevelAmplification {
   double logAmplification = 0.0; // log prod |R(h lambda)| - sum h max(Re lambda, 0)
+  double largestGrowth    = 0.0; // the largest running value of that logarithm within the macro step (>= 0)
   long   steps            = 0;
   double largestStep      = 0.0;
 };

@@ -93,14 +93,16 @@ PetscErrorCode TSVSHMMEvaluateLevel_Private(TS_VSHMM *vs, PetscInt level, PetscR
 {
   PetscFunctionBegin;
   vs->current_level = level;
-  if (vs->counting) vs->level_evaluations[level]++;
-  else vs->stability_evaluations += level + 1; /* split calls */
+  const PetscBool counting = vs->counting == TS_VSHMM::COUNT_STEPS ? PETSC_TRUE : PETSC_FALSE;
+  if (counting) vs->level_evaluations[level]++;
+  else if (vs->counting == TS_VSHMM::COUNT_STABILITY) vs->stability_evaluations += vs->level_end[level]; /* split calls */
+  else vs->adapt_evaluations += vs->level_end[level];
   for (PetscInt k = 0; k < vs->level_end[level]; ++k) {
     VSHMMSplit &sc = vs->splits[k];
 
     if (k == 0 && sc.additive) { /* the slowest additive split writes G itself */
       PetscCall(TSComputeRHSFunction(sc.subts, t, Y, G));
-      if (vs->counting) vs->rhs_evaluations[k]++;
+      if (counting) vs->rhs_evaluations[k]++;
       if (vs->nonfinite_split < 0) {
         const PetscScalar *g;
         PetscInt           n;
@@ -114,7 +116,7 @@ PetscErrorCode TSVSHMMEvaluateLevel_Private(TS_VSHMM *vs, PetscInt level, PetscR
     }
     if (k == 0) PetscCall(VecZeroEntries(G));
     PetscCall(TSComputeRHSFunction(sc.subts, t, Y, sc.F));
-    if (vs->counting) vs->rhs_evaluations[k]++;
+    if (counting) vs->rhs_evaluations[k]++;
     PetscCall(AddScale(vs, k, t, sc.F, G));
   }
   PetscFunctionReturn(0);
@@ -158,6 +160,7 @@ static PetscErrorCode TSVSHMMTearDown_Private(TS ts)
   for (Vec &k : vs->K) PetscCall(VecDestroy(&k));
   vs->K.clear();
   vs->schedule.reset();
+  PetscCall(TSVSHMMAdaptReset_Private(ts));
   vs->tableau.reset();
   vs->kernel.reset();
   PetscFunctionReturn(0);
@@ -346,7 +349,10 @@ static PetscErrorCode TSSetUp_VSHMM(TS ts)
   vs->level_events.resize(nscales);
   for (PetscInt l = 0; l < nscales; ++l) PetscCall(TSVSHMMGetLevelEvent_Private(l, &vs->level_events[l]));
   PetscCall(TSVSHMMResetStatistics(ts));
+  vs->spectra_time = PETSC_MIN_REAL;
   if (vs->check_stability) PetscCall(TSVSHMMCheckStability_Private(ts));
+  PetscCall(TSVSHMMCheckSeparation_Private(ts));
+  PetscCall(TSVSHMMAdaptSetUp_Private(ts));
   PetscFunctionReturn(0);
 }
 
@@ -391,29 +397,22 @@ static PetscErrorCode TSStep_VSHMM(TS ts)
   const PetscReal dt = vs->micro_dt > 0 ? vs->micro_dt : ts->time_step / kDefaultMicroStepsPerMacroStep;
   PetscCheck(dt > kMinMicroStepFraction * DeltaT || last, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-ts_vshmm_micro_dt %g is below the time resolution of the macro step DeltaT = %g: the micro step must exceed %g DeltaT", (double)dt, (double)DeltaT, (double)kMinMicroStepFraction);
-  if (vs->stability_interval > 0 && ts->steps > 0 && ts->steps % vs->stability_interval == 0) PetscCall(TSVSHMMCheckStability_Private(ts));
-  if (!vs->schedule || vs->schedule->microStep() != dt) PetscCall(TSVSHMMCreateSchedule_Private(ts, dt, vs->schedule));
-  const vshmm::MesoscopicSchedule &schedule = *vs->schedule;
-
+  if (vs->stability_interval > 0 && ts->steps > 0 && ts->steps % vs->stability_interval == 0) {
+    PetscCall(TSVSHMMCheckStability_Private(ts));
+    if (vs->adapt) PetscCall(TSVSHMMCheckSeparation_Private(ts));
+  }
+  if (!vs->adapt && (!vs->schedule || vs->schedule->microStep() != dt)) PetscCall(TSVSHMMCreateSchedule_Private(ts, dt, vs->schedule));
   PetscCall(VecCopy(ts->vec_sol, vs->X0));
   vs->nonfinite_split = -1;
   vs->nonfinite_time  = PETSC_MAX_REAL;
-  LevelStepOps          ops{vs, ts->vec_sol, 0};
-  vshmm::MacroStepCounts counts;
-  int                   err = vshmm::runMacroStep(
-    schedule, DeltaT,
-    [&](int level, double tau, double h) -> int {
-      ops.level = level;
-      PetscCall(PetscLogEventBegin(vs->level_events[level], ts, 0, 0, 0));
-      PetscCall(vshmm::explicitRungeKuttaStep(*vs->tableau, ops, t0 + tau, h));
-      PetscCall(PetscLogEventEnd(vs->level_events[level], ts, 0, 0, 0));
-      return 0;
-    },
-    &counts);
-  PetscCall(err);
+  if (vs->adapt) PetscCall(TSVSHMMAdaptStep_Private(ts, t0, DeltaT));
+  else {
+    vshmm::MacroStepCounts counts;
+    PetscCall(TSVSHMMRunMacroStep_Private(ts, *vs->schedule, t0, DeltaT, ts->vec_sol, &counts));
+    vs->micro_cycles += counts.cycles;
+    for (size_t l = 0; l < counts.levelSteps.size(); ++l) vs->level_steps[l] += counts.levelSteps[l];
+  }
   vs->macro_steps++;
-  vs->micro_cycles += counts.cycles;
-  for (size_t l = 0; l < counts.levelSteps.size(); ++l) vs->level_steps[l] += counts.levelSteps[l];
 
   /* One reduction per macro step: the earliest Inf/NaN of any split on any rank. */
   const int nsplits = (int)vs->splits.size();
@@ -438,6 +437,27 @@ static PetscErrorCode TSStep_VSHMM(TS ts)
     PetscFunctionReturn(0);
   }
   ts->ptime = last ? ts->max_time : t0 + DeltaT;
+  PetscFunctionReturn(0);
+}
+
+/* One macro step of length DeltaT from t0 with the given schedule, on X. */
+PetscErrorCode TSVSHMMRunMacroStep_Private(TS ts, const vshmm::MesoscopicSchedule &schedule, PetscReal t0, PetscReal DeltaT, Vec X, vshmm::MacroStepCounts *counts)
+{
+  TS_VSHMM    *vs = (TS_VSHMM *)ts->data;
+  LevelStepOps ops{vs, X, 0};
+
+  PetscFunctionBegin;
+  int err = vshmm::runMacroStep(
+    schedule, DeltaT,
+    [&](int level, double tau, double h) -> int {
+      ops.level = level;
+      PetscCall(PetscLogEventBegin(vs->level_events[level], ts, 0, 0, 0));
+      PetscCall(vshmm::explicitRungeKuttaStep(*vs->tableau, ops, t0 + tau, h));
+      PetscCall(PetscLogEventEnd(vs->level_events[level], ts, 0, 0, 0));
+      return 0;
+    },
+    counts);
+  PetscCall(err);
   PetscFunctionReturn(0);
 }
 
@@ -591,6 +611,13 @@ static PetscErrorCode TSSetFromOptions_VSHMM(TS ts, PetscOptionItems *PetscOptio
     if (iset) PetscCall(ParseInt(comm, "-ts_vshmm_check_stability_interval", text, &interval));
     if (set || iset) PetscCall(TSVSHMMSetStabilityCheck(ts, check, interval));
 
+    PetscBool adapt = vs->adapt;
+    PetscCall(PetscOptionsBool("-ts_vshmm_adapt", "Choose the micro step and savings factors not set from the TS tolerances -ts_rtol, -ts_atol", "TSVSHMMSetAdapt", adapt, &adapt, &set));
+    if (set) PetscCall(TSVSHMMSetAdapt(ts, adapt));
+    PetscEnum sep = (PetscEnum)vs->check_separation;
+    PetscCall(PetscOptionsEnum("-ts_vshmm_check_separation", "What to do where the scales are not separated", "TSVSHMMSetSeparationCheck", TSVSHMMSeparationChecks, sep, &sep, &set));
+    if (set) PetscCall(TSVSHMMSetSeparationCheck(ts, (TSVSHMMSeparationCheck)sep));
+
     PetscCall(ReadList(PetscOptionsObject, comm, "-ts_vshmm_splits", "The scales, slowest first: RHS split names, or groups of them joined by +", "TSVSHMMSetSplitOrder", items, &set));
     if (set) {
       std::vector<const char *> names;
@@ -618,7 +645,8 @@ static PetscErrorCode TSView_VSHMM(TS ts, PetscViewer viewer)
   const int      q       = vs->kernel->order();
   if (q == vshmm::Kernel::kInfiniteOrder) PetscCall(PetscViewerASCIIPrintf(viewer, "  VSHMM: %" PetscInt_FMT " scales (RHS splits, slowest first), kernel %s (infinitely smooth)\n", nscales, vs->kernel->name().c_str()));
   else PetscCall(PetscViewerASCIIPrintf(viewer, "  VSHMM: %" PetscInt_FMT " scales (RHS splits, slowest first), kernel %s (order q = %d)\n", nscales, vs->kernel->name().c_str(), q));
-  if (vs->micro_dt > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "  micro step dt = %g, sampling interval DeltaT = %g\n", (double)vs->micro_dt, (double)ts->time_step));
+  if (vs->adapt && vs->macro_steps > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "  micro step dt = %g (%s), sampling interval DeltaT = %g\n", (double)vs->adapt_used.microStep, vs->micro_dt > 0 ? "set" : "chosen by -ts_vshmm_adapt for the last macro step", (double)ts->time_step));
+  else if (vs->micro_dt > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "  micro step dt = %g, sampling interval DeltaT = %g\n", (double)vs->micro_dt, (double)ts->time_step));
   else PetscCall(PetscViewerASCIIPrintf(viewer, "  micro step dt = DeltaT/%d = %g (default), sampling interval DeltaT = %g\n", (int)kDefaultMicroStepsPerMacroStep, (double)(ts->time_step / kDefaultMicroStepsPerMacroStep), (double)ts->time_step));
   {
     const vshmm::StabilityFunction R(*vs->tableau);
@@ -637,6 +665,15 @@ static PetscErrorCode TSView_VSHMM(TS ts, PetscViewer viewer)
   for (PetscInt64 n : vs->level_steps) steps += n;
   for (PetscInt64 n : vs->rhs_evaluations) evals += n;
   PetscCall(PetscViewerASCIIPrintf(viewer, "  work: %" PetscInt64_FMT " macro steps, %" PetscInt64_FMT " micro cycles, %" PetscInt64_FMT " Runge-Kutta steps, %" PetscInt64_FMT " split RHS evaluations\n", vs->macro_steps, vs->micro_cycles, steps, evals));
+  if (vs->adapt) {
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  accuracy control (-ts_vshmm_adapt): rtol %g, atol %g on %s; savings factors %s\n", (double)ts->rtol, (double)ts->atol, vs->observables ? "the observables" : "the whole state (weighted norm)", vs->savings.empty() ? (vs->no_separation ? "none (scales not separated)" : "chosen") : "set"));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "    error estimate: last macro step %g, sum over the run %g (1 = the tolerance); %" PetscInt64_FMT " calibrations, %" PetscInt64_FMT " rejected macro steps, %" PetscInt64_FMT " split RHS evaluations for estimates and rejected steps\n", (double)vs->error_estimate, (double)vs->error_estimate_total, vs->adapt_calibrations, vs->adapt_rejections, vs->adapt_evaluations));
+  }
+  if (!vs->level_radius.empty() && vs->level_radius.size() == vs->level_end.size()) {
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  spectral radius of each level's Jacobian (t = %g):", (double)vs->spectra_time));
+    for (PetscReal r : vs->level_radius) PetscCall(PetscViewerASCIIPrintf(viewer, " %.3g", (double)r));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "\n"));
+  }
   if (!vs->check_stability && vs->stability_interval == 0) PetscCall(PetscViewerASCIIPrintf(viewer, "  stability check: off\n"));
   else if (vs->stability_interval > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "  stability check: %s set-up and every %" PetscInt_FMT " macro steps; %" PetscInt64_FMT " checks, %" PetscInt64_FMT " split RHS evaluations, %" PetscInt64_FMT " warnings\n", vs->check_stability ? "at" : "not at", vs->stability_interval, vs->stability_checks, vs->stability_evaluations, vs->stability_warnings));
   else PetscCall(PetscViewerASCIIPrintf(viewer, "  stability check: at set-up; %" PetscInt64_FMT " checks, %" PetscInt64_FMT " split RHS evaluations, %" PetscInt64_FMT " warnings\n", vs->stability_checks, vs->stability_evaluations, vs->stability_warnings));
@@ -801,6 +838,46 @@ static PetscErrorCode TSVSHMMGetStabilityCheck_VSHMM(TS ts, PetscBool *flg, Pets
   PetscFunctionReturn(0);
 }
 
+static PetscErrorCode TSVSHMMSetAdapt_VSHMM(TS ts, PetscBool flg)
+{
+  PetscFunctionBegin;
+  ((TS_VSHMM *)ts->data)->adapt = flg;
+  PetscCall(TSVSHMMInvalidateSetUp_Private(ts));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode TSVSHMMGetAdapt_VSHMM(TS ts, PetscBool *flg)
+{
+  PetscFunctionBegin;
+  *flg = ((TS_VSHMM *)ts->data)->adapt;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode TSVSHMMSetObservables_VSHMM(TS ts, PetscInt n, PetscErrorCode (*f)(TS, PetscReal, Vec, PetscReal[], void *), void *ctx)
+{
+  TS_VSHMM *vs = (TS_VSHMM *)ts->data;
+
+  PetscFunctionBegin;
+  vs->nobservables    = f ? n : 0;
+  vs->observables     = f;
+  vs->observables_ctx = ctx;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode TSVSHMMSetSeparationCheck_VSHMM(TS ts, TSVSHMMSeparationCheck check)
+{
+  PetscFunctionBegin;
+  ((TS_VSHMM *)ts->data)->check_separation = check;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode TSVSHMMGetSeparationCheck_VSHMM(TS ts, TSVSHMMSeparationCheck *check)
+{
+  PetscFunctionBegin;
+  *check = ((TS_VSHMM *)ts->data)->check_separation;
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode TSVSHMMGetStatistics_VSHMM(TS ts, TSVSHMMStatistics *stats)
 {
   TS_VSHMM *vs = (TS_VSHMM *)ts->data;
@@ -816,6 +893,11 @@ static PetscErrorCode TSVSHMMGetStatistics_VSHMM(TS ts, TSVSHMMStatistics *stats
   stats->stability_checks      = vs->stability_checks;
   stats->stability_evaluations = vs->stability_evaluations;
   stats->stability_warnings    = vs->stability_warnings;
+  stats->error_estimate        = vs->error_estimate;
+  stats->error_estimate_total  = vs->error_estimate_total;
+  stats->adapt_evaluations     = vs->adapt_evaluations;
+  stats->adapt_rejections      = vs->adapt_rejections;
+  stats->adapt_calibrations    = vs->adapt_calibrations;
   PetscFunctionReturn(0);
 }
 
@@ -830,6 +912,11 @@ static PetscErrorCode TSVSHMMResetStatistics_VSHMM(TS ts)
   vs->stability_checks      = 0;
   vs->stability_evaluations = 0;
   vs->stability_warnings    = 0;
+  vs->error_estimate        = 0;
+  vs->error_estimate_total  = 0;
+  vs->adapt_evaluations     = 0;
+  vs->adapt_rejections      = 0;
+  vs->adapt_calibrations    = 0;
   vs->warned_ratio.assign(nscales, 0.0);
   vs->rhs_evaluations.assign(n, 0);
   vs->level_steps.assign(nscales, 0);
@@ -854,6 +941,11 @@ static PetscErrorCode TSVSHMMResetStatistics_VSHMM(TS ts)
   X(TSVSHMMGetSplitOrder) \
   X(TSVSHMMSetStabilityCheck) \
   X(TSVSHMMGetStabilityCheck) \
+  X(TSVSHMMSetAdapt) \
+  X(TSVSHMMGetAdapt) \
+  X(TSVSHMMSetObservables) \
+  X(TSVSHMMSetSeparationCheck) \
+  X(TSVSHMMGetSeparationCheck) \
   X(TSVSHMMGetStatistics) \
   X(TSVSHMMResetStatistics)
 
@@ -900,7 +992,9 @@ $    h_j(t) = alpha_j dt K(Theta^{-1}(((t - t_n) mod P_j) / P_j)),   P_j = Delta
 .  -ts_vshmm_rk_type <type> - TSRK type of every inner step (default 4)
 .  -ts_vshmm_splits <a,b+c,...> - the scales, slowest first: split names, or groups joined by '+' (default: each split a scale, in creation order)
 .  -ts_vshmm_check_stability <true,false> - check the steps against the stability region at set-up (default true)
--  -ts_vshmm_check_stability_interval <N> - also check every N macro steps (default 0: never)
+.  -ts_vshmm_check_stability_interval <N> - also check every N macro steps (default 0: never)
+.  -ts_vshmm_adapt <true,false> - choose the micro step and savings factors not set from -ts_rtol, -ts_atol (default false)
+-  -ts_vshmm_check_separation <off,warn,error> - what to do where the scales are not separated (default warn)
 
    Level: intermediate
 

@@ -515,3 +515,154 @@ PetscErrorCode TSVSHMMResetStatistics(TS ts)
   PetscTryMethod(ts, "TSVSHMMResetStatistics_C", (TS), (ts));
   PetscFunctionReturn(0);
 }
+
+/*@
+   TSVSHMMSetAdapt - Makes TSVSHMM choose its micro step and savings factors from the TS tolerances
+
+   Logically Collective
+
+   Input Parameters:
++  ts  - the `TS` of type `TSVSHMM`
+-  flg - `PETSC_TRUE` to choose the parameters that were not set, `PETSC_FALSE` to use them as set
+
+   Options Database Key:
+.  -ts_vshmm_adapt <true,false> - choose the parameters
+
+   Notes:
+   Each macro step (sampling interval, the TS time step, which stays as set) is compared with the
+   same step taken with coarser parameters; the difference of the observables
+   (`TSVSHMMSetObservables()`, by default the whole state), in the weighted norm of the TS
+   tolerances (`TSSetTolerances()`, -ts_rtol, -ts_atol), is the error estimate. A step whose
+   estimate exceeds its share of the tolerance, DeltaT / (final time - start time), is redone with
+   finer parameters, and the parameters of the next step are the cheapest the measured error
+   model allows. Parameters set with `TSVSHMMSetMicroStep()` or `TSVSHMMSetSavingsFactors()` stay
+   fixed. Every step is kept stable using each level's estimated eigenvalues, and where the scales
+   are not separated (see `TSVSHMMSetSeparationCheck()`) no savings are taken. The estimate and
+   the work spent on it are in `TSVSHMMGetStatistics()` and -ts_view; -info shows every choice.
+
+   Level: beginner
+
+.seealso: `TSVSHMM`, `TSVSHMMSetObservables()`, `TSSetTolerances()`, `TSVSHMMGetStatistics()`
+@*/
+PetscErrorCode TSVSHMMSetAdapt(TS ts, PetscBool flg)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  PetscValidLogicalCollectiveBool(ts, flg, 2);
+  PetscTryMethod(ts, "TSVSHMMSetAdapt_C", (TS, PetscBool), (ts, flg));
+  PetscFunctionReturn(0);
+}
+
+/*@
+   TSVSHMMGetAdapt - Tells whether TSVSHMM chooses its parameters from the TS tolerances
+
+   Not Collective
+
+   Input Parameter:
+.  ts - the `TS` of type `TSVSHMM`
+
+   Output Parameter:
+.  flg - `PETSC_TRUE` if it does
+
+   Level: beginner
+
+.seealso: `TSVSHMM`, `TSVSHMMSetAdapt()`
+@*/
+PetscErrorCode TSVSHMMGetAdapt(TS ts, PetscBool *flg)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  PetscValidBoolPointer(flg, 2);
+  PetscUseMethod(ts, "TSVSHMMGetAdapt_C", (TS, PetscBool *), (ts, flg));
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   TSVSHMMSetObservables - Sets the slow quantities of interest to which the tolerance of `TSVSHMMSetAdapt()` applies
+
+   Logically Collective
+
+   Input Parameters:
++  ts  - the `TS` of type `TSVSHMM`
+.  n   - the number of quantities (at least 1)
+.  f   - the function that computes them: f(ts, t, X, q, ctx) fills q[0..n-1] from the state X at time t; it must give the same values on every rank (it is collective)
+-  ctx - its context (may be NULL)
+
+   Notes:
+   Without observables the tolerance applies to the whole sampled state in the weighted norm of
+   `TSErrorWeightedNorm()`, which is right where the fast variables are slaved to the slow ones
+   (dissipative scales). Where they oscillate, the state at a sampled time carries the fast phases,
+   which VSHMM does not compute accurately: name the slow quantities (for two oscillators, their
+   energies or amplitudes). Each quantity q_i is weighed by atol + rtol |q_i|. Pass f = NULL to go
+   back to the whole state.
+
+   Level: intermediate
+
+.seealso: `TSVSHMM`, `TSVSHMMSetAdapt()`, `TSSetTolerances()`
+@*/
+PetscErrorCode TSVSHMMSetObservables(TS ts, PetscInt n, PetscErrorCode (*f)(TS, PetscReal, Vec, PetscReal[], void *), void *ctx)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  PetscCheck(!f || n >= 1, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "TSVSHMMSetObservables(): the number of observables is %" PetscInt_FMT ": it must be at least 1", n);
+  PetscTryMethod(ts, "TSVSHMMSetObservables_C", (TS, PetscInt, PetscErrorCode(*)(TS, PetscReal, Vec, PetscReal[], void *), void *), (ts, n, f, ctx));
+  PetscFunctionReturn(0);
+}
+
+/*@
+   TSVSHMMSetSeparationCheck - Sets what TSVSHMM does at set-up where the time scales of its RHS splits are not separated
+
+   Logically Collective
+
+   Input Parameters:
++  ts    - the `TS` of type `TSVSHMM`
+-  check - `TSVSHMM_SEPARATION_OFF`, `TSVSHMM_SEPARATION_WARN` (the default) or `TSVSHMM_SEPARATION_ERROR`
+
+   Options Database Key:
+.  -ts_vshmm_check_separation <off,warn,error> - choose
+
+   Notes:
+   The check estimates the spectral radius of each level's field (the scales 0..l) and compares
+   consecutive levels. VSHMM samples the faster scales statistically; if no pair of levels is at
+   least 10 apart, the components the faster splits write are part of the answer (for example a
+   multirate finite-volume scheme whose fast region is twice as fast as the slow one) and VSHMM
+   would return a wrong answer without knowing it. Then the check warns on stderr (or stops with an
+   error), and `TSVSHMMSetAdapt()` takes no savings.
+
+   Level: intermediate
+
+.seealso: `TSVSHMM`, `TSVSHMMSetAdapt()`, `TSVSHMMSetStabilityCheck()`
+@*/
+PetscErrorCode TSVSHMMSetSeparationCheck(TS ts, TSVSHMMSeparationCheck check)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  PetscValidLogicalCollectiveEnum(ts, check, 2);
+  PetscCheck(check >= TSVSHMM_SEPARATION_OFF && check <= TSVSHMM_SEPARATION_ERROR, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "-ts_vshmm_check_separation (TSVSHMMSetSeparationCheck()): %d is not one of off, warn, error", (int)check);
+  PetscTryMethod(ts, "TSVSHMMSetSeparationCheck_C", (TS, TSVSHMMSeparationCheck), (ts, check));
+  PetscFunctionReturn(0);
+}
+
+/*@
+   TSVSHMMGetSeparationCheck - Gets what TSVSHMM does where the time scales are not separated
+
+   Not Collective
+
+   Input Parameter:
+.  ts - the `TS` of type `TSVSHMM`
+
+   Output Parameter:
+.  check - the setting
+
+   Level: intermediate
+
+.seealso: `TSVSHMM`, `TSVSHMMSetSeparationCheck()`
+@*/
+PetscErrorCode TSVSHMMGetSeparationCheck(TS ts, TSVSHMMSeparationCheck *check)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  PetscValidPointer(check, 2);
+  PetscUseMethod(ts, "TSVSHMMGetSeparationCheck_C", (TS, TSVSHMMSeparationCheck *), (ts, check));
+  PetscFunctionReturn(0);
+}

@@ -8,10 +8,12 @@
   #error "petsc-vshmm needs PETSc built with real scalars (Debian: petsc-dev, PETSC_ARCH x86_64-linux-gnu-real)"
 #endif
 
+#include <complex>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "adapt.hpp"
 #include "kernel.hpp"
 #include "rk.hpp"
 #include "schedule.hpp"
@@ -43,6 +45,11 @@ struct TS_VSHMM {
   PetscBool                check_stability    = PETSC_TRUE; // at set-up
   PetscInt                 stability_interval = 0;          // also every that many macro steps (0: never)
   std::vector<const char *> split_order_c;               // for TSVSHMMGetSplitOrder()
+  PetscBool                adapt = PETSC_FALSE;         // choose the parameters not set from the TS tolerances
+  TSVSHMMSeparationCheck   check_separation = TSVSHMM_SEPARATION_WARN;
+  PetscInt                 nobservables = 0;            // 0: the whole state in the TS's weighted norm
+  PetscErrorCode (*observables)(TS, PetscReal, Vec, PetscReal[], void *) = nullptr;
+  void *observables_ctx = nullptr;
 
   // Set-up state
   std::vector<VSHMMSplit>                   splits;    // in scale order
@@ -57,8 +64,31 @@ struct TS_VSHMM {
   Vec                                       X0 = nullptr; // previous sampled state (interpolation, rejection)
   std::vector<PetscLogEvent>                level_events;
 
+  // What each level's field looks like near the state (stability and separation checks, adapt)
+  std::vector<PetscReal>    level_radius;   // spectral radius estimate of the Jacobian of G_l
+  std::vector<PetscReal>    level_max_step; // largest stable step of the inner RK for its limiting modes (inf: none)
+  std::vector<std::complex<double>>              level_worst;    // the mode that sets it
+  std::vector<std::vector<std::complex<double>>> level_limiting; // decaying or oscillating Ritz values
+  PetscReal                 spectra_time = PETSC_MIN_REAL;       // when they were estimated
+
+  // Accuracy control (-ts_vshmm_adapt)
+  vshmm::AdaptParameters    adapt_params;       // micro step and time ratios for the next macro step
+  vshmm::AdaptParameters    adapt_used;         // those of the last accepted macro step
+  vshmm::ErrorModel         adapt_model;
+  PetscBool                 adapt_ready = PETSC_FALSE; // initial parameters chosen
+  PetscInt                  adapt_since_calibration = 0;
+  PetscReal                 adapt_kappa  = 1.0; // full estimate / combined difference at the last calibration
+  PetscReal                 adapt_tstart = 0.0; // the time the solve started (the error budget runs from it)
+  PetscBool                 no_separation = PETSC_FALSE; // no pair of levels is separated
+  PetscBool                 floor_warned  = PETSC_FALSE; // told that the estimate does not fall
+  Vec                       Xtrial = nullptr, Xbase = nullptr;
+  std::vector<PetscReal>    obs_a, obs_b;
+  PetscReal                 error_estimate = 0, error_estimate_total = 0;
+  PetscInt64                adapt_evaluations = 0, adapt_rejections = 0, adapt_calibrations = 0;
+
   // Statistics since set-up
-  PetscBool                 counting     = PETSC_TRUE; // off while the stability check evaluates fields
+  enum Counter { COUNT_STEPS, COUNT_STABILITY, COUNT_ADAPT };
+  Counter                   counting     = COUNT_STEPS; // where split evaluations are counted
   PetscInt64                macro_steps  = 0;
   PetscInt64                micro_cycles = 0;
   PetscInt64                stability_checks = 0, stability_evaluations = 0, stability_warnings = 0;
@@ -79,4 +109,10 @@ PETSC_INTERN PetscErrorCode TSCreate_VSHMM(TS);
 PETSC_INTERN PetscErrorCode TSVSHMMEvaluateLevel_Private(TS_VSHMM *, PetscInt, PetscReal, Vec, Vec);
 PETSC_INTERN PetscErrorCode TSVSHMMCreateSchedule_Private(TS, PetscReal, std::unique_ptr<vshmm::MesoscopicSchedule> &);
 PETSC_INTERN PetscErrorCode TSVSHMMCheckStability_Private(TS);
+PETSC_INTERN PetscErrorCode TSVSHMMLevelSpectra_Private(TS);
+PETSC_INTERN PetscErrorCode TSVSHMMCheckSeparation_Private(TS);
+PETSC_INTERN PetscErrorCode TSVSHMMRunMacroStep_Private(TS, const vshmm::MesoscopicSchedule &, PetscReal, PetscReal, Vec, vshmm::MacroStepCounts *);
+PETSC_INTERN PetscErrorCode TSVSHMMAdaptStep_Private(TS, PetscReal, PetscReal);
+PETSC_INTERN PetscErrorCode TSVSHMMAdaptSetUp_Private(TS);
+PETSC_INTERN PetscErrorCode TSVSHMMAdaptReset_Private(TS);
 PETSC_INTERN PetscErrorCode TSVSHMMGetLevelEvent_Private(PetscInt, PetscLogEvent *);

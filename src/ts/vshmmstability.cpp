@@ -24,8 +24,9 @@
 #include <string>
 
 static constexpr PetscInt  kArnoldiSteps  = 16;
-static constexpr PetscReal kDampingTarget = 0.5;
-static constexpr PetscReal kGrowingMode   = 0.1; /* Re lambda > this |lambda|: a growing mode, not checked */  /* what a suggested savings factor achieves over a macro step */
+static constexpr PetscReal kDampingTarget = 0.5; /* what a suggested savings factor achieves over a macro step */
+static constexpr PetscReal kGrowingMode   = 0.1;  /* Re lambda > this |lambda|: a growing mode, not checked */
+static constexpr PetscReal kMaxTransientGrowth = 100; /* largest growth of a mode within a macro step that only warns */
 
 /* Ritz values of the Jacobian of level l's field at (t, X). */
 static PetscErrorCode LevelRitzValues(TS ts, PetscInt level, PetscReal t, Vec X, std::vector<std::complex<double>> &ritz, PetscBool *finite)
@@ -131,11 +132,57 @@ static PetscErrorCode LargestStableSavingsFactor(TS ts, PetscReal dt, PetscInt j
     vs->savings_used[j - 1] = mid;
     std::unique_ptr<vshmm::MesoscopicSchedule> schedule;
     PetscCall(TSVSHMMCreateSchedule_Private(ts, dt, schedule));
-    const double logA = vshmm::levelAmplification(R, *schedule, ts->time_step, (int)(j - 1), lambda).logAmplification;
-    (logA <= std::log(kDampingTarget) ? lo : hi) = mid;
+    const vshmm::LevelAmplification a = vshmm::levelAmplification(R, *schedule, ts->time_step, (int)(j - 1), lambda);
+    (a.logAmplification <= std::log(kDampingTarget) && a.largestGrowth <= std::log(kMaxTransientGrowth) ? lo : hi) = mid;
   }
   vs->savings_used[j - 1] = now;
   *alpha                  = lo;
+  PetscFunctionReturn(0);
+}
+
+/* Estimates, for every level, the spectral radius of its field's Jacobian at the current state,
+   the decaying or oscillating modes that limit an explicit step and the largest stable step of
+   the inner Runge-Kutta method for them (infinite where none limits). */
+PetscErrorCode TSVSHMMLevelSpectra_Private(TS ts)
+{
+  TS_VSHMM                         *vs      = (TS_VSHMM *)ts->data;
+  const PetscInt                    nscales = (PetscInt)vs->level_end.size();
+  const vshmm::StabilityFunction    R(*vs->tableau);
+  std::vector<std::complex<double>> ritz;
+
+  PetscFunctionBegin;
+  const TS_VSHMM::Counter saved       = vs->counting;
+  const PetscInt          saved_split = vs->nonfinite_split;
+  const PetscReal         saved_time  = vs->nonfinite_time;
+  vs->counting                        = TS_VSHMM::COUNT_STABILITY;
+  vs->level_radius.assign(nscales, 0.0);
+  vs->level_max_step.assign(nscales, PETSC_INFINITY);
+  vs->level_worst.assign(nscales, 0.0);
+  vs->level_limiting.assign(nscales, {});
+  for (PetscInt level = 0; level < nscales; ++level) {
+    PetscBool finite;
+    PetscCall(LevelRitzValues(ts, level, ts->ptime, ts->vec_sol, ritz, &finite));
+    if (!finite) {
+      PetscCall(PetscInfo(ts, "Spectra at t = %g: the field of level %" PetscInt_FMT " is not finite near the state; skipped\n", (double)ts->ptime, level));
+      continue;
+    }
+    for (const std::complex<double> &lambda : ritz) {
+      vs->level_radius[level] = std::max(vs->level_radius[level], std::abs(lambda));
+      /* A mode that grows at a rate comparable to its frequency is the problem's own growth, not a
+         matter of step stability; slightly growing oscillations are judged against their own growth. */
+      if (std::abs(lambda) == 0 || lambda.real() > kGrowingMode * std::abs(lambda)) continue;
+      const double h = R.largestStableStep(lambda);
+      if (h < vs->level_max_step[level]) {
+        vs->level_max_step[level] = h;
+        vs->level_worst[level]    = lambda;
+      }
+      vs->level_limiting[level].push_back(lambda);
+    }
+  }
+  vs->spectra_time    = ts->ptime;
+  vs->counting        = saved;
+  vs->nonfinite_split = saved_split;
+  vs->nonfinite_time  = saved_time;
   PetscFunctionReturn(0);
 }
 
@@ -145,41 +192,20 @@ PetscErrorCode TSVSHMMCheckStability_Private(TS ts)
   MPI_Comm        comm    = PetscObjectComm((PetscObject)ts);
   const PetscInt  nscales = (PetscInt)vs->level_end.size(), top = nscales - 1;
   const PetscReal t = ts->ptime, DeltaT = ts->time_step;
-  const PetscReal dt = vs->micro_dt > 0 ? vs->micro_dt : DeltaT / kDefaultMicroStepsPerMacroStep;
   const char     *rk = vs->tableau->name.c_str();
   vshmm::StabilityFunction R(*vs->tableau);
   std::unique_ptr<vshmm::MesoscopicSchedule> schedule;
-  std::vector<std::complex<double>>          ritz;
 
   PetscFunctionBegin;
-  PetscCall(TSVSHMMCreateSchedule_Private(ts, dt, schedule));
+  PetscCall(TSVSHMMLevelSpectra_Private(ts));
   vs->stability_checks++;
-  vs->counting                 = PETSC_FALSE;
-  const PetscInt  saved_split  = vs->nonfinite_split;
-  const PetscReal saved_time   = vs->nonfinite_time;
+  if (vs->adapt) PetscFunctionReturn(0); /* the adaptive choice keeps every step stable itself */
+  const PetscReal dt = vs->micro_dt > 0 ? vs->micro_dt : DeltaT / kDefaultMicroStepsPerMacroStep;
+  PetscCall(TSVSHMMCreateSchedule_Private(ts, dt, schedule));
   for (PetscInt level = 0; level <= top; ++level) {
-    PetscBool finite;
-    PetscCall(LevelRitzValues(ts, level, t, ts->vec_sol, ritz, &finite));
-    if (!finite) {
-      PetscCall(PetscInfo(ts, "Stability check at t = %g: the field of level %" PetscInt_FMT " is not finite near the state; skipped\n", (double)t, level));
-      continue;
-    }
-    /* The most restrictive decaying or oscillating mode */
-    double               radius = 0, hmax = PETSC_MAX_REAL;
-    std::complex<double> worst  = 0;
-    std::vector<std::complex<double>> limiting;
-    for (const std::complex<double> &lambda : ritz) {
-      radius = std::max(radius, std::abs(lambda));
-      /* A mode that grows at a rate comparable to its frequency is the problem's own growth, not a
-         matter of step stability; slightly growing oscillations are judged against their own growth. */
-      if (std::abs(lambda) == 0 || lambda.real() > kGrowingMode * std::abs(lambda)) continue;
-      const double h = R.largestStableStep(lambda);
-      if (h < hmax) {
-        hmax  = h;
-        worst = lambda;
-      }
-      limiting.push_back(lambda);
-    }
+    const std::vector<std::complex<double>> &limiting = vs->level_limiting[level];
+    const double                             radius   = vs->level_radius[level], hmax = vs->level_max_step[level];
+    const std::complex<double>               worst    = vs->level_worst[level];
     if (limiting.empty()) continue;
     if (level == top) {
       PetscCheck(dt <= hmax * (1 + 1e-10), comm, PETSC_ERR_ARG_OUTOFRANGE,
@@ -194,39 +220,41 @@ PetscErrorCode TSVSHMMCheckStability_Private(TS ts)
       PetscCall(PetscInfo(ts, "Stability check at t = %g: level %" PetscInt_FMT " (largest step h_%" PetscInt_FMT " = %g): spectral radius %g, largest stable step %g\n", (double)t, level, j, hpeak, radius, hmax));
       continue;
     }
-    /* Beyond the limit near the kernel's peak: does the macro step as a whole damp every limiting mode? */
-    double               logA = -PETSC_MAX_REAL;
-    std::complex<double> grows = worst;
+    /* Beyond the limit near the kernel's peak: does the macro step damp every limiting mode, and
+       does no mode grow too much on the way (the running product over the level's steps)? */
+    double               logA = -PETSC_MAX_REAL, growth = 0;
+    std::complex<double> grows = worst, peaks = worst;
     for (const std::complex<double> &lambda : limiting) {
       if (R.largestStableStep(lambda) >= hpeak) continue; /* every step of the level is stable for it */
-      const double a = vshmm::levelAmplification(R, *schedule, DeltaT, (int)level, lambda).logAmplification;
-      if (a > logA) {
-        logA  = a;
+      const vshmm::LevelAmplification a = vshmm::levelAmplification(R, *schedule, DeltaT, (int)level, lambda);
+      if (a.logAmplification > logA) {
+        logA  = a.logAmplification;
         grows = lambda;
       }
+      if (a.largestGrowth > growth) {
+        growth = a.largestGrowth;
+        peaks  = lambda;
+      }
     }
-    if (logA <= 1e-8) { /* damped (or neutral) over a macro step, but amplified near the kernel's peak */
+    if (logA <= 1e-8 && growth <= std::log(kMaxTransientGrowth)) { /* damped (or neutral) over a macro step, amplified a little near the kernel's peak */
       const double    peak_growth = std::abs(R(hpeak * worst));
       const PetscReal alpha_safe  = vs->savings_used[j - 1] * hmax / hpeak;
       vs->stability_warnings++;
-      PetscCall(PetscInfo(ts, "Stability check at t = %g: level %" PetscInt_FMT ": the largest step h_%" PetscInt_FMT " = %g exceeds the stable step %g for the eigenvalue %g%+gi (growth %g per step there); over a macro step the level's steps change that mode by %g\n", (double)t, level, j, hpeak, hmax, worst.real(), worst.imag(), peak_growth, std::exp(logA)));
+      PetscCall(PetscInfo(ts, "Stability check at t = %g: level %" PetscInt_FMT ": the largest step h_%" PetscInt_FMT " = %g exceeds the stable step %g for the eigenvalue %g%+gi (growth %g per step there); within a macro step the mode grows by up to %g, over a macro step it changes by %g\n", (double)t, level, j, hpeak, hmax, worst.real(), worst.imag(), peak_growth, std::exp(growth), std::exp(logA)));
       if (hpeak / hmax > 1.1 * vs->warned_ratio[level]) { /* first time, or clearly worse than last warned */
         vs->warned_ratio[level] = hpeak / hmax;
         PetscCall(PetscFPrintf(comm, PETSC_STDERR,
-                               "TSVSHMM warning: stability check at t = %g: level %" PetscInt_FMT " (splits %s): its largest step h_%" PetscInt_FMT " = %g exceeds the stable step %g of TSRK %s for the estimated eigenvalue %g%+gi (spectral radius %g), which grows by %g per step near the kernel's peak; over a macro step the mode changes by a factor %g. Such transient growth can bias the slow variables. A savings factor alpha_%" PetscInt_FMT " <= %g (now %g) keeps every step stable. (Shown again only if it gets worse; -info shows every check.)\n",
-                               (double)t, level, LevelSplits(vs, level).c_str(), j, hpeak, hmax, rk, worst.real(), worst.imag(), radius, peak_growth, std::exp(logA), j, (double)alpha_safe, (double)vs->savings_used[j - 1]));
+                               "TSVSHMM warning: stability check at t = %g: level %" PetscInt_FMT " (splits %s): its largest step h_%" PetscInt_FMT " = %g exceeds the stable step %g of TSRK %s for the estimated eigenvalue %g%+gi (spectral radius %g), which grows by %g per step near the kernel's peak (by up to %g within a macro step); over a macro step the mode changes by a factor %g. Such transient growth can bias the slow variables. A savings factor alpha_%" PetscInt_FMT " <= %g (now %g) keeps every step stable. (Shown again only if it gets worse; -info shows every check.)\n",
+                               (double)t, level, LevelSplits(vs, level).c_str(), j, hpeak, hmax, rk, worst.real(), worst.imag(), radius, peak_growth, std::exp(growth), std::exp(logA), j, (double)alpha_safe, (double)vs->savings_used[j - 1]));
       }
       continue;
     }
+    if (logA <= 1e-8) grows = peaks; /* damped in the end, but too much growth on the way */
     PetscReal alpha_max;
     PetscCall(LargestStableSavingsFactor(ts, dt, j, grows, R, &alpha_max));
-    vs->counting = PETSC_TRUE;
     SETERRQ(comm, PETSC_ERR_ARG_OUTOFRANGE,
-            "TSVSHMM stability check at t = %g: level %" PetscInt_FMT " (splits %s) is unstable with its mesoscopic step h_%" PetscInt_FMT ": its largest step %g times the estimated eigenvalue %g%+gi (spectral radius %g) lies outside the stability region of TSRK %s, whose largest stable step for it is %g, and over a macro step the level's steps amplify that mode by %g. Use a savings factor alpha_%" PetscInt_FMT " <= %g (now %g) in -ts_vshmm_savings_factors, or -ts_vshmm_check_stability false to skip the check",
-            (double)t, level, LevelSplits(vs, level).c_str(), j, hpeak, grows.real(), grows.imag(), radius, rk, R.largestStableStep(grows), std::exp(logA), j, (double)alpha_max, (double)vs->savings_used[j - 1]);
+            "TSVSHMM stability check at t = %g: level %" PetscInt_FMT " (splits %s) is unstable with its mesoscopic step h_%" PetscInt_FMT ": its largest step %g times the estimated eigenvalue %g%+gi (spectral radius %g) lies outside the stability region of TSRK %s, whose largest stable step for it is %g; within a macro step the level's steps amplify that mode by up to %g (at most %g is tolerated) and over the macro step by %g. Use a savings factor alpha_%" PetscInt_FMT " <= %g (now %g) in -ts_vshmm_savings_factors, -ts_vshmm_adapt, or -ts_vshmm_check_stability false to skip the check",
+            (double)t, level, LevelSplits(vs, level).c_str(), j, hpeak, grows.real(), grows.imag(), radius, rk, R.largestStableStep(grows), std::exp(growth), (double)kMaxTransientGrowth, std::exp(logA), j, (double)alpha_max, (double)vs->savings_used[j - 1]);
   }
-  vs->counting        = PETSC_TRUE;
-  vs->nonfinite_split = saved_split;
-  vs->nonfinite_time  = saved_time;
   PetscFunctionReturn(0);
 }

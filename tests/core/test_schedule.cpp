@@ -119,10 +119,10 @@ TEST(MesoscopicSchedule, ConstructorRejectsBadParameters)
   EXPECT_EQ(constructionError(-1e-3, {10}, {1}), "micro step dt is -0.001: must be positive and finite");
   EXPECT_EQ(constructionError(NAN, {10}, {1}), "micro step dt is nan: must be positive and finite");
   EXPECT_EQ(constructionError(INFINITY, {10}, {1}), "micro step dt is inf: must be positive and finite");
-  EXPECT_EQ(constructionError(1e-4, {100, -1}, {1, 1}), "savings factor 2 is -1: must be positive and finite");
-  EXPECT_EQ(constructionError(1e-4, {0}, {1}), "savings factor 1 is 0: must be positive and finite");
-  EXPECT_EQ(constructionError(1e-4, {INFINITY}, {1}), "savings factor 1 is inf: must be positive and finite");
-  EXPECT_EQ(constructionError(1e-4, {NAN}, {1}), "savings factor 1 is nan: must be positive and finite");
+  EXPECT_EQ(constructionError(1e-4, {100, -1}, {1, 1}), "savings factor 2 is -1: must be non-negative and finite");
+  EXPECT_EQ(constructionError(1e-4, {0}, {1}), "no exception"); // alpha = 0: the level is merged into the next
+  EXPECT_EQ(constructionError(1e-4, {INFINITY}, {1}), "savings factor 1 is inf: must be non-negative and finite");
+  EXPECT_EQ(constructionError(1e-4, {NAN}, {1}), "savings factor 1 is nan: must be non-negative and finite");
   EXPECT_EQ(constructionError(1e-4, {100, 10}, {1, 0}), "subinterval count 2 is 0: must be at least 1");
   EXPECT_EQ(constructionError(1e-4, {100, 10}, {1}), "got 2 savings factors and 1 subinterval counts: need one of each per scale above scale 0");
   EXPECT_EQ(constructionError(1e-4, {}, {}), "no exception");  // a single scale: micro steps only

@@ -1,0 +1,81 @@
+// Accuracy control of VSHMM: the parameters in the form the error model uses (micro step and
+// time ratios), the error model, and the choice of parameters for a tolerance. No PETSc here.
+//
+// Time ratios. In one micro cycle scale k acts for A_k = dt (1 + alpha_{k+1} + ... + alpha_K)
+// (A_K = dt: the fastest scale acts during the micro step only; A_0 is the length of the cycle).
+// The time ratio of the level pair (l, l+1) is r_l = A_l / A_{l+1} >= 1. The method slows scale
+// l+1 relative to scale l by r_l: where the problem separates the two by S_l (ratio of their
+// rates), the method keeps an effective separation sigma_l = S_l / r_l. r_l = 1 (alpha_{l+1} = 0)
+// merges level l into level l+1: no savings there.
+//
+// Error model (measured in docs/user-guide.md "Accuracy on request"): the error of the slow
+// quantities over a macro step is a sum of one term per parameter,
+//   e_dt = c_dt dt^p            (the micro step: discretisation of the fast scale, accumulated)
+//   e_l  = c_l (r_l - 1)        (level pair l: averaging error ~ 1/sigma_l, none when merged).
+// The c's are measured by comparing the macro step with one whose parameter is coarsened
+// (dt -> 2 dt, r_l -> 2 r_l). Work per macro step is proportional to 1 / A_0 = 1 / (dt prod r_l),
+// so the cheapest parameters for a total error E give each free ratio the same share w of E and
+// the micro step the share w / p.
+#pragma once
+
+#include <vector>
+
+namespace vshmm {
+
+// r_l = A_l / A_{l+1} for l = 0..K-1 from alpha_1..alpha_K (alpha_j >= 0).
+std::vector<double> timeRatiosFromSavings(const std::vector<double> &savings);
+// alpha_{l+1} = prod_{j>=l} r_j - prod_{j>l} r_j: the inverse of timeRatiosFromSavings.
+std::vector<double> savingsFromTimeRatios(const std::vector<double> &ratios);
+
+struct AdaptParameters {
+  double              microStep = 0.0;
+  std::vector<double> ratios; // r_0 .. r_{K-1}, each >= 1
+};
+
+// Cycle length A_0 = dt prod r_l.
+double cycleLength(const AdaptParameters &p);
+
+// The coarsened parameters whose comparison measures one error term: which = 0 doubles the micro
+// step, which = 1 + l doubles r_l.
+AdaptParameters coarsened(const AdaptParameters &p, int which);
+
+// The error model: e_dt = cMicro dt^order, e_l = c[l] (r_l - 1).
+struct ErrorModel {
+  double              cMicro = 0.0;
+  std::vector<double> c;
+  int                 order = 1;
+
+  // Coefficients from the differences d_i between the macro step with p and with coarse[i], which
+  // differs from p in parameter i only (dt, or r_{i-1}): d_i = term_i(coarse[i]) - term_i(p).
+  // A parameter that could not be coarsened (coarse[i] equal to p) gets coefficient 0.
+  static ErrorModel fromDifferences(const AdaptParameters &p, const std::vector<AdaptParameters> &coarse, const std::vector<double> &differences, int order);
+  double term(const AdaptParameters &p, int which) const; // e_dt (which = 0) or e_l (which = 1 + l)
+  double total(const AdaptParameters &p) const;
+  void   scale(double f); // every coefficient times f (a new measurement of the total)
+};
+
+// What the choice must respect.
+struct AdaptBounds {
+  bool                fixedMicroStep = false; // set by the user: kept
+  bool                fixedRatios    = false; // savings set by the user: kept
+  double              maxMicroStep   = 0.0;   // stability (and accuracy) bound on dt (> 0)
+  double              maxCycle       = 0.0;   // bound on A_0 (enough cycles per macro step); 0: none
+  std::vector<double> maxRatio;               // per level pair, from stability and separation (>= 1)
+  double              maxGrowth      = 2.0;   // largest coarsening factor of dt, r_l or r_l - 1 per choice
+  double              maxRefine      = 8.0;   // largest refining factor
+};
+
+// The parameters that meet the total error `target` with the least work under the model,
+// starting from `now` (fixed parameters are kept and use their share of the target).
+AdaptParameters chooseParameters(const AdaptParameters &now, const ErrorModel &model, double target, const AdaptBounds &bounds);
+
+// Shrinks every r_l - 1 by one factor (and then dt, if fixedRatios or still needed) so that the
+// cycle length A_0 is at most maxCycle.
+void fitCycle(AdaptParameters &p, double maxCycle, bool fixedRatios, bool fixedMicroStep);
+
+// Keeps every step stable: the micro step at most maxLevelStep[K], and level l's peak step
+// alpha_{l+1} dt kernelPeak (alpha_{l+1} = (r_l - 1) prod_{j>l} r_j) at most maxLevelStep[l],
+// by lowering dt, then r_{K-1}, ..., r_0 (an infinite bound does not limit).
+void limitToStableSteps(AdaptParameters &p, double kernelPeak, const std::vector<double> &maxLevelStep);
+
+}  // namespace vshmm

@@ -1,0 +1,346 @@
+/*
+  Accuracy on request for TSVSHMM (-ts_vshmm_adapt) and the separation check.
+
+  The parameters are the micro step dt and the time ratios r_l of src/core/adapt.hpp (the savings
+  factors follow from them). Each macro step is taken with the current parameters and compared
+  with the same macro step from the same state taken with coarser parameters; the difference of
+  the observables (or of the whole state), in the TS's weighted norm (-ts_rtol, -ts_atol), gives
+  the error estimate:
+  - at a calibration (the first macro step, every kRecalibrate macro steps, after a rejection),
+    one coarser run per parameter (dt -> 2 dt, r_l -> 2 r_l) measures each parameter's own error
+    term (the error model of adapt.hpp);
+  - in between, one run with every parameter coarser at once rescales that model.
+  A macro step whose estimate exceeds its share of the tolerance, sqrt(DeltaT / (t_final - t_start))
+  (errors of the sampled slow values add up partly like random ones), is
+  redone with finer parameters; after each accepted step the parameters for the next one are
+  chosen as the cheapest the model allows for kSafety of that share. Where refining no longer
+  lowers the estimate, the step is accepted and the user told once. Every step is kept inside the
+  stability region of the inner Runge-Kutta method, using each level's estimated eigenvalues.
+
+  The separation check compares the spectral radii of consecutive levels. VSHMM samples a faster
+  level statistically; where no pair of levels is separated by at least kMinSeparation the faster
+  components are part of the answer and VSHMM is the wrong tool.
+*/
+#include "vshmmimpl.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+static constexpr PetscReal kMinSeparation     = 10;   /* a pair of levels this far apart in spectral radius is separated */
+static constexpr PetscReal kInitialSeparation = 10;   /* effective separation sigma_l of the first parameters */
+static constexpr PetscReal kSafety            = 0.8;  /* the parameters aim at this fraction of a step's share */
+static constexpr PetscInt  kRecalibrate       = 10;   /* macro steps between full measurements of the model */
+static constexpr PetscInt  kMaxAttempts       = 8;    /* tries of one macro step */
+static constexpr PetscInt  kMinCycles         = 20;   /* micro cycles per macro step at least */
+static constexpr PetscReal kStableFraction    = 0.9;  /* of the largest stable step */
+static constexpr PetscReal kFloorFactor       = 0.7;  /* a refinement that lowers the estimate by less than this has hit its floor */
+static constexpr int       kModelOrder        = 2;    /* order assumed for the micro step's error term */
+
+const char *const TSVSHMMSeparationChecks[] = {"off", "warn", "error", "TSVSHMMSeparationCheck", "TSVSHMM_SEPARATION_", nullptr};
+
+/* The difference of the observables (or of the states) of Xa and Xb in the TS's weighted norm. */
+static PetscErrorCode ObservableDifference(TS ts, PetscReal t, Vec Xa, Vec Xb, PetscReal *norm)
+{
+  TS_VSHMM *vs = (TS_VSHMM *)ts->data;
+
+  PetscFunctionBegin;
+  PetscReal xb;
+  PetscCall(VecNorm(Xb, NORM_INFINITY, &xb));
+  if (!std::isfinite(xb)) { /* the coarser run blew up */
+    *norm = PETSC_INFINITY;
+    PetscFunctionReturn(0);
+  }
+  if (!vs->observables) {
+    PetscReal na, nr;
+    PetscCall(TSErrorWeightedNorm(ts, Xa, Xb, NORM_2, norm, &na, &nr));
+    PetscFunctionReturn(0);
+  }
+  vs->obs_a.assign(vs->nobservables, 0.0);
+  vs->obs_b.assign(vs->nobservables, 0.0);
+  PetscCall(vs->observables(ts, t, Xa, vs->obs_a.data(), vs->observables_ctx));
+  PetscCall(vs->observables(ts, t, Xb, vs->obs_b.data(), vs->observables_ctx));
+  PetscReal sum = 0;
+  for (PetscInt i = 0; i < vs->nobservables; ++i) {
+    const PetscReal a = vs->obs_a[i], b = vs->obs_b[i];
+    const PetscReal w = ts->atol + ts->rtol * PetscMax(PetscAbsReal(a), PetscAbsReal(b));
+    const PetscReal e = (a - b) / w;
+    sum += std::isfinite(e) ? e * e : PETSC_MAX_REAL / (10 * vs->nobservables);
+  }
+  *norm = std::sqrt(sum / vs->nobservables);
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode Schedule(TS ts, const vshmm::AdaptParameters &p, std::unique_ptr<vshmm::MesoscopicSchedule> &schedule)
+{
+  TS_VSHMM *vs = (TS_VSHMM *)ts->data;
+
+  PetscFunctionBegin;
+  vs->savings_used = vshmm::savingsFromTimeRatios(p.ratios);
+  PetscCall(TSVSHMMCreateSchedule_Private(ts, p.microStep, schedule));
+  PetscFunctionReturn(0);
+}
+
+/* One macro step from X0 with parameters p into X; its work counted as adapt work. A non-finite
+   result counts as an infinitely large difference, not as a fault of the solve. */
+static PetscErrorCode TrialStep(TS ts, const vshmm::AdaptParameters &p, PetscReal t0, PetscReal DeltaT, Vec X)
+{
+  TS_VSHMM                                  *vs = (TS_VSHMM *)ts->data;
+  std::unique_ptr<vshmm::MesoscopicSchedule> schedule;
+  const PetscInt                             saved_split = vs->nonfinite_split;
+  const PetscReal                            saved_time  = vs->nonfinite_time;
+
+  PetscFunctionBegin;
+  PetscCall(Schedule(ts, p, schedule));
+  PetscCall(VecCopy(vs->X0, X));
+  vs->counting = TS_VSHMM::COUNT_ADAPT;
+  PetscCall(TSVSHMMRunMacroStep_Private(ts, *schedule, t0, DeltaT, X, nullptr));
+  vs->counting        = TS_VSHMM::COUNT_STEPS;
+  vs->nonfinite_split = saved_split;
+  vs->nonfinite_time  = saved_time;
+  PetscFunctionReturn(0);
+}
+
+
+/* The bounds of the choice: user-set parameters, stability, enough cycles per macro step. */
+static vshmm::AdaptBounds Bounds(TS ts, PetscReal DeltaT)
+{
+  TS_VSHMM          *vs = (TS_VSHMM *)ts->data;
+  vshmm::AdaptBounds b;
+
+  b.fixedMicroStep = vs->micro_dt > 0 ? true : false;
+  b.fixedRatios    = !vs->savings.empty() || vs->no_separation;
+  b.maxMicroStep   = kStableFraction * vs->level_max_step.back();
+  if (!std::isfinite(b.maxMicroStep) || b.maxMicroStep > DeltaT / kMinCycles) b.maxMicroStep = DeltaT / kMinCycles;
+  b.maxCycle = DeltaT / kMinCycles;
+  return b;
+}
+
+static void LimitToStableSteps(TS ts, vshmm::AdaptParameters &p)
+{
+  TS_VSHMM           *vs = (TS_VSHMM *)ts->data;
+  std::vector<double> hmax(vs->level_max_step.size());
+
+  if (vs->micro_dt > 0 && !vs->savings.empty()) return; /* nothing is the library's to choose */
+  for (size_t l = 0; l < hmax.size(); ++l) hmax[l] = kStableFraction * vs->level_max_step[l];
+  const double dt = p.microStep;
+  vshmm::limitToStableSteps(p, vs->kernel->value(0.5), hmax);
+  if (vs->micro_dt > 0) p.microStep = dt;
+  if (!vs->savings.empty()) p.ratios = vshmm::timeRatiosFromSavings(vs->savings);
+}
+
+/* The separation check: spectral radii of consecutive levels. */
+PetscErrorCode TSVSHMMCheckSeparation_Private(TS ts)
+{
+  TS_VSHMM      *vs      = (TS_VSHMM *)ts->data;
+  MPI_Comm       comm    = PetscObjectComm((PetscObject)ts);
+  const PetscInt nscales = (PetscInt)vs->level_end.size();
+
+  PetscFunctionBegin;
+  if (vs->check_separation == TSVSHMM_SEPARATION_OFF && !vs->adapt) PetscFunctionReturn(0);
+  if (vs->spectra_time != ts->ptime || (PetscInt)vs->level_radius.size() != nscales) PetscCall(TSVSHMMLevelSpectra_Private(ts));
+  PetscReal   best = 0;
+  std::string figures;
+  for (PetscInt l = 0; l + 1 < nscales; ++l) {
+    const PetscReal S = vs->level_radius[l] > 0 ? vs->level_radius[l + 1] / vs->level_radius[l] : PETSC_INFINITY;
+    char            text[160];
+    PetscCall(PetscSNPrintf(text, sizeof(text), "%slevels %" PetscInt_FMT "/%" PetscInt_FMT ": %.3g (spectral radii %.3g, %.3g)", l ? "; " : "", l, l + 1, (double)S, (double)vs->level_radius[l], (double)vs->level_radius[l + 1]));
+    figures += text;
+    best = PetscMax(best, S);
+  }
+  vs->no_separation = best < kMinSeparation ? PETSC_TRUE : PETSC_FALSE;
+  PetscCall(PetscInfo(ts, "Separation check at t = %g: %s\n", (double)ts->ptime, figures.c_str()));
+  if (!vs->no_separation || vs->check_separation == TSVSHMM_SEPARATION_OFF) PetscFunctionReturn(0);
+  PetscCheck(vs->check_separation != TSVSHMM_SEPARATION_ERROR, comm, PETSC_ERR_ARG_INCOMP,
+             "TSVSHMM separation check at t = %g: the time scales of the RHS splits are not separated (ratio of the spectral radii of consecutive levels, at least %g needed: %s). VSHMM samples the faster scales statistically and would change the answer here; use a single-rate TS type (-ts_type rk) or a multirate one (-ts_type mprk), or -ts_vshmm_check_separation warn to run anyway",
+             (double)ts->ptime, (double)kMinSeparation, figures.c_str());
+  PetscCall(PetscFPrintf(comm, PETSC_STDERR,
+                         "TSVSHMM warning: separation check at t = %g: the time scales of the RHS splits are not separated (ratio of the spectral radii of consecutive levels, at least %g needed: %s). VSHMM samples the faster scales statistically and %s; a single-rate TS type (-ts_type rk) or a multirate one (-ts_type mprk) is the right tool. (-ts_vshmm_check_separation error makes this an error, off silences it.)\n",
+                         (double)ts->ptime, (double)kMinSeparation, figures.c_str(), vs->adapt ? "-ts_vshmm_adapt therefore takes no savings (every level steps with the micro step)" : "its answer will be wrong by an amount it cannot estimate"));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode TSVSHMMAdaptReset_Private(TS ts)
+{
+  TS_VSHMM *vs = (TS_VSHMM *)ts->data;
+
+  PetscFunctionBegin;
+  PetscCall(VecDestroy(&vs->Xtrial));
+  PetscCall(VecDestroy(&vs->Xbase));
+  vs->adapt_ready             = PETSC_FALSE;
+  vs->adapt_since_calibration = 0;
+  vs->no_separation           = PETSC_FALSE;
+  vs->floor_warned            = PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+/* The first parameters: from each level's spectral radius and the tolerance. */
+PetscErrorCode TSVSHMMAdaptSetUp_Private(TS ts)
+{
+  TS_VSHMM      *vs      = (TS_VSHMM *)ts->data;
+  const PetscInt nscales = (PetscInt)vs->level_end.size(), K = nscales - 1;
+
+  PetscFunctionBegin;
+  if (!vs->adapt) PetscFunctionReturn(0);
+  PetscCall(VecDuplicate(ts->vec_sol, &vs->Xtrial));
+  PetscCall(VecDuplicate(ts->vec_sol, &vs->Xbase));
+  if (vs->spectra_time != ts->ptime || (PetscInt)vs->level_radius.size() != nscales) PetscCall(TSVSHMMLevelSpectra_Private(ts));
+  const PetscReal DeltaT = ts->time_step, tol = PetscMax(PetscMax(ts->rtol, ts->atol), 1e-12);
+  const PetscReal rho = vs->level_radius[K];
+
+  vshmm::AdaptParameters &p = vs->adapt_params;
+  if (vs->micro_dt > 0) p.microStep = vs->micro_dt;
+  else {
+    p.microStep = DeltaT / kDefaultMicroStepsPerMacroStep;
+    if (rho > 0) p.microStep = PetscMin(p.microStep, std::pow(tol, 1.0 / vs->tableau->order) / rho);
+    p.microStep = PetscMin(p.microStep, kStableFraction * vs->level_max_step[K]);
+  }
+  if (!vs->savings.empty()) p.ratios = vshmm::timeRatiosFromSavings(vs->savings);
+  else {
+    p.ratios.assign(K, 1.0);
+    if (!vs->no_separation)
+      for (PetscInt l = 0; l < K; ++l) {
+        const PetscReal S = vs->level_radius[l] > 0 ? vs->level_radius[l + 1] / vs->level_radius[l] : PETSC_INFINITY;
+        p.ratios[l]       = PetscMax(1.0, PetscMin(S / kInitialSeparation, 1e8));
+      }
+  }
+  LimitToStableSteps(ts, p);
+  const vshmm::AdaptBounds b = Bounds(ts, DeltaT);
+  vshmm::fitCycle(p, b.maxCycle, b.fixedRatios, true); /* enough cycles per macro step */
+  vs->savings_used  = vshmm::savingsFromTimeRatios(p.ratios);
+  vs->adapt_model   = vshmm::ErrorModel();
+  vs->adapt_tstart  = ts->ptime;
+  vs->adapt_ready   = PETSC_TRUE;
+  vs->error_estimate = vs->error_estimate_total = 0;
+  PetscCall(PetscInfo(ts, "Adapt: first parameters dt = %g, cycle %g (DeltaT %g), tolerance %g\n", (double)p.microStep, (double)vshmm::cycleLength(p), (double)DeltaT, (double)tol));
+  PetscFunctionReturn(0);
+}
+
+/* The share of the tolerance of a macro step of length DeltaT (the weighted norm's 1 over the run). */
+static PetscReal StepBudget(TS ts, PetscReal DeltaT)
+{
+  TS_VSHMM       *vs   = (TS_VSHMM *)ts->data;
+  const PetscReal span = ts->max_time - vs->adapt_tstart;
+
+  if (!(span > 0) || span >= PETSC_MAX_REAL / 2 || !std::isfinite(span)) return 1.0;
+  return PetscMin(1.0, PetscSqrtReal(DeltaT / span));
+}
+
+/* One macro step with accuracy control; the accepted result is left in ts->vec_sol. */
+PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
+{
+  TS_VSHMM      *vs = (TS_VSHMM *)ts->data;
+  const PetscInt K  = (PetscInt)vs->level_end.size() - 1;
+  const PetscReal budget = StepBudget(ts, DeltaT), t1 = t0 + DeltaT;
+
+  PetscFunctionBegin;
+  if (!vs->adapt_ready) PetscCall(TSVSHMMAdaptSetUp_Private(ts));
+  vshmm::AdaptBounds bounds = Bounds(ts, DeltaT);
+  PetscReal          Eprev  = PETSC_MAX_REAL;
+  PetscInt           stalled = 0;
+  for (PetscInt attempt = 0;; ++attempt) {
+    vshmm::AdaptParameters &p = vs->adapt_params;
+    vs->nonfinite_split       = -1;
+    vs->nonfinite_time        = PETSC_MAX_REAL;
+    const PetscBool calibrate = (attempt > 0 || vs->adapt_model.c.size() != (size_t)K || vs->adapt_since_calibration >= kRecalibrate) ? PETSC_TRUE : PETSC_FALSE;
+
+    /* The macro step with the current parameters, counted as the solve's work */
+    std::unique_ptr<vshmm::MesoscopicSchedule> schedule;
+    vshmm::MacroStepCounts                     counts;
+    const std::vector<PetscInt64>              rhs0 = vs->rhs_evaluations, lev0 = vs->level_evaluations;
+    PetscCall(Schedule(ts, p, schedule));
+    PetscCall(VecCopy(vs->X0, vs->Xbase));
+    PetscCall(TSVSHMMRunMacroStep_Private(ts, *schedule, t0, DeltaT, vs->Xbase, &counts));
+    PetscReal xnorm;
+    PetscCall(VecNorm(vs->Xbase, NORM_INFINITY, &xnorm));
+    if (!std::isfinite(xnorm) && attempt + 1 < kMaxAttempts) { /* blew up: redo with every parameter finer */
+      for (size_t k = 0; k < rhs0.size(); ++k) vs->adapt_evaluations += vs->rhs_evaluations[k] - rhs0[k];
+      vs->rhs_evaluations   = rhs0;
+      vs->level_evaluations = lev0;
+      vs->adapt_rejections++;
+      PetscCall(PetscInfo(ts, "Adapt: macro step [%g, %g] try %" PetscInt_FMT " is not finite: every parameter finer\n", (double)t0, (double)t1, attempt));
+      if (!bounds.fixedMicroStep) p.microStep *= 0.5;
+      if (!bounds.fixedRatios)
+        for (double &r : p.ratios) r = 1.0 + (r - 1.0) / 4;
+      continue;
+    }
+
+    /* Its error: one coarser run per parameter, or all coarser at once */
+    std::vector<PetscReal> d(K + 1, 0.0);
+    PetscReal              E;
+    if (calibrate) {
+      std::vector<vshmm::AdaptParameters> coarse(K + 1);
+      for (PetscInt i = 0; i <= K; ++i) {
+        coarse[i] = vshmm::coarsened(p, (int)i);
+        LimitToStableSteps(ts, coarse[i]); /* coarser, but stable */
+        if (i == 0) coarse[i].microStep = PetscMin(coarse[i].microStep, PetscMax(p.microStep, bounds.maxMicroStep));
+        coarse[i].ratios = i == 0 ? p.ratios : coarse[i].ratios;
+        if (i > 0) {
+          coarse[i].microStep = p.microStep;
+          for (PetscInt l = 0; l < K; ++l) if (l != i - 1) coarse[i].ratios[l] = p.ratios[l];
+          coarse[i].ratios[i - 1] = PetscMax(coarse[i].ratios[i - 1], p.ratios[i - 1]);
+        }
+        PetscCall(TrialStep(ts, coarse[i], t0, DeltaT, vs->Xtrial));
+        PetscCall(ObservableDifference(ts, t1, vs->Xbase, vs->Xtrial, &d[i]));
+        if (!std::isfinite(d[i])) { /* coarser is unstable: this parameter stays where it is, its error term unmeasured */
+          d[i] = 0;
+          if (i == 0) bounds.maxMicroStep = p.microStep;
+          else {
+            bounds.maxRatio.resize(K, PETSC_INFINITY);
+            bounds.maxRatio[i - 1] = p.ratios[i - 1];
+          }
+        }
+      }
+      vs->adapt_model = vshmm::ErrorModel::fromDifferences(p, coarse, std::vector<double>(d.begin(), d.end()), vs->tableau->order);
+      vs->adapt_calibrations++;
+      vs->adapt_since_calibration = 0;
+      E                           = vs->adapt_model.total(p);
+      E                           = PetscMax(E, *std::max_element(d.begin() + 1, d.end()) * 0.5); /* a level pair's difference is at least half its error under the model */
+    } else {
+      vshmm::AdaptParameters all = p;
+      PetscReal              predicted = 0, measured;
+      for (PetscInt i = 0; i <= K; ++i) all = vshmm::coarsened(all, (int)i);
+      LimitToStableSteps(ts, all);
+      all.microStep = PetscMax(p.microStep, PetscMin(all.microStep, bounds.maxMicroStep));
+      PetscCall(TrialStep(ts, all, t0, DeltaT, vs->Xtrial));
+      PetscCall(ObservableDifference(ts, t1, vs->Xbase, vs->Xtrial, &measured));
+      predicted = vs->adapt_model.total(all) - vs->adapt_model.total(p);
+      if (!std::isfinite(measured)) vs->adapt_since_calibration = kRecalibrate; /* measure each term next time */
+      else if (predicted > 0) vs->adapt_model.scale(PetscMax(0.25, measured / predicted));
+      vs->adapt_since_calibration++;
+      E = vs->adapt_model.total(p);
+    }
+
+    vshmm::AdaptParameters next = vshmm::chooseParameters(p, vs->adapt_model, kSafety * budget, bounds);
+    LimitToStableSteps(ts, next);
+    const PetscBool refinable = (next.microStep < p.microStep * 0.999 || vshmm::cycleLength(next) < vshmm::cycleLength(p) * 0.999) ? PETSC_TRUE : PETSC_FALSE;
+    PetscCall(PetscInfo(ts, "Adapt: macro step [%g, %g] try %" PetscInt_FMT ": dt %g, cycle %g, %" PetscInt64_FMT " cycles; estimate %g of its share %g (%s)\n", (double)t0, (double)t1, attempt, (double)p.microStep, (double)vshmm::cycleLength(p), counts.cycles, (double)E, (double)budget, calibrate ? "calibrated" : "rescaled"));
+    stalled               = (attempt > 0 && E > kFloorFactor * Eprev) ? stalled + 1 : 0;
+    const PetscBool floor = stalled >= 2 ? PETSC_TRUE : PETSC_FALSE; /* twice, finer parameters did not help */
+    Eprev                 = E;
+    if (E > budget && floor && !vs->floor_warned) {
+      vs->floor_warned = PETSC_TRUE;
+      PetscCall(PetscFPrintf(PetscObjectComm((PetscObject)ts), PETSC_STDERR,
+                             "TSVSHMM warning (-ts_vshmm_adapt): at t = %g the error estimate stays at %g of the tolerance share of the macro step (%g) as the parameters are refined: the %s carry a part VSHMM does not resolve (typically fast fluctuations of the sampled values). A tolerance much below %g times -ts_rtol/-ts_atol is out of reach for VSHMM here; the run goes on with the estimate reported in the statistics.\n",
+                             (double)t0, (double)E, (double)budget, vs->observables ? "observables" : "sampled states", (double)(E / budget)));
+    }
+    if (E > budget && refinable && !floor && attempt + 1 < kMaxAttempts) { /* redo with finer parameters */
+      for (size_t k = 0; k < rhs0.size(); ++k) vs->adapt_evaluations += vs->rhs_evaluations[k] - rhs0[k];
+      vs->rhs_evaluations   = rhs0;
+      vs->level_evaluations = lev0;
+      vs->adapt_rejections++;
+      p = next;
+      continue;
+    }
+    if (E > budget) PetscCall(PetscInfo(ts, "Adapt: macro step [%g, %g] accepted with estimate %g above its share %g: %s\n", (double)t0, (double)t1, (double)E, (double)budget, !refinable ? "no finer parameters allowed (user-set parameters, stability or cycle bounds)" : stalled >= 2 ? "finer parameters do not lower the estimate" : "too many tries (user-set parameters, stability or cycle bounds)"));
+    PetscCall(VecCopy(vs->Xbase, ts->vec_sol));
+    vs->micro_cycles += counts.cycles;
+    for (size_t l = 0; l < counts.levelSteps.size(); ++l) vs->level_steps[l] += counts.levelSteps[l];
+    vs->error_estimate = E;
+    vs->error_estimate_total += E;
+    vs->savings_used = vshmm::savingsFromTimeRatios(p.ratios); /* what this step used (for view and getters) */
+    vs->adapt_used   = p;
+    p                = next;
+    break;
+  }
+  PetscFunctionReturn(0);
+}

@@ -1,0 +1,115 @@
+// The accuracy-control core: time ratios, the error model and the choice of parameters.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "adapt.hpp"
+#include "kernel.hpp"
+#include "rk.hpp"
+#include "schedule.hpp"
+#include "stability.hpp"
+
+using namespace vshmm;
+
+TEST(Adapt, TimeRatiosAndSavingsFactorsAreInverse)
+{
+  // alpha = (100, 10): A_2 = dt, A_1 = 11 dt, A_0 = 111 dt
+  const std::vector<double> r = timeRatiosFromSavings({100, 10});
+  ASSERT_EQ(r.size(), 2u);
+  EXPECT_DOUBLE_EQ(r[0], 111.0 / 11.0);
+  EXPECT_DOUBLE_EQ(r[1], 11.0);
+  const std::vector<double> a = savingsFromTimeRatios(r);
+  EXPECT_NEAR(a[0], 100, 1e-12);
+  EXPECT_NEAR(a[1], 10, 1e-12);
+  EXPECT_DOUBLE_EQ(cycleLength({1e-4, r}), 111e-4);
+  // r = 1 is no savings: alpha = 0
+  EXPECT_EQ(savingsFromTimeRatios({1.0, 1.0}), (std::vector<double>{0.0, 0.0}));
+}
+
+// A synthetic macro step whose error is exactly the model's: the choice meets the target with
+// the shares the least-work rule gives, and refines the term that dominates.
+TEST(Adapt, ChoiceMeetsTheTargetWithEqualShares)
+{
+  const AdaptParameters now{1e-6, {50, 20}};
+  const double          cdt = 1e20, c0 = 1e-3, c1 = 1e-4; // e_dt = 1e-4, e_0 = 4.9e-2, e_1 = 1.9e-3
+  auto                  error = [&](const AdaptParameters &p, int i) { return i == 0 ? cdt * std::pow(p.microStep, 4) : (i == 1 ? c0 : c1) * (p.ratios[i - 1] - 1); };
+  std::vector<AdaptParameters> coarse;
+  std::vector<double>          d;
+  for (int i = 0; i < 3; ++i) {
+    coarse.push_back(coarsened(now, i));
+    d.push_back(error(coarse.back(), i) - error(now, i));
+  }
+  const ErrorModel model = ErrorModel::fromDifferences(now, coarse, d, 4);
+  EXPECT_NEAR(model.cMicro, cdt, 1e-6 * cdt);
+  EXPECT_NEAR(model.c[0], c0, 1e-15);
+  EXPECT_NEAR(model.c[1], c1, 1e-15);
+  EXPECT_NEAR(model.total(now), error(now, 0) + error(now, 1) + error(now, 2), 1e-15);
+
+  AdaptBounds bounds;
+  bounds.maxMicroStep = 1e-5;
+  bounds.maxRefine = bounds.maxGrowth = 100;
+  const double          target = 1e-2;
+  const AdaptParameters next   = chooseParameters(now, model, target, bounds);
+  EXPECT_NEAR(model.total(next), target, 1e-9);
+  // the two ratios get equal shares w, the micro step w / 4
+  const double w = target / (2 + 0.25);
+  EXPECT_NEAR(model.term(next, 1), w, 1e-9);
+  EXPECT_NEAR(model.term(next, 2), w, 1e-9);
+  EXPECT_NEAR(model.term(next, 0), w / 4, 1e-9);
+  EXPECT_LT(next.ratios[0], now.ratios[0]); // the dominant term is refined
+  EXPECT_GT(next.ratios[1], now.ratios[1]); // the small ones are coarsened
+  EXPECT_GT(next.microStep, now.microStep);
+}
+
+TEST(Adapt, ChoiceKeepsFixedParametersAndBounds)
+{
+  const AdaptParameters now{1e-6, {50, 20}};
+  ErrorModel            model;
+  model.order  = 4;
+  model.cMicro = 1e20;
+  model.c      = {1e-3, 1e-4};
+  AdaptBounds bounds;
+  bounds.fixedMicroStep = true;
+  bounds.maxRatio       = {1e9, 25};
+  bounds.maxCycle       = 1e-3;
+  const AdaptParameters next = chooseParameters(now, model, 1.0, bounds); // a loose target: coarsen
+  EXPECT_EQ(next.microStep, now.microStep);
+  EXPECT_LE(next.ratios[1], 25.0);
+  EXPECT_LE(next.ratios[0], now.ratios[0] * bounds.maxGrowth * (1 + 1e-12));
+  EXPECT_LE(cycleLength(next), 1e-3 * (1 + 1e-12));
+  bounds.fixedRatios = true;
+  const AdaptParameters same = chooseParameters(now, model, 1e-6, bounds);
+  EXPECT_EQ(same.ratios, now.ratios);
+}
+
+TEST(Adapt, StableStepsLimitMicroStepAndPeakSteps)
+{
+  AdaptParameters p{1e-4, {100, 10}};
+  limitToStableSteps(p, 2.0, {1e-2, 5e-3, 5e-5});
+  EXPECT_EQ(p.microStep, 5e-5);
+  // level 1 peak: alpha_2 dt Kmax = (r_1 - 1) dt 2 <= 5e-3 -> r_1 <= 51: unchanged at 10
+  EXPECT_EQ(p.ratios[1], 10);
+  // level 0 peak: (r_0 - 1) r_1 dt 2 <= 1e-2 -> r_0 <= 1 + 1e-2 / (10 * 5e-5 * 2) = 11
+  EXPECT_NEAR(p.ratios[0], 11, 1e-12);
+  const std::vector<double> a = savingsFromTimeRatios(p.ratios);
+  EXPECT_NEAR(a[0] * p.microStep * 2, 1e-2, 1e-15);
+}
+
+// The running product: a mode amplified near the kernel's peak but damped over the macro step
+// shows a largest running growth far above its net change.
+TEST(Adapt, LevelAmplificationReportsGrowthWithinTheMacroStep)
+{
+  const Tableau rk4("4", 4, 4, {0, 0, 0, 0, 0.5, 0, 0, 0, 0, 0.5, 0, 0, 0, 0, 1, 0}, {1.0 / 6, 1.0 / 3, 1.0 / 3, 1.0 / 6}, {0, 0.5, 0.5, 1});
+  const StabilityFunction  R(rk4);
+  const auto               kernel = Kernel::create(KernelType::Cosine);
+  const MesoscopicSchedule schedule(*kernel, 1e-3, {4}, {1});
+  // lambda = -900: RK4 is stable up to 2.785 / 900 = 3.1e-3; the mean step is 5e-3 and the peak 1e-2
+  const LevelAmplification a = levelAmplification(R, schedule, 1.0, 0, -900.0);
+  EXPECT_GT(a.largestStep * 900, R.realLimit());
+  EXPECT_GT(a.largestGrowth, a.logAmplification);
+  EXPECT_GT(a.largestGrowth, std::log(100.0));
+  // a stable mode never grows
+  const LevelAmplification b = levelAmplification(R, schedule, 1.0, 0, -10.0);
+  EXPECT_EQ(b.largestGrowth, 0.0);
+  EXPECT_LT(b.logAmplification, 0.0);
+}
