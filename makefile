@@ -4,6 +4,8 @@
 #   make build       configure and build in $(BUILD_DIR)
 #   make install PREFIX=/some/prefix
 #   make figures     build, then regenerate docs/figures/*.png, *.svg (gnuplot; a few minutes)
+#   make mutants     mutation check of the tests (tools/mutants.sh, tools/mutants.txt; long:
+#                    one rebuild and test run per mutant, in a copy of the tree under /tmp)
 #   make clean       remove $(BUILD_DIR)
 # Variables: BUILD_DIR (build), BUILD_TYPE (Release), JOBS (2), PREFIX (/usr/local),
 #            CMAKE_FLAGS (extra configure options), CTEST_FLAGS (extra ctest options).
@@ -18,7 +20,7 @@ CTEST_FLAGS ?=
 DEB_PACKAGES := petsc-dev libfftw3-dev libgtest-dev cmake pkg-config make g++ \
                 libpetsc3.18-dev-examples gnuplot-nox valgrind
 
-.PHONY: all deps configure build check demo figures install clean
+.PHONY: all deps configure build check demo figures install clean mutants
 .NOTPARALLEL:
 MAKEFLAGS += --no-print-directory
 
@@ -60,6 +62,9 @@ demo: build
 figures: build
 	sh docs/figures/make_figures.sh $(BUILD_DIR)
 	sh docs/figures/spectral_figures.sh $(BUILD_DIR)
+
+mutants: deps
+	JOBS=$(JOBS) sh tools/mutants.sh
 
 install: build
 	cmake --install $(BUILD_DIR) --prefix $(PREFIX)

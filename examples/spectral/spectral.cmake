@@ -13,7 +13,7 @@ set(_sp_dir ${PROJECT_BINARY_DIR}/tests/output)
 set(_sp_diff -grid_points 256 -diffusion_coefficient_wavenumbers 16,64 -output_times 0.125,0.25)
 set(_sp_diff_sparse -mode sparse -clusters 0:3,14:18,48:49,63:65)
 set(_sp_diff_vshmm -ts_type vshmm -ts_dt 0.125 -ts_vshmm_micro_dt 1e-4 -ts_vshmm_savings_factors 150,18,1.5 -ts_vshmm_rk_type 3)
-set(_sp_adv -grid_points 256 -velocity_denominator_wavenumbers 16,64 -output_times 2,4)
+set(_sp_adv -grid_points 256 -velocity_denominator_wavenumbers 16,64 -output_times 2,4,8)
 set(_sp_adv_sparse -mode sparse -clusters 0:6,10:22,29:41,62:66)
 set(_sp_adv_vshmm -ts_type vshmm -ts_dt 1 -ts_vshmm_micro_dt 4e-3 -ts_vshmm_savings_factors 26,9,2 -ts_vshmm_rk_type 3)
 
@@ -44,7 +44,6 @@ vshmm_example_test(NAME spectral_diffusion_vshmm_small_vs_dns EXE diffusion
                    REGEX "compare t 0.25 relative_l2_error")
 # against the explicit sparse method on the same clusters: VSHMM's own error (3.9e-3, 3.5e-3):
 # tolerance 6e-3; the same on 2 ranks, with the dense-operator evaluation and with FFT projections.
-# (The work counts of VSHMM runs are not compared: they include TSVSHMM's own set-up work.)
 vshmm_example_test(NAME spectral_diffusion_vshmm_small_vs_sparse EXE diffusion
                    ARGS ${_sp_diff} ${_sp_diff_sparse} ${_sp_diff_vshmm}
                         -compare_grid_solution ${_sp_dir}/spectral_diffusion_sparse_small/sparse -compare_tolerance 6e-3 -no_timing
@@ -61,15 +60,60 @@ vshmm_example_test(NAME spectral_diffusion_vshmm_small_fftproj EXE diffusion
                    ARGS ${_sp_diff} ${_sp_diff_sparse} ${_sp_diff_vshmm} -spectral_projection fft
                         -compare_grid_solution ${_sp_dir}/spectral_diffusion_sparse_small/sparse -compare_tolerance 6e-3 -no_timing
                    REGEX "direct_modes 0")
-# advection: against the DNS (4.6e-2, 1.2e-1 at t = 2, 4; the sparse method alone: 2.4e-2, 4.6e-2): tolerance 0.2
+# advection (issue 12: checked tightly enough to see a stale physical-space cache, which moved the
+# error at t = 2 by 5-17% and the transform counts by a third, while the old tolerance was 0.2).
+# Each run's expected output holds its measured errors, compared within 2% (RTOL 2e-2, so the
+# counts there only within 2%), and REGEX requires the exact work counts (evaluations, transforms)
+# at the last output time. Against the DNS: 4.6e-2, 1.2e-1, 2.5e-1 at t = 2, 4, 8 (the sparse
+# method alone: 2.4e-2, 4.6e-2).
 vshmm_example_test(NAME spectral_advection_vshmm_small_vs_dns EXE advection
                    ARGS ${_sp_adv} ${_sp_adv_sparse} ${_sp_adv_vshmm}
-                        -compare_grid_solution ${_sp_dir}/spectral_advection_dns_small/dns -compare_tolerance 0.2 -no_timing
-                   REGEX "compare t 4 relative_l2_error")
+                        -compare_grid_solution ${_sp_dir}/spectral_advection_dns_small/dns -no_timing
+                   OUTPUT output/advection_vshmm_small_vs_dns.out RTOL 2e-2 ATOL 0
+                   REGEX "output t 8 rhs_evaluations 642 split_evaluations 1608 inverse_ffts 642 forward_ffts 642 direct_modes 0\n")
+# RK4 inner steps (two stages at the same time t + h/2 on the same stage Vec: the case a cache
+# keyed without the Vec's state gets wrong), against the explicit sparse method: VSHMM's own error
+# 4.3e-2, 1.1e-1, 2.5e-1; on 1 and 2 ranks.
+foreach(np 1 2)
+  vshmm_example_test(NAME spectral_advection_vshmm_small_rk4_np${np} EXE advection NP ${np}
+                     ARGS ${_sp_adv} ${_sp_adv_sparse} ${_sp_adv_vshmm} -ts_vshmm_rk_type 4
+                          -compare_grid_solution ${_sp_dir}/spectral_advection_sparse_small/sparse -no_timing
+                     OUTPUT output/advection_vshmm_small_rk4_vs_sparse.out RTOL 2e-2 ATOL 0
+                     REGEX "output t 8 rhs_evaluations 834 split_evaluations 2088 inverse_ffts 834 forward_ffts 834 direct_modes 0\n")
+endforeach()
+# The paper's scene itself (N = 1024, examples/scenes/advection.yaml) to t = 9 against the explicit
+# sparse method on the same clusters (RK3, dt = 1e-3; dt = 2e-3 differs from it by 9e-4): error
+# 4.4e-2 (a stale cache: 0.67, and 3.4e12 by t = 36). About 1 s for both runs.
+set(_sp_scene -options_file_yaml ${PROJECT_SOURCE_DIR}/examples/scenes/advection.yaml -output_times 9)
+vshmm_example_test(NAME spectral_advection_scene_sparse EXE advection
+                   ARGS ${_sp_scene} -ts_type rk -ts_rk_type 3 -ts_dt 1e-3 -grid_solution_file sparse -no_timing
+                   OUTPUT output/advection_scene_sparse.out RTOL 1e-9 ATOL 1e-12)
+set_tests_properties(spectral_advection_scene_sparse PROPERTIES FIXTURES_SETUP spectral_advection_scene_ref)
+vshmm_example_test(NAME spectral_advection_scene_vshmm EXE advection
+                   ARGS ${_sp_scene} -compare_grid_solution ${_sp_dir}/spectral_advection_scene_sparse/sparse -no_timing
+                   OUTPUT output/advection_scene_vshmm_vs_sparse.out RTOL 2e-2 ATOL 0
+                   REGEX "output t 9 rhs_evaluations 2660 split_evaluations 6650 inverse_ffts 2660 forward_ffts 2660 direct_modes 0\n")
+set_tests_properties(spectral_advection_scene_vshmm PROPERTIES FIXTURES_REQUIRED spectral_advection_scene_ref)
+# Odd N (no Nyquist mode: N = 255, wavenumbers 0..127): the reduced advection scene, DNS and VSHMM
+# against it (errors 3.6e-2, 9.7e-2 at t = 2, 4; N = 256: 4.6e-2, 1.2e-1), VSHMM on 1 and 2 ranks.
+set(_sp_odd -grid_points 255 -velocity_denominator_wavenumbers 16,64 -output_times 2,4)
+vshmm_example_test(NAME spectral_advection_dns_odd EXE advection
+                   ARGS ${_sp_odd} -ts_dt 2e-3 -grid_solution_file dns -no_timing
+                   OUTPUT output/advection_dns_odd.out RTOL 1e-9 ATOL 1e-12)
+set_tests_properties(spectral_advection_dns_odd PROPERTIES FIXTURES_SETUP spectral_advection_odd_ref)
+foreach(np 1 2)
+  vshmm_example_test(NAME spectral_advection_vshmm_odd_np${np} EXE advection NP ${np}
+                     ARGS ${_sp_odd} ${_sp_adv_sparse} ${_sp_adv_vshmm}
+                          -compare_grid_solution ${_sp_dir}/spectral_advection_dns_odd/dns -no_timing
+                     OUTPUT output/advection_vshmm_odd_vs_dns.out RTOL 2e-2 ATOL 0
+                     REGEX "output t 4 rhs_evaluations 354 split_evaluations 888 inverse_ffts 354 forward_ffts 354 direct_modes 0\n")
+  set_tests_properties(spectral_advection_vshmm_odd_np${np} PROPERTIES FIXTURES_REQUIRED spectral_advection_odd_ref)
+endforeach()
 set_tests_properties(spectral_diffusion_vshmm_small_vs_dns spectral_diffusion_vshmm_small_vs_sparse
   spectral_diffusion_vshmm_small_vs_sparse_np2 spectral_diffusion_vshmm_small_matrix spectral_diffusion_vshmm_small_fftproj
   PROPERTIES FIXTURES_REQUIRED spectral_diffusion_refs)
-set_tests_properties(spectral_advection_vshmm_small_vs_dns PROPERTIES FIXTURES_REQUIRED spectral_advection_refs)
+set_tests_properties(spectral_advection_vshmm_small_vs_dns spectral_advection_vshmm_small_rk4_np1 spectral_advection_vshmm_small_rk4_np2
+  PROPERTIES FIXTURES_REQUIRED spectral_advection_refs)
 
 # --- cluster detection (soft thresholding, lambda = 10^-2.5, unitary normalisation) ----------
 vshmm_example_test(NAME spectral_detect_dns_small EXE diffusion

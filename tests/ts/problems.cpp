@@ -21,6 +21,33 @@ std::vector<SplitCtx> &Contexts(SplitProblem *p)
   return all.back().second;
 }
 
+// Follows the level TSVSHMM is evaluating: the level whose evaluation count moved since the last
+// call (none moved: the same level evaluation as the last call; the stability check's count
+// moved: level -1).
+PetscErrorCode FollowCall(SplitProblem *p, int split, PetscReal t, bool *inject)
+{
+  TSVSHMMStatistics st;
+  PetscReal         t0;
+
+  PetscFunctionBeginUser;
+  PetscCall(TSVSHMMGetStatistics(p->ts, &st));
+  if ((PetscInt)p->seen_evaluations.size() != st.nscales) { // a new set-up: counts start at 0
+    p->seen_evaluations.assign(st.nscales, 0);
+    p->seen_stability = 0;
+  }
+  for (PetscInt l = 0; l < st.nscales; ++l)
+    if (st.level_evaluations[l] != p->seen_evaluations[l]) p->level = (int)l;
+  if (st.stability_evaluations != p->seen_stability) p->level = -1;
+  p->seen_evaluations.assign(st.level_evaluations, st.level_evaluations + st.nscales);
+  p->seen_stability = st.stability_evaluations;
+  if ((int)p->split_calls.size() < (int)p->terms.size()) p->split_calls.resize(p->terms.size(), 0);
+  const long call = ++p->split_calls[split];
+  PetscCall(TSGetTime(p->ts, &t0));
+  if (p->trace) p->trace->push_back(SplitCall{split, call, p->level, t, t0});
+  *inject = split == p->nan_split && call == p->nan_call;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SplitFunction(TS, PetscReal t, Vec X, Vec F, void *vctx)
 {
   SplitCtx          *ctx = (SplitCtx *)vctx;
@@ -38,6 +65,12 @@ PetscErrorCode SplitFunction(TS, PetscReal t, Vec X, Vec F, void *vctx)
   if (ctx->scale == (PetscInt)p->terms.size() - 1) {
     p->calls++;
     if ((p->nan_after_calls >= 0 && p->calls > p->nan_after_calls) || t > p->nan_after_time) full[p->n - 1] = NAN;
+  }
+  if (p->trace || p->nan_split >= 0) {
+    bool inject;
+    PetscCall(FollowCall(p, (int)ctx->scale, t, &inject));
+    if (inject)
+      for (PetscInt i = 0; i < p->n; ++i) full[i] = NAN;
   }
   PetscCall(VecGetArray(F, &fa));
   for (size_t i = 0; i < ctx->components.size(); ++i) fa[i] = full[ctx->components[i]];
@@ -88,6 +121,7 @@ PetscErrorCode CreateSplitTS(MPI_Comm comm, SplitProblem *p, SplitKind kind, con
 
   PetscCall(TSCreate(comm, ts));
   PetscCall(TSSetType(*ts, TSVSHMM));
+  p->ts = *ts;
   PetscCall(TSSetRHSFunction(*ts, nullptr, FullFunction, p));
   std::vector<SplitCtx> &ctxs = Contexts(p);
   ctxs.assign(nscales, SplitCtx{p, 0, kind, {}});
