@@ -34,7 +34,6 @@ static constexpr PetscInt  kMaxAttempts       = 8;    /* tries of one macro step
 static constexpr PetscInt  kMinCycles         = 20;   /* micro cycles per macro step at least */
 static constexpr PetscReal kStableFraction    = 0.9;  /* of the largest stable step */
 static constexpr PetscReal kFloorFactor       = 0.7;  /* a refinement that lowers the estimate by less than this has hit its floor */
-static constexpr int       kModelOrder        = 2;    /* order assumed for the micro step's error term */
 
 const char *const TSVSHMMSeparationChecks[] = {"off", "warn", "error", "TSVSHMMSeparationCheck", "TSVSHMM_SEPARATION_", nullptr};
 
