@@ -18,6 +18,8 @@ Options:\n\
   -slow_csv <file>               : write t,xi after every step (every sampled time) as CSV\n\
   -slow_csv_stride <1>           : write only every n-th step (and the last) to the CSV file\n\
   -no_timing                     : do not print the wall_time line (for output comparisons)\n\
+  -observe_state                 : -ts_vshmm_adapt controls the error of the whole state (in PETSc's\n\
+                                   weighted norm) instead of the slow variable xi\n\
 \n\
 The default time stepper is TSRK with time step 0.1 (the VSHMM sampling interval) and final time 2.\n\
 Typical runs:\n\
@@ -226,6 +228,18 @@ static PetscErrorCode RHSFast(TS ts, PetscReal t, Vec U, Vec F, void *ctx)
 }
 
 /* Print xi at the sampled times that are multiples of print_interval; write the CSV file. */
+/* The observable of -ts_vshmm_adapt: the slow variable xi (TSVSHMMSetObservables()). */
+static PetscErrorCode Observables(TS ts, PetscReal t, Vec U, PetscReal q[], void *ctx)
+{
+  const PetscScalar *x;
+
+  PetscFunctionBeginUser;
+  PetscCall(GatherState((AppCtx *)ctx, U, &x));
+  q[0] = PetscRealPart(x[0]);
+  PetscCall(RestoreState((AppCtx *)ctx, &x));
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode Monitor(TS ts, PetscInt step, PetscReal t, Vec U, void *ctx)
 {
   AppCtx            *user = (AppCtx *)ctx;
@@ -259,7 +273,7 @@ int main(int argc, char **argv)
   PetscReal   x0[3]  = {5.0, -10.0, 5.0}, tfinal, xi, t0, t1;
   PetscInt    nx0    = 3, n, lo, hi, k, steps;
   PetscInt64  nevals = 0;
-  PetscBool   isvshmm, timing = PETSC_TRUE, flg;
+  PetscBool   isvshmm, timing = PETSC_TRUE, flg, observe_state = PETSC_FALSE;
   PetscInt    split_kind = SPLIT_COMPONENT, mode = MODE_FULL;
   char        csvname[PETSC_MAX_PATH_LEN] = "";
   const char *splitnames[3]               = {"slow", "medium", "fast"};
@@ -287,6 +301,7 @@ int main(int argc, char **argv)
   flg = PETSC_FALSE;
   PetscCall(PetscOptionsBool("-no_timing", "omit the wall_time line", NULL, flg, &flg, NULL));
   timing = flg ? PETSC_FALSE : PETSC_TRUE;
+  PetscCall(PetscOptionsBool("-observe_state", "-ts_vshmm_adapt controls the whole state, not xi", NULL, observe_state, &observe_state, NULL));
   PetscOptionsEnd();
   PetscCheck(user.eps > 0, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "-eps must be positive");
   PetscCheck(user.print_interval > 0, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "-print_interval must be positive");
@@ -342,6 +357,7 @@ int main(int argc, char **argv)
   PetscCall(TSSetMaxSteps(ts, 100000000));
   PetscCall(TSSetExactFinalTime(ts, TS_EXACTFINALTIME_MATCHSTEP));
   PetscCall(TSMonitorSet(ts, Monitor, &user, NULL));
+  if (user.mode == MODE_FULL && !observe_state) PetscCall(TSVSHMMSetObservables(ts, 1, Observables, &user)); /* the tolerance of -ts_vshmm_adapt applies to xi */
   PetscCall(TSSetFromOptions(ts));
 
   user.next_print = 0.0;
@@ -377,7 +393,9 @@ int main(int argc, char **argv)
     for (k = 0; k < stats.nsplits; k++) nevals += stats.rhs_evaluations[k];
     /* cross-check the library's statistics against this program's own count of split calls
        (which also sees the calls of the library's stability check) */
-    if (nevals + stats.stability_evaluations != user.nsplit) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "note: statistics count %lld split evaluations, the split functions counted %lld\n", (long long)nevals, (long long)user.nsplit));
+    if (nevals + stats.stability_evaluations + stats.adapt_evaluations != user.nsplit) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "note: statistics count %lld split evaluations, the split functions counted %lld\n", (long long)(nevals + stats.stability_evaluations + stats.adapt_evaluations), (long long)user.nsplit));
+    PetscCall(TSVSHMMGetAdapt(ts, &flg));
+    if (flg) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "adapt: error_estimate %.3e (sum over the run; 1 = the tolerance) estimation_evaluations %lld rejections %lld\n", (double)stats.error_estimate_total, (long long)stats.adapt_evaluations, (long long)stats.adapt_rejections));
   } else {
     nevals = user.nrhs;
   }

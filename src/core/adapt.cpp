@@ -38,12 +38,54 @@ double cycleLength(const AdaptParameters &p)
   return a;
 }
 
-AdaptParameters coarsened(const AdaptParameters &p, int which)
+namespace {
+
+double productOfRatios(const AdaptParameters &p)
+{
+  double R = 1.0;
+  for (double r : p.ratios) R *= r;
+  return R;
+}
+
+// dt^order / prod r_l: the micro-step term per unit coefficient (the fast scale's error per
+// micro step, dt^(order+1), times the number of cycles, DeltaT / (dt prod r_l)).
+double microUnit(const AdaptParameters &p, int order) { return std::pow(p.microStep, order) / productOfRatios(p); }
+
+} // namespace
+
+AdaptParameters coarsened(const AdaptParameters &p, int which, double factor)
 {
   AdaptParameters q = p;
-  if (which == 0) q.microStep *= 2.0;
-  else q.ratios[which - 1] *= 2.0;
+  if (which == 0) q.microStep *= factor;
+  else q.ratios[which - 1] = 1.0 + factor * (q.ratios[which - 1] - 1.0);
   return q;
+}
+
+AdaptParameters termsScaled(const AdaptParameters &p, double factor, int order)
+{
+  AdaptParameters q = p;
+  for (double &r : q.ratios) r = 1.0 + factor * (r - 1.0);
+  q.microStep *= std::pow(factor * productOfRatios(q) / productOfRatios(p), 1.0 / order);
+  return q;
+}
+
+void limitWorkChange(AdaptParameters &next, const AdaptParameters &now, double maxCheaper, double maxDearer)
+{
+  // log changes of the cycle length's factors: > 0 coarsens (cheaper), < 0 refines
+  const int           K = (int)now.ratios.size();
+  std::vector<double> c(K + 1);
+  c[0] = std::log(next.microStep / now.microStep);
+  for (int l = 0; l < K; ++l) c[1 + l] = std::log(next.ratios[l] / now.ratios[l]);
+  double coarser = 0.0, finer = 0.0;
+  for (double x : c) (x > 0 ? coarser : finer) += x;
+  // too cheap: shorten the coarsening changes only; too dear: the refining ones only
+  double fc = 1.0, ff = 1.0;
+  if (coarser + finer > std::log(maxCheaper) && coarser > 0) fc = std::max(0.0, (std::log(maxCheaper) - finer) / coarser);
+  if (coarser + finer < -std::log(maxDearer) && finer < 0) ff = std::max(0.0, (-std::log(maxDearer) - coarser) / finer);
+  if (fc >= 1.0 && ff >= 1.0) return;
+  auto f         = [&](double x) { return x > 0 ? std::min(fc, 1.0) * x : std::min(ff, 1.0) * x; };
+  next.microStep = now.microStep * std::exp(f(c[0]));
+  for (int l = 0; l < K; ++l) next.ratios[l] = now.ratios[l] * std::exp(f(c[1 + l]));
 }
 
 ErrorModel ErrorModel::fromDifferences(const AdaptParameters &p, const std::vector<AdaptParameters> &coarse, const std::vector<double> &d, int order)
@@ -51,19 +93,43 @@ ErrorModel ErrorModel::fromDifferences(const AdaptParameters &p, const std::vect
   ErrorModel m;
   m.order        = order;
   // a parameter coarsened by less than 10% is taken as not measurable (its coefficient 0)
-  const double u = std::pow(coarse[0].microStep, order) - std::pow(p.microStep, order);
+  const double u = microUnit(coarse[0], order) - microUnit(p, order);
   m.cMicro       = coarse[0].microStep > 1.1 * p.microStep ? d[0] / u : 0.0;
   m.c.resize(p.ratios.size());
   for (size_t l = 0; l < p.ratios.size(); ++l) {
     const double v = coarse[1 + l].ratios[l] - p.ratios[l];
-    m.c[l]         = v > 0.1 * p.ratios[l] ? d[1 + l] / v : 0.0;
+    m.c[l]         = v > 0 && v > 0.1 * (p.ratios[l] - 1.0) ? d[1 + l] / v : 0.0;
   }
   return m;
 }
 
+ErrorModel ErrorModel::equalShares(const AdaptParameters &p, int order, double total)
+{
+  ErrorModel m;
+  m.order = order;
+  m.c.assign(p.ratios.size(), 0.0);
+  int n = 0;
+  for (double r : p.ratios) n += r > 1.0 ? 1 : 0;
+  const double w = total / (n + 1.0 / (order + 1));
+  m.cMicro       = p.microStep > 0 ? w / (order + 1) / microUnit(p, order) : 0.0;
+  for (size_t l = 0; l < p.ratios.size(); ++l)
+    if (p.ratios[l] > 1.0) m.c[l] = w / (p.ratios[l] - 1.0);
+  return m;
+}
+
+void ErrorModel::floorShares(const AdaptParameters &p, double fraction)
+{
+  const double before = total(p);
+  if (!(before > 0)) return;
+  if (p.microStep > 0) cMicro = std::max(cMicro, fraction * before / microUnit(p, order));
+  for (size_t l = 0; l < c.size(); ++l)
+    if (p.ratios[l] > 1.0) c[l] = std::max(c[l], fraction * before / (p.ratios[l] - 1.0));
+  scale(before / total(p));
+}
+
 double ErrorModel::term(const AdaptParameters &p, int which) const
 {
-  if (which == 0) return cMicro * std::pow(p.microStep, order);
+  if (which == 0) return cMicro * microUnit(p, order);
   return c[which - 1] * (p.ratios[which - 1] - 1.0);
 }
 
@@ -113,8 +179,10 @@ AdaptParameters chooseParameters(const AdaptParameters &now, const ErrorModel &m
     rLo[l]            = std::min(rLo[l], rHi[l]);
   }
 
-  // Equal shares w for the free ratios and w / order for the micro step; a parameter that hits
-  // its range keeps its own error and the others share the rest (a few passes settle it).
+  // Equal shares w for the free ratios and w / (order + 1) for the micro step (the least-work
+  // split when e_dt = c dt^order / prod r_l); a parameter that hits its range keeps its own error
+  // and the others share the rest (a few passes settle it). The ratios first: the micro step's
+  // term depends on them.
   std::vector<bool> pinned(K + 1, false);
   pinned[0] = bounds.fixedMicroStep;
   for (int l = 0; l < K; ++l) pinned[1 + l] = bounds.fixedRatios;
@@ -122,21 +190,12 @@ AdaptParameters chooseParameters(const AdaptParameters &now, const ErrorModel &m
     double used = 0.0, weights = 0.0;
     for (int i = 0; i <= K; ++i) {
       if (pinned[i]) used += model.term(next, i);
-      else weights += i == 0 ? 1.0 / model.order : 1.0;
+      else weights += i == 0 ? 1.0 / (model.order + 1) : 1.0;
     }
     if (weights == 0.0) break;
     const double budget = std::max(target - used, 0.05 * target);
     const double w      = budget / weights;
     bool         again  = false;
-    if (!pinned[0]) {
-      const double share = w / model.order;
-      double       dt    = model.cMicro > 0 ? std::pow(share / model.cMicro, 1.0 / model.order) : dtHi;
-      if (dt <= dtLo || dt >= dtHi) {
-        pinned[0] = again = true;
-        dt                = clampTo(dt, dtLo, dtHi);
-      }
-      next.microStep = dt;
-    }
     for (int l = 0; l < K; ++l) {
       if (pinned[1 + l]) continue;
       double r = model.c[l] > 0 ? 1.0 + w / model.c[l] : rHi[l];
@@ -145,6 +204,15 @@ AdaptParameters chooseParameters(const AdaptParameters &now, const ErrorModel &m
         r                     = clampTo(r, rLo[l], rHi[l]);
       }
       next.ratios[l] = r;
+    }
+    if (!pinned[0]) {
+      const double share = w / (model.order + 1);
+      double       dt    = model.cMicro > 0 ? std::pow(share * productOfRatios(next) / model.cMicro, 1.0 / model.order) : dtHi;
+      if (dt <= dtLo || dt >= dtHi) {
+        pinned[0] = again = true;
+        dt                = clampTo(dt, dtLo, dtHi);
+      }
+      next.microStep = dt;
     }
     if (!again) break;
   }

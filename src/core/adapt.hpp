@@ -10,12 +10,13 @@
 //
 // Error model (measured in docs/user-guide.md "Accuracy on request"): the error of the slow
 // quantities over a macro step is a sum of one term per parameter,
-//   e_dt = c_dt dt^p            (the micro step: discretisation of the fast scale, accumulated)
+//   e_dt = c_dt dt^p / prod r_l (the micro step: the fast scale's error per micro step, dt^(p+1),
+//                                times the number of cycles in the macro step, DeltaT / A_0)
 //   e_l  = c_l (r_l - 1)        (level pair l: averaging error ~ 1/sigma_l, none when merged).
 // The c's are measured by comparing the macro step with one whose parameter is coarsened
-// (dt -> 2 dt, r_l -> 2 r_l). Work per macro step is proportional to 1 / A_0 = 1 / (dt prod r_l),
-// so the cheapest parameters for a total error E give each free ratio the same share w of E and
-// the micro step the share w / p.
+// (dt -> 2 dt, r_l - 1 -> 2 (r_l - 1)). Work per macro step is proportional to
+// 1 / A_0 = 1 / (dt prod r_l), so the cheapest parameters for a total error E give each free ratio
+// (about) the same share w of E and the micro step the share w / (p + 1).
 #pragma once
 
 #include <vector>
@@ -35,11 +36,24 @@ struct AdaptParameters {
 // Cycle length A_0 = dt prod r_l.
 double cycleLength(const AdaptParameters &p);
 
-// The coarsened parameters whose comparison measures one error term: which = 0 doubles the micro
-// step, which = 1 + l doubles r_l.
-AdaptParameters coarsened(const AdaptParameters &p, int which);
+// The coarsened parameters whose comparison measures one error term: which = 0 multiplies the
+// micro step by `factor`, which = 1 + l multiplies r_l - 1 (and so the term e_l; a merged pair,
+// r_l = 1, stays merged).
+AdaptParameters coarsened(const AdaptParameters &p, int which, double factor = 2.0);
 
-// The error model: e_dt = cMicro dt^order, e_l = c[l] (r_l - 1).
+// The parameters whose every error term is `factor` times that of p: each r_l - 1 times factor,
+// and dt so that dt^order / prod r_l is too. Under the model the difference of the two macro
+// steps is (factor - 1) times the error of p, whatever the coefficients; with factor 2 the
+// comparison costs about 1/7 of the step (K = 2, RK4).
+AdaptParameters termsScaled(const AdaptParameters &p, double factor, int order);
+
+// Moves `next` back towards `now` so that the work per macro step (1 / cycle length) falls by at
+// most maxCheaper and rises by at most maxDearer: the parameters that coarsen (or, when too dear,
+// those that refine) are moved back geometrically by one fraction; the others keep their change
+// (a choice that moves the error from one term to another is not undone).
+void limitWorkChange(AdaptParameters &next, const AdaptParameters &now, double maxCheaper, double maxDearer);
+
+// The error model: e_dt = cMicro dt^order / prod r_l, e_l = c[l] (r_l - 1).
 struct ErrorModel {
   double              cMicro = 0.0;
   std::vector<double> c;
@@ -49,9 +63,16 @@ struct ErrorModel {
   // differs from p in parameter i only (dt, or r_{i-1}): d_i = term_i(coarse[i]) - term_i(p).
   // A parameter that could not be coarsened (coarse[i] equal to p) gets coefficient 0.
   static ErrorModel fromDifferences(const AdaptParameters &p, const std::vector<AdaptParameters> &coarse, const std::vector<double> &differences, int order);
+  // Equal shares at p (the least-work split, as if p were the best parameters for its error):
+  // every level pair with r_l > 1 has the term `total` / (n + 1 / (order + 1)), the micro step
+  // 1 / (order + 1) of that, for n such pairs. The model before anything is measured.
+  static ErrorModel equalShares(const AdaptParameters &p, int order, double total);
   double term(const AdaptParameters &p, int which) const; // e_dt (which = 0) or e_l (which = 1 + l)
   double total(const AdaptParameters &p) const;
   void   scale(double f); // every coefficient times f (a new measurement of the total)
+  // Every term at least `fraction` of the total at p (a term measured as about zero could
+  // otherwise grow without limit on one noisy measurement); the total is kept.
+  void   floorShares(const AdaptParameters &p, double fraction);
 };
 
 // What the choice must respect.

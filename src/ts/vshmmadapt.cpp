@@ -30,10 +30,18 @@ static constexpr PetscReal kMinSeparation     = 10;   /* a pair of levels this f
 static constexpr PetscReal kInitialSeparation = 10;   /* effective separation sigma_l of the first parameters */
 static constexpr PetscReal kSafety            = 0.8;  /* the parameters aim at this fraction of a step's share */
 static constexpr PetscInt  kRecalibrate       = 10;   /* macro steps between full measurements of the model */
-static constexpr PetscInt  kMaxAttempts       = 8;    /* tries of one macro step */
+static constexpr PetscInt  kMaxAttempts       = 12;   /* tries of one macro step */
 static constexpr PetscInt  kMinCycles         = 20;   /* micro cycles per macro step at least */
 static constexpr PetscReal kStableFraction    = 0.9;  /* of the largest stable step */
 static constexpr PetscReal kFloorFactor       = 0.7;  /* a refinement that lowers the estimate by less than this has hit its floor */
+static constexpr PetscReal kMinShare          = 1e-3; /* no error term is taken as less than this share of the estimate */
+static constexpr PetscReal kRatioCoarsening   = 4;    /* a calibration's coarser r_l - 1 */
+static constexpr PetscInt  kComparisons       = 1;    /* comparison runs per estimate, */
+static constexpr PetscReal kComparisonFactor[2] = {2, 3}; /* each with every error term this many times that of the step */
+static constexpr PetscReal kMaxCheaper        = 8;    /* after an accepted step the work may fall by this factor at most */
+static constexpr PetscReal kWarn              = 2;    /* a step accepted with an estimate above this many shares is reported on stderr */
+static constexpr PetscReal kFloorAccept       = 4;    /* an estimate above this many shares is never taken as a noise floor */
+static constexpr PetscReal kMaxDearer         = 4;    /* and rise by this factor at most per try (the estimate is noisy: refining in steps wastes less) */
 
 const char *const TSVSHMMSeparationChecks[] = {"off", "warn", "error", "TSVSHMMSeparationCheck", "TSVSHMM_SEPARATION_", nullptr};
 
@@ -167,6 +175,8 @@ PetscErrorCode TSVSHMMAdaptReset_Private(TS ts)
   PetscCall(VecDestroy(&vs->Xbase));
   vs->adapt_ready             = PETSC_FALSE;
   vs->adapt_since_calibration = 0;
+  vs->adapt_calibrated        = PETSC_FALSE;
+  vs->adapt_calibrated_times  = 0;
   vs->no_separation           = PETSC_FALSE;
   vs->floor_warned            = PETSC_FALSE;
   PetscFunctionReturn(0);
@@ -224,23 +234,141 @@ static PetscReal StepBudget(TS ts, PetscReal DeltaT)
   return PetscMin(1.0, PetscSqrtReal(DeltaT / span));
 }
 
+/* The work of a try that is not kept goes to the estimation work; the solve's counters are restored. */
+static void DiscardTry(TS_VSHMM *vs, const std::vector<PetscInt64> &rhs0, const std::vector<PetscInt64> &lev0)
+{
+  for (size_t k = 0; k < rhs0.size(); ++k) vs->adapt_evaluations += vs->rhs_evaluations[k] - rhs0[k];
+  vs->rhs_evaluations   = rhs0;
+  vs->level_evaluations = lev0;
+  vs->adapt_rejections++;
+}
+
+/* A comparison run's parameters: q kept inside the stability region but never finer than p in any
+   parameter (a comparison may coarsen a parameter the user set: it only measures). */
+static vshmm::AdaptParameters Comparison(TS ts, const vshmm::AdaptParameters &p, vshmm::AdaptParameters q)
+{
+  TS_VSHMM           *vs = (TS_VSHMM *)ts->data;
+  std::vector<double> hmax(vs->level_max_step.size());
+
+  for (size_t l = 0; l < hmax.size(); ++l) hmax[l] = kStableFraction * vs->level_max_step[l];
+  vshmm::limitToStableSteps(q, vs->kernel->value(0.5), hmax);
+  q.microStep = PetscMax(q.microStep, p.microStep);
+  for (size_t l = 0; l < q.ratios.size(); ++l) q.ratios[l] = PetscMax(q.ratios[l], p.ratios[l]);
+  return q;
+}
+
+/* The comparisons of the macro step just taken from X0 into Xbase with p: the same step with every
+   error term doubled and tripled (vshmm::termsScaled). Under the model their differences d are 1
+   and 2 times the error of p (Estimate); the faster levels' phase at the sampling
+   time makes each of them noisy (a factor 3 either way on the oscillators), so the larger of the
+   two estimates is taken. A comparison that is not finite is tried again with the micro step of p,
+   and is left out if it is still not finite. */
+struct Comparisons {
+  std::vector<vshmm::AdaptParameters> q;
+  std::vector<PetscReal>              d;
+};
+
+static PetscErrorCode Compare(TS ts, const vshmm::AdaptParameters &p, PetscReal t0, PetscReal DeltaT, Comparisons &c)
+{
+  TS_VSHMM              *vs = (TS_VSHMM *)ts->data;
+  PetscFunctionBegin;
+  c.q.clear();
+  c.d.clear();
+  for (PetscInt k = 0; k < kComparisons; ++k) {
+    PetscReal d;
+    vshmm::AdaptParameters q = Comparison(ts, p, vshmm::termsScaled(p, kComparisonFactor[k], vs->tableau->order));
+    PetscCall(TrialStep(ts, q, t0, DeltaT, vs->Xtrial));
+    PetscCall(ObservableDifference(ts, t0 + DeltaT, vs->Xbase, vs->Xtrial, &d));
+    if (!std::isfinite(d) && q.microStep > p.microStep) {
+      PetscCall(PetscInfo(ts, "Adapt: the comparison with dt %g is not finite; comparing with dt %g\n", (double)q.microStep, (double)p.microStep));
+      q.microStep = p.microStep;
+      PetscCall(TrialStep(ts, q, t0, DeltaT, vs->Xtrial));
+      PetscCall(ObservableDifference(ts, t0 + DeltaT, vs->Xbase, vs->Xtrial, &d));
+    }
+    PetscCall(PetscInfo(ts, "Adapt: comparison dt %g, cycle %g: difference %g\n", (double)q.microStep, (double)vshmm::cycleLength(q), (double)d));
+    if (!std::isfinite(d)) break; /* a coarser one would not be finite either */
+    c.q.push_back(q);
+    c.d.push_back(d);
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The error of p: the largest of the comparisons' differences converted with the model. */
+static PetscReal Estimate(const vshmm::ErrorModel &model, const vshmm::AdaptParameters &p, const Comparisons &c)
+{
+  PetscReal E = c.d.empty() ? PETSC_INFINITY : 0;
+  for (size_t k = 0; k < c.d.size(); ++k) {
+    const PetscReal before = model.total(p), predicted = model.total(c.q[k]) - before;
+    E                      = PetscMax(E, predicted > 0 ? c.d[k] * before / predicted : c.d[k]);
+  }
+  return E;
+}
+
+/* The error model's split between the terms: one comparison run per parameter, the micro step
+   doubled or r_l - 1 times kRatioCoarsening (vshmm::coarsened; each costs 1/2 or 1/4 of the step). A parameter whose coarser run is not finite stays where it is. */
+static PetscErrorCode Calibrate(TS ts, const vshmm::AdaptParameters &p, PetscReal t0, PetscReal DeltaT, vshmm::AdaptBounds &bounds)
+{
+  TS_VSHMM                           *vs = (TS_VSHMM *)ts->data;
+  const PetscInt                      K  = (PetscInt)p.ratios.size();
+  std::vector<vshmm::AdaptParameters> coarse(K + 1);
+  std::vector<double>                 d(K + 1, 0.0);
+
+  PetscFunctionBegin;
+  for (PetscInt i = 0; i <= K; ++i) {
+    coarse[i] = Comparison(ts, p, vshmm::coarsened(p, (int)i, i ? kRatioCoarsening : 2.0));
+    /* one parameter at a time: the others as in p */
+    if (i > 0) coarse[i].microStep = p.microStep;
+    for (PetscInt l = 0; l < K; ++l)
+      if (l != i - 1) coarse[i].ratios[l] = p.ratios[l];
+    PetscReal di = 0;
+    if (vshmm::cycleLength(coarse[i]) > vshmm::cycleLength(p) * 1.01) {
+      PetscCall(TrialStep(ts, coarse[i], t0, DeltaT, vs->Xtrial));
+      PetscCall(ObservableDifference(ts, t0 + DeltaT, vs->Xbase, vs->Xtrial, &di));
+    }
+    if (!std::isfinite(di)) { /* coarser is unstable: this parameter stays where it is, its error term unmeasured */
+      di = 0;
+      if (i == 0) bounds.maxMicroStep = p.microStep;
+      else {
+        bounds.maxRatio.resize(K, PETSC_INFINITY);
+        bounds.maxRatio[i - 1] = p.ratios[i - 1];
+      }
+      coarse[i] = p;
+    }
+    d[i] = di;
+    PetscCall(PetscInfo(ts, "Adapt: calibration of parameter %" PetscInt_FMT ": dt %g, cycle %g, difference %g\n", i, (double)coarse[i].microStep, (double)vshmm::cycleLength(coarse[i]), (double)di));
+  }
+  vs->adapt_model = vshmm::ErrorModel::fromDifferences(p, coarse, d, vs->tableau->order);
+  if (!(vs->adapt_model.total(p) > 0)) vs->adapt_model = vshmm::ErrorModel::equalShares(p, vs->tableau->order, 1.0);
+  vs->adapt_calibrations++;
+  vs->adapt_calibrated_times++;
+  vs->adapt_since_calibration = 0;
+  vs->adapt_calibrated        = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
 /* One macro step with accuracy control; the accepted result is left in ts->vec_sol. */
 PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
 {
-  TS_VSHMM      *vs = (TS_VSHMM *)ts->data;
-  const PetscInt K  = (PetscInt)vs->level_end.size() - 1;
+  TS_VSHMM       *vs = (TS_VSHMM *)ts->data;
+  const PetscInt  K  = (PetscInt)vs->level_end.size() - 1;
   const PetscReal budget = StepBudget(ts, DeltaT), t1 = t0 + DeltaT;
+  const int       order  = vs->tableau->order;
 
   PetscFunctionBegin;
   if (!vs->adapt_ready) PetscCall(TSVSHMMAdaptSetUp_Private(ts));
   vshmm::AdaptBounds bounds = Bounds(ts, DeltaT);
-  PetscReal          Eprev  = PETSC_MAX_REAL;
-  PetscInt           stalled = 0;
+  const PetscBool later     = (ts->max_time - t1 > 0.5 * DeltaT) ? PETSC_TRUE : PETSC_FALSE;
+  /* the split between the terms is measured when a later macro step can use it: at the first, then
+     after 1, 2, 4, 8 macro steps (a first measurement may fall in an initial transient), then every
+     kRecalibrate */
+  const PetscInt  interval  = vs->adapt_calibrated_times >= 5 ? kRecalibrate : PetscMin(kRecalibrate, (PetscInt)1 << PetscMax(vs->adapt_calibrated_times - 1, 0));
+  PetscBool       calibrate = (later && (!vs->adapt_calibrated || vs->adapt_since_calibration >= interval)) ? PETSC_TRUE : PETSC_FALSE;
+  PetscReal       Eprev     = PETSC_MAX_REAL;
+  PetscInt        stalled   = 0;
   for (PetscInt attempt = 0;; ++attempt) {
     vshmm::AdaptParameters &p = vs->adapt_params;
     vs->nonfinite_split       = -1;
     vs->nonfinite_time        = PETSC_MAX_REAL;
-    const PetscBool calibrate = (attempt > 0 || vs->adapt_model.c.size() != (size_t)K || vs->adapt_since_calibration >= kRecalibrate) ? PETSC_TRUE : PETSC_FALSE;
 
     /* The macro step with the current parameters, counted as the solve's work */
     std::unique_ptr<vshmm::MesoscopicSchedule> schedule;
@@ -252,10 +380,7 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
     PetscReal xnorm;
     PetscCall(VecNorm(vs->Xbase, NORM_INFINITY, &xnorm));
     if (!std::isfinite(xnorm) && attempt + 1 < kMaxAttempts) { /* blew up: redo with every parameter finer */
-      for (size_t k = 0; k < rhs0.size(); ++k) vs->adapt_evaluations += vs->rhs_evaluations[k] - rhs0[k];
-      vs->rhs_evaluations   = rhs0;
-      vs->level_evaluations = lev0;
-      vs->adapt_rejections++;
+      DiscardTry(vs, rhs0, lev0);
       PetscCall(PetscInfo(ts, "Adapt: macro step [%g, %g] try %" PetscInt_FMT " is not finite: every parameter finer\n", (double)t0, (double)t1, attempt));
       if (!bounds.fixedMicroStep) p.microStep *= 0.5;
       if (!bounds.fixedRatios)
@@ -263,79 +388,68 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
       continue;
     }
 
-    /* Its error: one coarser run per parameter, or all coarser at once */
-    std::vector<PetscReal> d(K + 1, 0.0);
-    PetscReal              E;
-    if (calibrate) {
-      std::vector<vshmm::AdaptParameters> coarse(K + 1);
-      for (PetscInt i = 0; i <= K; ++i) {
-        coarse[i] = vshmm::coarsened(p, (int)i);
-        LimitToStableSteps(ts, coarse[i]); /* coarser, but stable */
-        if (i == 0) coarse[i].microStep = PetscMin(coarse[i].microStep, PetscMax(p.microStep, bounds.maxMicroStep));
-        coarse[i].ratios = i == 0 ? p.ratios : coarse[i].ratios;
-        if (i > 0) {
-          coarse[i].microStep = p.microStep;
-          for (PetscInt l = 0; l < K; ++l) if (l != i - 1) coarse[i].ratios[l] = p.ratios[l];
-          coarse[i].ratios[i - 1] = PetscMax(coarse[i].ratios[i - 1], p.ratios[i - 1]);
-        }
-        PetscCall(TrialStep(ts, coarse[i], t0, DeltaT, vs->Xtrial));
-        PetscCall(ObservableDifference(ts, t1, vs->Xbase, vs->Xtrial, &d[i]));
-        if (!std::isfinite(d[i])) { /* coarser is unstable: this parameter stays where it is, its error term unmeasured */
-          d[i] = 0;
-          if (i == 0) bounds.maxMicroStep = p.microStep;
-          else {
-            bounds.maxRatio.resize(K, PETSC_INFINITY);
-            bounds.maxRatio[i - 1] = p.ratios[i - 1];
-          }
-        }
-      }
-      vs->adapt_model = vshmm::ErrorModel::fromDifferences(p, coarse, std::vector<double>(d.begin(), d.end()), vs->tableau->order);
-      vs->adapt_calibrations++;
-      vs->adapt_since_calibration = 0;
-      E                           = vs->adapt_model.total(p);
-      E                           = PetscMax(E, *std::max_element(d.begin() + 1, d.end()) * 0.5); /* a level pair's difference is at least half its error under the model */
-    } else {
-      vshmm::AdaptParameters all = p;
-      PetscReal              predicted = 0, measured;
-      for (PetscInt i = 0; i <= K; ++i) all = vshmm::coarsened(all, (int)i);
-      LimitToStableSteps(ts, all);
-      all.microStep = PetscMax(p.microStep, PetscMin(all.microStep, bounds.maxMicroStep));
-      PetscCall(TrialStep(ts, all, t0, DeltaT, vs->Xtrial));
-      PetscCall(ObservableDifference(ts, t1, vs->Xbase, vs->Xtrial, &measured));
-      predicted = vs->adapt_model.total(all) - vs->adapt_model.total(p);
-      if (!std::isfinite(measured)) vs->adapt_since_calibration = kRecalibrate; /* measure each term next time */
-      else if (predicted > 0) vs->adapt_model.scale(PetscMax(0.25, measured / predicted));
-      vs->adapt_since_calibration++;
-      E = vs->adapt_model.total(p);
+    /* Its error, and (when calibrating, or before the first refinement) the split between the terms */
+    Comparisons comparisons;
+    if (vs->adapt_model.c.size() != (size_t)K || !(vs->adapt_model.total(p) > 0)) vs->adapt_model = vshmm::ErrorModel::equalShares(p, order, 1.0);
+    PetscCall(Compare(ts, p, t0, DeltaT, comparisons));
+    PetscReal E = Estimate(vs->adapt_model, p, comparisons);
+    if (calibrate || (E > budget && !vs->adapt_calibrated)) {
+      PetscCall(Calibrate(ts, p, t0, DeltaT, bounds));
+      calibrate = PETSC_FALSE;
+      E         = Estimate(vs->adapt_model, p, comparisons);
+    }
+    if (std::isfinite(E) && E > 0) {
+      vs->adapt_model.scale(E / vs->adapt_model.total(p));
+      vs->adapt_model.floorShares(p, kMinShare);
     }
 
-    vshmm::AdaptParameters next = vshmm::chooseParameters(p, vs->adapt_model, kSafety * budget, bounds);
-    LimitToStableSteps(ts, next);
-    const PetscBool refinable = (next.microStep < p.microStep * 0.999 || vshmm::cycleLength(next) < vshmm::cycleLength(p) * 0.999) ? PETSC_TRUE : PETSC_FALSE;
-    PetscCall(PetscInfo(ts, "Adapt: macro step [%g, %g] try %" PetscInt_FMT ": dt %g, cycle %g, %" PetscInt64_FMT " cycles; estimate %g of its share %g (%s)\n", (double)t0, (double)t1, attempt, (double)p.microStep, (double)vshmm::cycleLength(p), counts.cycles, (double)E, (double)budget, calibrate ? "calibrated" : "rescaled"));
-    stalled               = (attempt > 0 && E > kFloorFactor * Eprev) ? stalled + 1 : 0;
-    const PetscBool floor = stalled >= 2 ? PETSC_TRUE : PETSC_FALSE; /* twice, finer parameters did not help */
-    Eprev                 = E;
-    if (E > budget && floor && !vs->floor_warned) {
-      vs->floor_warned = PETSC_TRUE;
-      PetscCall(PetscFPrintf(PetscObjectComm((PetscObject)ts), PETSC_STDERR,
-                             "TSVSHMM warning (-ts_vshmm_adapt): at t = %g the error estimate stays at %g of the tolerance share of the macro step (%g) as the parameters are refined: the %s carry a part VSHMM does not resolve (typically fast fluctuations of the sampled values). A tolerance much below %g times -ts_rtol/-ts_atol is out of reach for VSHMM here; the run goes on with the estimate reported in the statistics.\n",
-                             (double)t0, (double)E, (double)budget, vs->observables ? "observables" : "sampled states", (double)(E / budget)));
+    /* The parameters for the next try or the next macro step: the work may fall by
+       sqrt(target / E) (at most kMaxCheaper) and rise by kMaxDearer per choice */
+    vshmm::AdaptParameters next   = p;
+    const PetscReal        target = kSafety * budget;
+    if (std::isfinite(E)) {
+      /* the least-work parameters of the present error (moving error between the terms, as the
+         calibration measured them), and from there towards the target, with the work limited */
+      const vshmm::AdaptParameters same = vshmm::chooseParameters(p, vs->adapt_model, E, bounds);
+      next                              = vshmm::chooseParameters(p, vs->adapt_model, target, bounds);
+      vshmm::limitWorkChange(next, same, PetscMin(kMaxCheaper, PetscMax(1.0, PetscSqrtReal(target / PetscMax(E, PETSC_SMALL)))), kMaxDearer);
     }
+    PetscBool refinable = vs->adapt_model.total(next) < 0.99 * vs->adapt_model.total(p) ? PETSC_TRUE : PETSC_FALSE; /* the model expects a lower error */
+    if (!std::isfinite(E) || (E > kFloorAccept * budget && !refinable)) { /* no estimate, or far off and the model is stuck: every parameter finer */
+      next = p;
+      if (!bounds.fixedMicroStep) next.microStep *= 0.5;
+      if (!bounds.fixedRatios)
+        for (double &r : next.ratios) r = 1.0 + (r - 1.0) / 4;
+      refinable = (next.microStep < p.microStep || vshmm::cycleLength(next) < vshmm::cycleLength(p)) ? PETSC_TRUE : PETSC_FALSE;
+    }
+    LimitToStableSteps(ts, next);
+    PetscCall(PetscInfo(ts, "Adapt: macro step [%g, %g] try %" PetscInt_FMT ": dt %g, cycle %g, %" PetscInt64_FMT " cycles; estimate %g of its share %g\n", (double)t0, (double)t1, attempt, (double)p.microStep, (double)vshmm::cycleLength(p), counts.cycles, (double)E, (double)budget));
+    /* a noise floor: twice, finer parameters did not lower an estimate that is near the share */
+    stalled               = (attempt > 0 && E > kFloorFactor * Eprev) ? stalled + 1 : 0;
+    const PetscBool floor = (stalled >= 2 && E <= kFloorAccept * budget) ? PETSC_TRUE : PETSC_FALSE;
+    Eprev                 = E;
     if (E > budget && refinable && !floor && attempt + 1 < kMaxAttempts) { /* redo with finer parameters */
-      for (size_t k = 0; k < rhs0.size(); ++k) vs->adapt_evaluations += vs->rhs_evaluations[k] - rhs0[k];
-      vs->rhs_evaluations   = rhs0;
-      vs->level_evaluations = lev0;
-      vs->adapt_rejections++;
+      DiscardTry(vs, rhs0, lev0);
       p = next;
       continue;
     }
-    if (E > budget) PetscCall(PetscInfo(ts, "Adapt: macro step [%g, %g] accepted with estimate %g above its share %g: %s\n", (double)t0, (double)t1, (double)E, (double)budget, !refinable ? "no finer parameters allowed (user-set parameters, stability or cycle bounds)" : stalled >= 2 ? "finer parameters do not lower the estimate" : "too many tries (user-set parameters, stability or cycle bounds)"));
+    if (E > budget) {
+      const char *why = floor ? "finer parameters do not lower the estimate" : !refinable ? "no finer parameters allowed (user-set parameters or stability bounds)" : "too many tries";
+      PetscCall(PetscInfo(ts, "Adapt: macro step [%g, %g] accepted with estimate %g above its share %g: %s\n", (double)t0, (double)t1, (double)E, (double)budget, why));
+      if (!vs->floor_warned && E > kWarn * budget) {
+        vs->floor_warned = PETSC_TRUE;
+        PetscCall(PetscFPrintf(PetscObjectComm((PetscObject)ts), PETSC_STDERR,
+                               "TSVSHMM warning (-ts_vshmm_adapt): the macro step [%g, %g] is accepted with an error estimate of %g times its share of the tolerance (%s). %s The run goes on; the estimates are in the statistics (TSVSHMMGetStatistics(), -ts_view). This warning is given once per solve.\n",
+                               (double)t0, (double)t1, (double)(E / budget), why,
+                               floor ? "The sampled values carry a part VSHMM does not resolve (typically fast fluctuations): a tolerance this far below -ts_rtol/-ts_atol is out of reach for VSHMM here." : "Loosen the tolerance, or leave the micro step and savings factors to -ts_vshmm_adapt, or use a single-rate TS type."));
+      }
+    }
     PetscCall(VecCopy(vs->Xbase, ts->vec_sol));
     vs->micro_cycles += counts.cycles;
     for (size_t l = 0; l < counts.levelSteps.size(); ++l) vs->level_steps[l] += counts.levelSteps[l];
     vs->error_estimate = E;
     vs->error_estimate_total += E;
+    vs->adapt_since_calibration++;
     vs->savings_used = vshmm::savingsFromTimeRatios(p.ratios); /* what this step used (for view and getters) */
     vs->adapt_used   = p;
     p                = next;

@@ -77,7 +77,8 @@ struct TS_VSHMM {
   vshmm::ErrorModel         adapt_model;
   PetscBool                 adapt_ready = PETSC_FALSE; // initial parameters chosen
   PetscInt                  adapt_since_calibration = 0;
-  PetscReal                 adapt_kappa  = 1.0; // full estimate / combined difference at the last calibration
+  PetscBool                 adapt_calibrated = PETSC_FALSE; // the model's split between the terms was measured
+  PetscInt                  adapt_calibrated_times = 0;     // calibrations in this solve
   PetscReal                 adapt_tstart = 0.0; // the time the solve started (the error budget runs from it)
   PetscBool                 no_separation = PETSC_FALSE; // no pair of levels is separated
   PetscBool                 floor_warned  = PETSC_FALSE; // told that the estimate does not fall

@@ -31,16 +31,18 @@ TEST(Adapt, TimeRatiosAndSavingsFactorsAreInverse)
 TEST(Adapt, ChoiceMeetsTheTargetWithEqualShares)
 {
   const AdaptParameters now{1e-6, {50, 20}};
-  const double          cdt = 1e20, c0 = 1e-3, c1 = 1e-4; // e_dt = 1e-4, e_0 = 4.9e-2, e_1 = 1.9e-3
-  auto                  error = [&](const AdaptParameters &p, int i) { return i == 0 ? cdt * std::pow(p.microStep, 4) : (i == 1 ? c0 : c1) * (p.ratios[i - 1] - 1); };
+  const double          cdt = 1e23, c0 = 1e-3, c1 = 1e-4; // e_dt = 1e-4, e_0 = 4.9e-2, e_1 = 1.9e-3
+  auto                  error = [&](const AdaptParameters &p, int i) { return i == 0 ? cdt * std::pow(p.microStep, 4) / (p.ratios[0] * p.ratios[1]) : (i == 1 ? c0 : c1) * (p.ratios[i - 1] - 1); };
   std::vector<AdaptParameters> coarse;
   std::vector<double>          d;
   for (int i = 0; i < 3; ++i) {
-    coarse.push_back(coarsened(now, i));
+    coarse.push_back(coarsened(now, i, i ? 4.0 : 2.0));
     d.push_back(error(coarse.back(), i) - error(now, i));
   }
+  EXPECT_DOUBLE_EQ(coarse[1].ratios[0], 1 + 4 * 49.0); // r - 1 times the factor
+  EXPECT_DOUBLE_EQ(coarse[0].microStep, 2e-6);
   const ErrorModel model = ErrorModel::fromDifferences(now, coarse, d, 4);
-  EXPECT_NEAR(model.cMicro, cdt, 1e-6 * cdt);
+  EXPECT_NEAR(model.cMicro, cdt, 1e-9 * cdt);
   EXPECT_NEAR(model.c[0], c0, 1e-15);
   EXPECT_NEAR(model.c[1], c1, 1e-15);
   EXPECT_NEAR(model.total(now), error(now, 0) + error(now, 1) + error(now, 2), 1e-15);
@@ -51,14 +53,62 @@ TEST(Adapt, ChoiceMeetsTheTargetWithEqualShares)
   const double          target = 1e-2;
   const AdaptParameters next   = chooseParameters(now, model, target, bounds);
   EXPECT_NEAR(model.total(next), target, 1e-9);
-  // the two ratios get equal shares w, the micro step w / 4
-  const double w = target / (2 + 0.25);
+  // the two ratios get equal shares w, the micro step w / (order + 1)
+  const double w = target / (2 + 0.2);
   EXPECT_NEAR(model.term(next, 1), w, 1e-9);
   EXPECT_NEAR(model.term(next, 2), w, 1e-9);
-  EXPECT_NEAR(model.term(next, 0), w / 4, 1e-9);
+  EXPECT_NEAR(model.term(next, 0), w / 5, 1e-9);
   EXPECT_LT(next.ratios[0], now.ratios[0]); // the dominant term is refined
   EXPECT_GT(next.ratios[1], now.ratios[1]); // the small ones are coarsened
   EXPECT_GT(next.microStep, now.microStep);
+}
+
+// The comparison of the estimate scales every term by one factor whatever the coefficients; the
+// equal-share model and the share floor keep totals.
+TEST(Adapt, ScaledTermsAndEqualShares)
+{
+  const AdaptParameters p{2e-7, {40, 1, 8}}; // the middle pair merged
+  ErrorModel            m;
+  m.order  = 4;
+  m.cMicro = 3e25;
+  m.c      = {2e-4, 5.0, 1e-3};
+  for (double f : {2.0, 3.0}) {
+    const AdaptParameters q = termsScaled(p, f, 4);
+    for (int i = 0; i < 4; ++i) EXPECT_NEAR(m.term(q, i), f * m.term(p, i), 1e-12 * (1 + m.term(p, i))) << "term " << i;
+    EXPECT_DOUBLE_EQ(q.ratios[1], 1.0); // a merged pair stays merged
+    EXPECT_GT(cycleLength(q), cycleLength(p));
+  }
+  const ErrorModel e = ErrorModel::equalShares(p, 4, 0.6);
+  EXPECT_NEAR(e.total(p), 0.6, 1e-12);
+  EXPECT_NEAR(e.term(p, 1), 0.6 / (2 + 0.2), 1e-12);
+  EXPECT_NEAR(e.term(p, 3), 0.6 / (2 + 0.2), 1e-12);
+  EXPECT_EQ(e.term(p, 2), 0.0);
+  EXPECT_NEAR(e.term(p, 0), 0.6 / (2 + 0.2) / 5, 1e-12);
+  ErrorModel f = m;
+  f.c[2]       = 0.0; // measured as nothing
+  const double before = f.total(p);
+  f.floorShares(p, 0.05);
+  EXPECT_NEAR(f.total(p), before, 1e-12 * before);
+  EXPECT_GT(f.term(p, 3) / f.total(p), 0.04); // 5% of the total before the other terms are scaled back
+  EXPECT_LE(f.term(p, 3) / f.total(p), 0.05);
+}
+
+// The work change of a choice is limited by moving back only the parameters that go the wrong way.
+TEST(Adapt, WorkChangeIsLimitedByTheParametersThatCauseIt)
+{
+  const AdaptParameters now{1e-6, {10, 10}};
+  AdaptParameters       next{8e-6, {5, 80}}; // 8 * 0.5 * 8 = 32x cheaper
+  limitWorkChange(next, now, 4.0, 4.0);
+  EXPECT_NEAR(cycleLength(next) / cycleLength(now), 4.0, 1e-9);
+  EXPECT_DOUBLE_EQ(next.ratios[0], 5.0); // the refining change is kept
+  EXPECT_NEAR(next.microStep / now.microStep, next.ratios[1] / now.ratios[1], 1e-9); // coarsening ones moved back alike
+  AdaptParameters dear{1e-7, {2, 20}}; // 10 * 5 / 2 = 25x dearer
+  limitWorkChange(dear, now, 4.0, 4.0);
+  EXPECT_NEAR(cycleLength(now) / cycleLength(dear), 4.0, 1e-9);
+  EXPECT_DOUBLE_EQ(dear.ratios[1], 20.0);
+  AdaptParameters within{2e-6, {10, 10}};
+  limitWorkChange(within, now, 4.0, 4.0);
+  EXPECT_DOUBLE_EQ(within.microStep, 2e-6);
 }
 
 TEST(Adapt, ChoiceKeepsFixedParametersAndBounds)
