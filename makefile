@@ -6,6 +6,8 @@
 #   make figures     build, then regenerate docs/figures/*.png, *.svg (gnuplot; a few minutes)
 #   make mutants     mutation check of the tests (tools/mutants.sh, tools/mutants.txt; long:
 #                    one rebuild and test run per mutant, in a copy of the tree under /tmp)
+#   make check-nofftw  build and test as if FFTW were absent (-DVSHMM_WITH_FFTW=OFF: the time
+#                    stepper without the spectral component) in $(BUILD_DIR)-nofftw
 #   make clean       remove $(BUILD_DIR)
 # Variables: BUILD_DIR (build), BUILD_TYPE (Release), JOBS (2), PREFIX (/usr/local),
 #            CMAKE_FLAGS (extra configure options), CTEST_FLAGS (extra ctest options).
@@ -20,7 +22,7 @@ CTEST_FLAGS ?=
 DEB_PACKAGES := petsc-dev libfftw3-dev libgtest-dev cmake pkg-config make g++ \
                 libpetsc3.18-dev-examples gnuplot-nox valgrind
 
-.PHONY: all deps configure build check demo figures install clean mutants
+.PHONY: all deps configure build check check-nofftw demo figures install clean mutants
 .NOTPARALLEL:
 MAKEFLAGS += --no-print-directory
 
@@ -56,6 +58,11 @@ build: deps $(BUILD_DIR)/CMakeCache.txt
 check: build
 	ctest --test-dir $(BUILD_DIR) --output-on-failure -j $(JOBS) $(CTEST_FLAGS)
 
+check-nofftw: deps
+	cmake -S . -B $(BUILD_DIR)-nofftw -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) -DVSHMM_WITH_FFTW=OFF $(CMAKE_FLAGS)
+	cmake --build $(BUILD_DIR)-nofftw -j $(JOBS)
+	ctest --test-dir $(BUILD_DIR)-nofftw --output-on-failure -j $(JOBS) $(CTEST_FLAGS)
+
 demo: build
 	sh examples/ode/demo.sh $(BUILD_DIR)
 
@@ -70,4 +77,4 @@ install: build
 	cmake --install $(BUILD_DIR) --prefix $(PREFIX)
 
 clean:
-	rm -rf $(BUILD_DIR)
+	rm -rf $(BUILD_DIR) $(BUILD_DIR)-nofftw
