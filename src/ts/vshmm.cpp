@@ -292,6 +292,34 @@ static PetscErrorCode GetRKTableau(MPI_Comm comm, const std::string &type, std::
   PetscFunctionReturn(0);
 }
 
+/* PETSc features that TSVSHMM does not support are refused at set-up, before any work, rather
+   than accepted and ignored or failing in mid-run with PETSc's generic "No method ...":
+   - an adaptive TSAdapt: the macro step is the sampling interval DeltaT (the TS time step), fixed;
+     accuracy control is -ts_vshmm_adapt, which chooses the micro step and savings factors;
+   - events (TSSetEventHandler()): locating an event needs a dense output of every component,
+     which VSHMM does not have (only the sampled states are accurate for the slow variables);
+   - adjoint and forward sensitivities, quadrature in the forward run, TSTrajectory: they need
+     the derivative of the macro step (its stages), which VSHMM does not form;
+   - pre-stage and post-stage hooks: a macro step has no stages of its own (see TSStep_VSHMM()). */
+static PetscErrorCode TSVSHMMCheckSupported_Private(TS ts)
+{
+  MPI_Comm  comm = PetscObjectComm((PetscObject)ts);
+  PetscBool none = PETSC_TRUE;
+
+  PetscFunctionBegin;
+  if (ts->adapt && ((PetscObject)ts->adapt)->type_name) PetscCall(PetscObjectTypeCompare((PetscObject)ts->adapt, TSADAPTNONE, &none));
+  PetscCheck(none, comm, PETSC_ERR_SUP,
+             "TSVSHMM does not support the time step adaptivity TSAdapt '%s' (-ts_adapt_type): its macro step is the sampling interval DeltaT, the TS time step, and stays fixed. Use -ts_adapt_type none (the default of TSVSHMM); for accuracy control use -ts_vshmm_adapt with -ts_rtol/-ts_atol (TSVSHMMSetAdapt())",
+             ((PetscObject)ts->adapt)->type_name);
+  PetscCheck(!ts->event, comm, PETSC_ERR_SUP, "TSVSHMM does not support events (TSSetEventHandler()): only the sampled states are accurate for the slow variables, so an event cannot be located within a macro step. Detect it in a TSMonitor or post-step function on the sampled states instead");
+  PetscCheck(!ts->trajectory, comm, PETSC_ERR_SUP, "TSVSHMM does not support TSTrajectory (TSSetSaveTrajectory(), -ts_save_trajectory) or the adjoint solve (TSAdjointSolve()), which needs it: VSHMM does not form the derivative of its macro step. Use a TSRK type for adjoint sensitivities");
+  PetscCheck(!ts->vecs_sensi, comm, PETSC_ERR_SUP, "TSVSHMM does not support adjoint sensitivities (TSSetCostGradients(), TSAdjointSolve()): VSHMM does not form the derivative of its macro step. Use a TSRK type for adjoint sensitivities");
+  PetscCheck(!ts->forward_solve && !ts->mat_sensip, comm, PETSC_ERR_SUP, "TSVSHMM does not support forward sensitivities (TSForwardSetSensitivities()): VSHMM does not form the derivative of its macro step. Use a TSRK type for forward sensitivities");
+  PetscCheck(!ts->costintegralfwd, comm, PETSC_ERR_SUP, "TSVSHMM does not support evaluating a cost integral in the forward run (TSCreateQuadratureTS() with fwd = PETSC_TRUE): integrate the quantity in a TSMonitor on the sampled states instead");
+  PetscCheck(!ts->prestage && !ts->poststage, comm, PETSC_ERR_SUP, "TSVSHMM does not call pre-stage or post-stage functions (TSSetPreStage(), TSSetPostStage()): a macro step has no stages of its own, its inner Runge-Kutta stages belong to the levels' fields. Use TSSetPreStep() / TSSetPostStep(), called around every macro step");
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode TSSetUp_VSHMM(TS ts)
 {
   TS_VSHMM                    *vs   = (TS_VSHMM *)ts->data;
@@ -300,6 +328,7 @@ static PetscErrorCode TSSetUp_VSHMM(TS ts)
 
   PetscFunctionBegin;
   PetscCall(TSVSHMMTearDown_Private(ts));
+  PetscCall(TSVSHMMCheckSupported_Private(ts));
   std::vector<PetscInt> scale_end;
   PetscCall(OrderSplits(ts, links, scale_end));
   const PetscInt nscales = (PetscInt)scale_end.size(), K = nscales - 1;
@@ -377,6 +406,30 @@ static PetscErrorCode TSVSHMMInvalidateSetUp_Private(TS ts)
 /* ------------------------------------------------------------------------------------------ */
 /* One macro step                                                                               */
 
+/*
+  TSStep_VSHMM - one macro step of length DeltaT (the TS time step) from the sampled state at
+  t0 = ts->ptime: micro cycles of the full field and the mesoscopic steps of the slower levels
+  until t0 + DeltaT exactly (TSVSHMMRunMacroStep_Private(), or TSVSHMMAdaptStep_Private() with
+  -ts_vshmm_adapt, which may also try and reject trial steps).
+
+  - ts->vec_sol is advanced in place to the sampled state at t0 + DeltaT; vs->X0 keeps the one at
+    t0 (for TSInterpolate_VSHMM() and to roll back a failed step).
+  - ts->ptime becomes t0 + DeltaT (ts->max_time exactly for a last step that ends on it);
+    TSStep() itself sets ts->ptime_prev and counts ts->steps. ts->time_step is never changed.
+  - ts->reason is left alone on success (TSSolve() sets the converged reasons). When a split
+    returns Inf or NaN anywhere in the macro step, ts->vec_sol is restored to the state at t0,
+    ts->ptime stays t0 and ts->reason = TS_DIVERGED_STEP_REJECTED, or an error is raised with
+    -ts_error_if_step_fails (one reduction per macro step finds the earliest such output).
+  - TS_EXACTFINALTIME_MATCHSTEP is handled here: other types leave it to TSAdaptChoose(), which
+    shortens the step to end on the final time, but TSVSHMM uses no TSAdapt (DeltaT is the
+    sampling interval), so the last macro step is shortened here instead, without changing
+    ts->time_step: it is a macro step of the shorter length (its kernel periods shrink with it).
+  - TSPreStage()/TSPostStage() are not called: a macro step has no stages of its own. Its
+    thousands of inner Runge-Kutta stages belong to the fields G_l of the levels, not to the
+    TS's right-hand side, and the stage states are not states of the TS's ODE. TSSetUp_VSHMM()
+    refuses pre- and post-stage functions; TSPreStep()/TSPostStep() are called by TSSolve()
+    around every macro step.
+*/
 static PetscErrorCode TSStep_VSHMM(TS ts)
 {
   TS_VSHMM *vs   = (TS_VSHMM *)ts->data;
