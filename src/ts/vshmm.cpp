@@ -41,9 +41,9 @@ static PetscErrorCode TSVSHMMTearDown_Private(TS ts)
   TS_VSHMM *vs = (TS_VSHMM *)ts->data;
 
   PetscFunctionBegin;
-  for (VSHMMSplit &sc : vs->splits) {
-    PetscCall(VecDestroy(&sc.F));
-    PetscCall(VecScatterDestroy(&sc.scatter));
+  for (VSHMMSplit &split : vs->splits) {
+    PetscCall(VecDestroy(&split.F));
+    PetscCall(VecScatterDestroy(&split.scatter));
   }
   vs->splits.clear();
   vs->level_end.clear();
@@ -114,7 +114,7 @@ static PetscErrorCode OrderSplits(TS ts, std::vector<TS_RHSSplitLink> &links, st
 
 /* How a split's output is added into a full vector: in place (its IS is a contiguous run of
    locally owned components on every rank) or by a scatter. */
-static PetscErrorCode SetUpSplit(TS ts, TS_RHSSplitLink link, VSHMMSplit &sc)
+static PetscErrorCode SetUpSplit(TS ts, TS_RHSSplitLink link, VSHMMSplit &split)
 {
   Vec             X    = ts->vec_sol;
   MPI_Comm        comm = PetscObjectComm((PetscObject)X);
@@ -124,28 +124,28 @@ static PetscErrorCode SetUpSplit(TS ts, TS_RHSSplitLink link, VSHMMSplit &sc)
   int             flags[2];
 
   PetscFunctionBegin;
-  sc.name  = link->splitname;
-  sc.subts = link->ts;
-  sc.is    = link->is;
-  PetscCall(ISGetLocalSize(sc.is, &nis));
+  split.name  = link->splitname;
+  split.subts = link->ts;
+  split.is    = link->is;
+  PetscCall(ISGetLocalSize(split.is, &nis));
   PetscCall(VecGetOwnershipRange(X, &rstart, &rend));
-  PetscCall(ISGetIndices(sc.is, &idx));
+  PetscCall(ISGetIndices(split.is, &idx));
   bool contiguous = true;
   for (PetscInt i = 1; i < nis && contiguous; ++i) contiguous = idx[i] == idx[0] + i;
   bool owned = nis == 0 || (idx[0] >= rstart && idx[0] + nis <= rend);
-  sc.offset  = nis ? idx[0] - rstart : 0;
-  PetscCall(ISRestoreIndices(sc.is, &idx));
+  split.offset  = nis ? idx[0] - rstart : 0;
+  PetscCall(ISRestoreIndices(split.is, &idx));
   flags[0] = contiguous && owned;
   flags[1] = flags[0] && nis == rend - rstart;
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, flags, 2, MPI_INT, MPI_LAND, comm));
-  sc.local    = flags[0] ? PETSC_TRUE : PETSC_FALSE;
-  sc.additive = flags[1] ? PETSC_TRUE : PETSC_FALSE;
+  split.local    = flags[0] ? PETSC_TRUE : PETSC_FALSE;
+  split.additive = flags[1] ? PETSC_TRUE : PETSC_FALSE;
 
-  PetscCall(VecCreate(comm, &sc.F));
-  PetscCall(VecSetSizes(sc.F, nis, PETSC_DETERMINE));
+  PetscCall(VecCreate(comm, &split.F));
+  PetscCall(VecSetSizes(split.F, nis, PETSC_DETERMINE));
   PetscCall(VecGetType(X, &vtype));
-  PetscCall(VecSetType(sc.F, vtype));
-  if (!sc.local) PetscCall(VecScatterCreate(sc.F, nullptr, X, sc.is, &sc.scatter));
+  PetscCall(VecSetType(split.F, vtype));
+  if (!split.local) PetscCall(VecScatterCreate(split.F, nullptr, X, split.is, &split.scatter));
   PetscFunctionReturn(0);
 }
 
@@ -565,10 +565,10 @@ static PetscErrorCode TSView_VSHMM(TS ts, PetscViewer viewer)
   PetscCall(PetscViewerASCIIPrintf(viewer, "  scale  split                 step         savings factor  subintervals  RHS evaluations\n"));
   for (PetscInt l = 0, k = 0; l < nscales; ++l) {
     for (; k < vs->level_end[l]; ++k) {
-      const VSHMMSplit &sc = vs->splits[k];
+      const VSHMMSplit &split = vs->splits[k];
       if (l < nscales - 1)
-        PetscCall(PetscViewerASCIIPrintf(viewer, "  %5" PetscInt_FMT "  %-20s  h_%-3" PetscInt_FMT "        %-14g  %-12" PetscInt_FMT "  %" PetscInt64_FMT "\n", l, sc.name.c_str(), l + 1, (double)vs->savings_used[l], vs->subintervals_used[l], vs->rhs_evaluations[k]));
-      else PetscCall(PetscViewerASCIIPrintf(viewer, "  %5" PetscInt_FMT "  %-20s  dt (micro)   %-14s  %-12s  %" PetscInt64_FMT "\n", l, sc.name.c_str(), "-", "-", vs->rhs_evaluations[k]));
+        PetscCall(PetscViewerASCIIPrintf(viewer, "  %5" PetscInt_FMT "  %-20s  h_%-3" PetscInt_FMT "        %-14g  %-12" PetscInt_FMT "  %" PetscInt64_FMT "\n", l, split.name.c_str(), l + 1, (double)vs->savings_used[l], vs->subintervals_used[l], vs->rhs_evaluations[k]));
+      else PetscCall(PetscViewerASCIIPrintf(viewer, "  %5" PetscInt_FMT "  %-20s  dt (micro)   %-14s  %-12s  %" PetscInt64_FMT "\n", l, split.name.c_str(), "-", "-", vs->rhs_evaluations[k]));
     }
   }
   PetscInt64 steps = 0, evals = 0;

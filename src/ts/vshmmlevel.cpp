@@ -57,22 +57,23 @@ static inline bool AllFinite(const PetscScalar *f, PetscInt n)
   return ok;
 }
 
-/* G += F for one scale, checking F for Inf/NaN locally (no reduction) while no fault is known. */
-static PetscErrorCode AddScale(TS_VSHMM *vs, PetscInt k, PetscReal t, Vec F, Vec G)
+/* G += F, the output of split k (one split: a scale may be a group of them), checking F for Inf/NaN
+   locally (no reduction) while no fault is known. */
+static PetscErrorCode AddSplit(TS_VSHMM *vs, PetscInt k, PetscReal t, Vec F, Vec G)
 {
-  VSHMMSplit        &sc = vs->splits[k];
+  VSHMMSplit        &split = vs->splits[k];
   const PetscScalar *f;
   PetscInt           n;
 
   PetscFunctionBegin;
   PetscCall(VecGetLocalSize(F, &n));
-  if (sc.local) {
+  if (split.local) {
     PetscScalar *g;
     bool         ok = true;
 
     PetscCall(VecGetArrayRead(F, &f));
     PetscCall(VecGetArray(G, &g));
-    g += sc.offset;
+    g += split.offset;
     for (PetscInt i = 0; i < n; ++i) {
       g[i] += f[i];
       ok &= (bool)std::isfinite(PetscRealPart(f[i]));
@@ -86,8 +87,8 @@ static PetscErrorCode AddScale(TS_VSHMM *vs, PetscInt k, PetscReal t, Vec F, Vec
       if (!AllFinite(f, n)) NoteNonFinite(vs, k, t);
       PetscCall(VecRestoreArrayRead(F, &f));
     }
-    PetscCall(VecScatterBegin(sc.scatter, F, G, ADD_VALUES, SCATTER_FORWARD));
-    PetscCall(VecScatterEnd(sc.scatter, F, G, ADD_VALUES, SCATTER_FORWARD));
+    PetscCall(VecScatterBegin(split.scatter, F, G, ADD_VALUES, SCATTER_FORWARD));
+    PetscCall(VecScatterEnd(split.scatter, F, G, ADD_VALUES, SCATTER_FORWARD));
   }
   PetscFunctionReturn(0);
 }
@@ -102,10 +103,10 @@ PetscErrorCode TSVSHMMEvaluateLevel_Private(TS_VSHMM *vs, PetscInt level, PetscR
   else if (vs->counting == TS_VSHMM::COUNT_STABILITY) vs->stability_evaluations += vs->level_end[level]; /* split calls */
   else vs->adapt_evaluations += vs->level_end[level];
   for (PetscInt k = 0; k < vs->level_end[level]; ++k) {
-    VSHMMSplit &sc = vs->splits[k];
+    VSHMMSplit &split = vs->splits[k];
 
-    if (k == 0 && sc.additive) { /* the slowest additive split writes G itself */
-      PetscCall(TSComputeRHSFunction(sc.subts, t, Y, G));
+    if (k == 0 && split.additive) { /* the slowest additive split writes G itself */
+      PetscCall(TSComputeRHSFunction(split.subts, t, Y, G));
       if (counting) vs->rhs_evaluations[k]++;
       if (vs->nonfinite_split < 0) {
         const PetscScalar *g;
@@ -119,9 +120,9 @@ PetscErrorCode TSVSHMMEvaluateLevel_Private(TS_VSHMM *vs, PetscInt level, PetscR
       continue;
     }
     if (k == 0) PetscCall(VecZeroEntries(G));
-    PetscCall(TSComputeRHSFunction(sc.subts, t, Y, sc.F));
+    PetscCall(TSComputeRHSFunction(split.subts, t, Y, split.F));
     if (counting) vs->rhs_evaluations[k]++;
-    PetscCall(AddScale(vs, k, t, sc.F, G));
+    PetscCall(AddSplit(vs, k, t, split.F, G));
   }
   PetscFunctionReturn(0);
 }
