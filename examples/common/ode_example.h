@@ -78,7 +78,8 @@ static PetscErrorCode OdeExampleOptionsInitialState(PetscOptionItems *PetscOptio
   char       text[256];
 
   PetscFunctionBeginUser;
-  PetscCall(PetscMalloc1(n, &v));
+  PetscCall(PetscCalloc1(n, &v));
+  for (PetscInt i = 0; i < nmax; i++) v[i] = x0[i]; /* shown by -help */
   PetscCall(PetscSNPrintf(text, sizeof(text), "initial state %s", names));
   PetscCall(PetscOptionsRealArray("-x0", text, NULL, v, &n, &set));
   if (set) {
