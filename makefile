@@ -6,6 +6,10 @@
 #   make figures     build, then regenerate docs/figures/*.png, *.svg (gnuplot; a few minutes)
 #   make mutants     mutation check of the tests (tools/mutants.sh, tools/mutants.txt; long:
 #                    one rebuild and test run per mutant, in a copy of the tree under /tmp)
+#   make check-nofftw  build and test as if FFTW were absent (-DVSHMM_WITH_FFTW=OFF: the time
+#                    stepper without the spectral component) in $(BUILD_DIR)-nofftw
+#   make format-check  list the C/C++ files that clang-format (.clang-format at the root) would
+#                    change, and fail if there are any (not part of check yet)
 #   make clean       remove $(BUILD_DIR)
 # Variables: BUILD_DIR (build), BUILD_TYPE (Release), JOBS (2), PREFIX (/usr/local),
 #            CMAKE_FLAGS (extra configure options), CTEST_FLAGS (extra ctest options).
@@ -20,7 +24,7 @@ CTEST_FLAGS ?=
 DEB_PACKAGES := petsc-dev libfftw3-dev libgtest-dev cmake pkg-config make g++ \
                 libpetsc3.18-dev-examples gnuplot-nox valgrind
 
-.PHONY: all deps configure build check demo figures install clean mutants
+.PHONY: all deps configure build check check-nofftw format-check demo figures install clean mutants
 .NOTPARALLEL:
 MAKEFLAGS += --no-print-directory
 
@@ -56,6 +60,20 @@ build: deps $(BUILD_DIR)/CMakeCache.txt
 check: build
 	ctest --test-dir $(BUILD_DIR) --output-on-failure -j $(JOBS) $(CTEST_FLAGS)
 
+check-nofftw: deps
+	cmake -S . -B $(BUILD_DIR)-nofftw -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) -DVSHMM_WITH_FFTW=OFF $(CMAKE_FLAGS)
+	cmake --build $(BUILD_DIR)-nofftw -j $(JOBS)
+	ctest --test-dir $(BUILD_DIR)-nofftw --output-on-failure -j $(JOBS) $(CTEST_FLAGS)
+
+CLANG_FORMAT ?= clang-format
+format-check:
+	@command -v $(CLANG_FORMAT) >/dev/null 2>&1 || { echo "make format-check: $(CLANG_FORMAT) not found (Debian: clang-format)"; exit 1; }
+	@bad=; for f in $$(git ls-files '*.c' '*.h' '*.cpp' '*.hpp'); do \
+	  $(CLANG_FORMAT) --dry-run -Werror "$$f" >/dev/null 2>&1 || bad="$$bad $$f"; \
+	done; \
+	if [ -n "$$bad" ]; then echo "not formatted as .clang-format says (run $(CLANG_FORMAT) -i on them):"; \
+	  for f in $$bad; do echo "  $$f"; done; exit 1; fi; echo "format-check: all C/C++ sources formatted"
+
 demo: build
 	sh examples/ode/demo.sh $(BUILD_DIR)
 
@@ -70,4 +88,4 @@ install: build
 	cmake --install $(BUILD_DIR) --prefix $(PREFIX)
 
 clean:
-	rm -rf $(BUILD_DIR)
+	rm -rf $(BUILD_DIR) $(BUILD_DIR)-nofftw

@@ -1,5 +1,8 @@
 # Test script: install the build tree BUILD_DIR into a fresh PREFIX and check the layout.
-#   cmake -DBUILD_DIR=<build> -DPREFIX=<prefix> -DVERSION=x.y.z -DSOVERSION=x.y -P VSHMMInstallTest.cmake
+#   cmake -DBUILD_DIR=<build> -DPREFIX=<prefix> -DVERSION=x.y.z -DSOVERSION=x.y [-DSPECTRAL=ON]
+#         -P VSHMMInstallTest.cmake
+# SPECTRAL: the build has the spectral component (libpetscvshmmspectral); without it, none of
+# its files may be installed.
 file(REMOVE_RECURSE ${PREFIX})
 execute_process(COMMAND ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${PREFIX} RESULT_VARIABLE rc)
 if(NOT rc STREQUAL "0")
@@ -21,8 +24,34 @@ foreach(f
     list(APPEND missing ${f})
   endif()
 endforeach()
+set(spectral_files
+    include/petscvshmmspectral.h
+    lib/libpetscvshmmspectral.so
+    lib/libpetscvshmmspectral.so.${SOVERSION}
+    lib/pkgconfig/petscvshmmspectral.pc
+    lib/cmake/PetscVSHMM/PetscVSHMMSpectralTargets.cmake)
+set(unexpected)
+foreach(f IN LISTS spectral_files)
+  if(SPECTRAL AND NOT EXISTS ${PREFIX}/${f})
+    list(APPEND missing ${f})
+  elseif(NOT SPECTRAL AND EXISTS ${PREFIX}/${f})
+    list(APPEND unexpected ${f})
+  endif()
+endforeach()
 if(missing)
   message(FATAL_ERROR "missing in ${PREFIX}: ${missing}")
+endif()
+if(unexpected)
+  message(FATAL_ERROR "installed in ${PREFIX} by a build without the spectral component: ${unexpected}")
+endif()
+
+# The TS library does not need FFTW.
+find_program(READELF readelf)
+if(READELF)
+  execute_process(COMMAND ${READELF} -d ${PREFIX}/lib/libpetscvshmm.so OUTPUT_VARIABLE dyn)
+  if(dyn MATCHES "libfftw3")
+    message(FATAL_ERROR "libpetscvshmm.so needs FFTW (readelf -d): only the spectral component may")
+  endif()
 endif()
 
 # The shared library must export the PETSc dynamic-library entry point (-dll_append) and the API.

@@ -174,7 +174,6 @@ private:
 class CosineKernel final : public RootTabulatedKernel<CosineKernel> {
 public:
   CosineKernel() : inverse_(3, 2 * kPi * kPi / 3, thetaAndValue) { }
-  KernelType  type() const override { return KernelType::Cosine; }
   std::string name() const override { return "cosine"; }
   int         order() const override { return 1; }
   double      value(double s) const override
@@ -230,7 +229,6 @@ double CosineKernel::thetaAndValue(double s, double &k)
 class PolynomialKernel final : public RootTabulatedKernel<PolynomialKernel> {
 public:
   explicit PolynomialKernel(int order);
-  KernelType  type() const override { return KernelType::Polynomial; }
   std::string name() const override { return "polynomial"; }
   int         order() const override { return n_ - 2; }
   double      value(double s) const override
@@ -282,7 +280,6 @@ double PolynomialKernel::thetaAndValue(double s, double &k) const
 
 class ConstantKernel final : public Kernel {
 public:
-  KernelType  type() const override { return KernelType::Constant; }
   std::string name() const override { return "constant"; }
   int         order() const override { return -1; }
   double      value(double s) const override { return s < 0 || s > 1 ? 0.0 : 1.0; }
@@ -440,7 +437,6 @@ const ExponentialTable &exponentialTable()
 class ExponentialKernel final : public Kernel {
 public:
   ExponentialKernel() : table_(exponentialTable()) { }
-  KernelType  type() const override { return KernelType::Exponential; }
   std::string name() const override { return "exponential"; }
   int         order() const override { return kInfiniteOrder; }
   double      value(double s) const override

@@ -22,7 +22,6 @@ public:
   static std::unique_ptr<Kernel> create(KernelType type, int polynomialOrder = 1);
 
   virtual ~Kernel() = default;
-  virtual KernelType type() const = 0;
   virtual std::string name() const = 0;  // "cosine", "constant", "polynomial", "exponential"
   virtual int order() const = 0;         // q as above
 

@@ -65,4 +65,17 @@ LevelAmplification levelAmplification(const StabilityFunction &R, const Mesoscop
   return a;
 }
 
+double largestStableSavingsFactor(const StabilityFunction &R, const Kernel &kernel, double microStep, std::vector<double> savings, const std::vector<int> &subintervals, double macroStep, int j, std::complex<double> lambda, double dampingTarget, double maxGrowth)
+{
+  double lo = 0, hi = savings.at(j - 1);
+  for (int it = 0; it < 40; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    savings[j - 1]   = mid;
+    const MesoscopicSchedule schedule(kernel, microStep, savings, subintervals);
+    const LevelAmplification a = levelAmplification(R, schedule, macroStep, j - 1, lambda);
+    (a.logAmplification <= std::log(dampingTarget) && a.largestGrowth <= std::log(maxGrowth) ? lo : hi) = mid;
+  }
+  return lo;
+}
+
 }  // namespace vshmm

@@ -48,4 +48,12 @@ struct LevelAmplification {
 };
 LevelAmplification levelAmplification(const StabilityFunction &R, const MesoscopicSchedule &schedule, double macroStep, int level, std::complex<double> lambda);
 
+// The largest savings factor alpha_j, 0 <= alpha_j <= savings[j-1] (j = 1..K), with which the
+// steps of level j - 1 damp the mode lambda by at least dampingTarget over a macro step
+// (logAmplification <= log dampingTarget) and grow it by at most maxGrowth on the way
+// (largestGrowth <= log maxGrowth), the other parameters as given: the schedule of every trial
+// value is made from kernel, microStep, savings and subintervals. Bisection to 2^-40 of
+// savings[j-1]; 0 if no positive value passes. Throws std::invalid_argument where the schedule does.
+double largestStableSavingsFactor(const StabilityFunction &R, const Kernel &kernel, double microStep, std::vector<double> savings, const std::vector<int> &subintervals, double macroStep, int j, std::complex<double> lambda, double dampingTarget, double maxGrowth);
+
 }  // namespace vshmm

@@ -34,114 +34,6 @@ static vshmm::KernelType CoreKernelType(TSVSHMMKernelType type)
 }
 
 /* ------------------------------------------------------------------------------------------ */
-/* Evaluation of a level's field G_l = f_0 + ... + f_l                                          */
-
-/* Remembers the first non-finite split output of this rank in the current macro step. */
-static inline void NoteNonFinite(TS_VSHMM *vs, PetscInt k, PetscReal t)
-{
-  if (vs->nonfinite_split < 0) {
-    vs->nonfinite_split = k;
-    vs->nonfinite_level = vs->current_level;
-    vs->nonfinite_time  = t;
-  }
-}
-
-static inline bool AllFinite(const PetscScalar *f, PetscInt n)
-{
-  bool ok = true;
-  for (PetscInt i = 0; i < n; ++i) ok &= (bool)std::isfinite(PetscRealPart(f[i]));
-  return ok;
-}
-
-/* G += F for one scale, checking F for Inf/NaN locally (no reduction) while no fault is known. */
-static PetscErrorCode AddScale(TS_VSHMM *vs, PetscInt k, PetscReal t, Vec F, Vec G)
-{
-  VSHMMSplit        &sc = vs->splits[k];
-  const PetscScalar *f;
-  PetscInt           n;
-
-  PetscFunctionBegin;
-  PetscCall(VecGetLocalSize(F, &n));
-  if (sc.local) {
-    PetscScalar *g;
-    bool         ok = true;
-
-    PetscCall(VecGetArrayRead(F, &f));
-    PetscCall(VecGetArray(G, &g));
-    g += sc.offset;
-    for (PetscInt i = 0; i < n; ++i) {
-      g[i] += f[i];
-      ok &= (bool)std::isfinite(PetscRealPart(f[i]));
-    }
-    PetscCall(VecRestoreArray(G, &g));
-    PetscCall(VecRestoreArrayRead(F, &f));
-    if (!ok) NoteNonFinite(vs, k, t);
-  } else {
-    if (vs->nonfinite_split < 0) {
-      PetscCall(VecGetArrayRead(F, &f));
-      if (!AllFinite(f, n)) NoteNonFinite(vs, k, t);
-      PetscCall(VecRestoreArrayRead(F, &f));
-    }
-    PetscCall(VecScatterBegin(sc.scatter, F, G, ADD_VALUES, SCATTER_FORWARD));
-    PetscCall(VecScatterEnd(sc.scatter, F, G, ADD_VALUES, SCATTER_FORWARD));
-  }
-  PetscFunctionReturn(0);
-}
-
-/* G = f_0(t,Y) + ... + f_level(t,Y): each split function called with the full state. */
-PetscErrorCode TSVSHMMEvaluateLevel_Private(TS_VSHMM *vs, PetscInt level, PetscReal t, Vec Y, Vec G)
-{
-  PetscFunctionBegin;
-  vs->current_level = level;
-  const PetscBool counting = vs->counting == TS_VSHMM::COUNT_STEPS ? PETSC_TRUE : PETSC_FALSE;
-  if (counting) vs->level_evaluations[level]++;
-  else if (vs->counting == TS_VSHMM::COUNT_STABILITY) vs->stability_evaluations += vs->level_end[level]; /* split calls */
-  else vs->adapt_evaluations += vs->level_end[level];
-  for (PetscInt k = 0; k < vs->level_end[level]; ++k) {
-    VSHMMSplit &sc = vs->splits[k];
-
-    if (k == 0 && sc.additive) { /* the slowest additive split writes G itself */
-      PetscCall(TSComputeRHSFunction(sc.subts, t, Y, G));
-      if (counting) vs->rhs_evaluations[k]++;
-      if (vs->nonfinite_split < 0) {
-        const PetscScalar *g;
-        PetscInt           n;
-
-        PetscCall(VecGetLocalSize(G, &n));
-        PetscCall(VecGetArrayRead(G, &g));
-        if (!AllFinite(g, n)) NoteNonFinite(vs, k, t);
-        PetscCall(VecRestoreArrayRead(G, &g));
-      }
-      continue;
-    }
-    if (k == 0) PetscCall(VecZeroEntries(G));
-    PetscCall(TSComputeRHSFunction(sc.subts, t, Y, sc.F));
-    if (counting) vs->rhs_evaluations[k]++;
-    PetscCall(AddScale(vs, k, t, sc.F, G));
-  }
-  PetscFunctionReturn(0);
-}
-
-/* The vector operations of one explicit Runge-Kutta step of one level, on PETSc Vecs. */
-struct LevelStepOps {
-  TS_VSHMM *vs;
-  Vec       X;
-  PetscInt  level;
-
-  int stage(int i, double ti, const double *w)
-  {
-    Vec Yi = X;
-    if (i > 0) {
-      PetscCall(VecCopy(X, vs->Y));
-      PetscCall(VecMAXPY(vs->Y, i, w, vs->K.data()));
-      Yi = vs->Y;
-    }
-    return TSVSHMMEvaluateLevel_Private(vs, level, ti, Yi, vs->K[i]);
-  }
-  int update(int s, const double *w) { return VecMAXPY(X, s, w, vs->K.data()); }
-};
-
-/* ------------------------------------------------------------------------------------------ */
 /* Set-up                                                                                       */
 
 static PetscErrorCode TSVSHMMTearDown_Private(TS ts)
@@ -149,9 +41,9 @@ static PetscErrorCode TSVSHMMTearDown_Private(TS ts)
   TS_VSHMM *vs = (TS_VSHMM *)ts->data;
 
   PetscFunctionBegin;
-  for (VSHMMSplit &sc : vs->splits) {
-    PetscCall(VecDestroy(&sc.F));
-    PetscCall(VecScatterDestroy(&sc.scatter));
+  for (VSHMMSplit &split : vs->splits) {
+    PetscCall(VecDestroy(&split.F));
+    PetscCall(VecScatterDestroy(&split.scatter));
   }
   vs->splits.clear();
   vs->level_end.clear();
@@ -222,7 +114,7 @@ static PetscErrorCode OrderSplits(TS ts, std::vector<TS_RHSSplitLink> &links, st
 
 /* How a split's output is added into a full vector: in place (its IS is a contiguous run of
    locally owned components on every rank) or by a scatter. */
-static PetscErrorCode SetUpSplit(TS ts, TS_RHSSplitLink link, VSHMMSplit &sc)
+static PetscErrorCode SetUpSplit(TS ts, TS_RHSSplitLink link, VSHMMSplit &split)
 {
   Vec             X    = ts->vec_sol;
   MPI_Comm        comm = PetscObjectComm((PetscObject)X);
@@ -232,28 +124,28 @@ static PetscErrorCode SetUpSplit(TS ts, TS_RHSSplitLink link, VSHMMSplit &sc)
   int             flags[2];
 
   PetscFunctionBegin;
-  sc.name  = link->splitname;
-  sc.subts = link->ts;
-  sc.is    = link->is;
-  PetscCall(ISGetLocalSize(sc.is, &nis));
+  split.name  = link->splitname;
+  split.subts = link->ts;
+  split.is    = link->is;
+  PetscCall(ISGetLocalSize(split.is, &nis));
   PetscCall(VecGetOwnershipRange(X, &rstart, &rend));
-  PetscCall(ISGetIndices(sc.is, &idx));
+  PetscCall(ISGetIndices(split.is, &idx));
   bool contiguous = true;
   for (PetscInt i = 1; i < nis && contiguous; ++i) contiguous = idx[i] == idx[0] + i;
   bool owned = nis == 0 || (idx[0] >= rstart && idx[0] + nis <= rend);
-  sc.offset  = nis ? idx[0] - rstart : 0;
-  PetscCall(ISRestoreIndices(sc.is, &idx));
+  split.offset  = nis ? idx[0] - rstart : 0;
+  PetscCall(ISRestoreIndices(split.is, &idx));
   flags[0] = contiguous && owned;
   flags[1] = flags[0] && nis == rend - rstart;
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, flags, 2, MPI_INT, MPI_LAND, comm));
-  sc.local    = flags[0] ? PETSC_TRUE : PETSC_FALSE;
-  sc.additive = flags[1] ? PETSC_TRUE : PETSC_FALSE;
+  split.local    = flags[0] ? PETSC_TRUE : PETSC_FALSE;
+  split.additive = flags[1] ? PETSC_TRUE : PETSC_FALSE;
 
-  PetscCall(VecCreate(comm, &sc.F));
-  PetscCall(VecSetSizes(sc.F, nis, PETSC_DETERMINE));
+  PetscCall(VecCreate(comm, &split.F));
+  PetscCall(VecSetSizes(split.F, nis, PETSC_DETERMINE));
   PetscCall(VecGetType(X, &vtype));
-  PetscCall(VecSetType(sc.F, vtype));
-  if (!sc.local) PetscCall(VecScatterCreate(sc.F, nullptr, X, sc.is, &sc.scatter));
+  PetscCall(VecSetType(split.F, vtype));
+  if (!split.local) PetscCall(VecScatterCreate(split.F, nullptr, X, split.is, &split.scatter));
   PetscFunctionReturn(0);
 }
 
@@ -292,6 +184,34 @@ static PetscErrorCode GetRKTableau(MPI_Comm comm, const std::string &type, std::
   PetscFunctionReturn(0);
 }
 
+/* PETSc features that TSVSHMM does not support are refused at set-up, before any work, rather
+   than accepted and ignored or failing in mid-run with PETSc's generic "No method ...":
+   - an adaptive TSAdapt: the macro step is the sampling interval DeltaT (the TS time step), fixed;
+     accuracy control is -ts_vshmm_adapt, which chooses the micro step and savings factors;
+   - events (TSSetEventHandler()): locating an event needs a dense output of every component,
+     which VSHMM does not have (only the sampled states are accurate for the slow variables);
+   - adjoint and forward sensitivities, quadrature in the forward run, TSTrajectory: they need
+     the derivative of the macro step (its stages), which VSHMM does not form;
+   - pre-stage and post-stage hooks: a macro step has no stages of its own (see TSStep_VSHMM()). */
+static PetscErrorCode TSVSHMMCheckSupported_Private(TS ts)
+{
+  MPI_Comm  comm = PetscObjectComm((PetscObject)ts);
+  PetscBool none = PETSC_TRUE;
+
+  PetscFunctionBegin;
+  if (ts->adapt && ((PetscObject)ts->adapt)->type_name) PetscCall(PetscObjectTypeCompare((PetscObject)ts->adapt, TSADAPTNONE, &none));
+  PetscCheck(none, comm, PETSC_ERR_SUP,
+             "TSVSHMM does not support the time step adaptivity TSAdapt '%s' (-ts_adapt_type): its macro step is the sampling interval DeltaT, the TS time step, and stays fixed. Use -ts_adapt_type none (the default of TSVSHMM); for accuracy control use -ts_vshmm_adapt with -ts_rtol/-ts_atol (TSVSHMMSetAdapt())",
+             ((PetscObject)ts->adapt)->type_name);
+  PetscCheck(!ts->event, comm, PETSC_ERR_SUP, "TSVSHMM does not support events (TSSetEventHandler()): only the sampled states are accurate for the slow variables, so an event cannot be located within a macro step. Detect it in a TSMonitor or post-step function on the sampled states instead");
+  PetscCheck(!ts->trajectory, comm, PETSC_ERR_SUP, "TSVSHMM does not support TSTrajectory (TSSetSaveTrajectory(), -ts_save_trajectory) or the adjoint solve (TSAdjointSolve()), which needs it: VSHMM does not form the derivative of its macro step. Use a TSRK type for adjoint sensitivities");
+  PetscCheck(!ts->vecs_sensi, comm, PETSC_ERR_SUP, "TSVSHMM does not support adjoint sensitivities (TSSetCostGradients(), TSAdjointSolve()): VSHMM does not form the derivative of its macro step. Use a TSRK type for adjoint sensitivities");
+  PetscCheck(!ts->forward_solve && !ts->mat_sensip, comm, PETSC_ERR_SUP, "TSVSHMM does not support forward sensitivities (TSForwardSetSensitivities()): VSHMM does not form the derivative of its macro step. Use a TSRK type for forward sensitivities");
+  PetscCheck(!ts->costintegralfwd, comm, PETSC_ERR_SUP, "TSVSHMM does not support evaluating a cost integral in the forward run (TSCreateQuadratureTS() with fwd = PETSC_TRUE): integrate the quantity in a TSMonitor on the sampled states instead");
+  PetscCheck(!ts->prestage && !ts->poststage, comm, PETSC_ERR_SUP, "TSVSHMM does not call pre-stage or post-stage functions (TSSetPreStage(), TSSetPostStage()): a macro step has no stages of its own, its inner Runge-Kutta stages belong to the levels' fields. Use TSSetPreStep() / TSSetPostStep(), called around every macro step");
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode TSSetUp_VSHMM(TS ts)
 {
   TS_VSHMM                    *vs   = (TS_VSHMM *)ts->data;
@@ -300,6 +220,7 @@ static PetscErrorCode TSSetUp_VSHMM(TS ts)
 
   PetscFunctionBegin;
   PetscCall(TSVSHMMTearDown_Private(ts));
+  PetscCall(TSVSHMMCheckSupported_Private(ts));
   std::vector<PetscInt> scale_end;
   PetscCall(OrderSplits(ts, links, scale_end));
   const PetscInt nscales = (PetscInt)scale_end.size(), K = nscales - 1;
@@ -377,6 +298,30 @@ static PetscErrorCode TSVSHMMInvalidateSetUp_Private(TS ts)
 /* ------------------------------------------------------------------------------------------ */
 /* One macro step                                                                               */
 
+/*
+  TSStep_VSHMM - one macro step of length DeltaT (the TS time step) from the sampled state at
+  t0 = ts->ptime: micro cycles of the full field and the mesoscopic steps of the slower levels
+  until t0 + DeltaT exactly (TSVSHMMRunMacroStep_Private(), or TSVSHMMAdaptStep_Private() with
+  -ts_vshmm_adapt, which may also try and reject trial steps).
+
+  - ts->vec_sol is advanced in place to the sampled state at t0 + DeltaT; vs->X0 keeps the one at
+    t0 (for TSInterpolate_VSHMM() and to roll back a failed step).
+  - ts->ptime becomes t0 + DeltaT (ts->max_time exactly for a last step that ends on it);
+    TSStep() itself sets ts->ptime_prev and counts ts->steps. ts->time_step is never changed.
+  - ts->reason is left alone on success (TSSolve() sets the converged reasons). When a split
+    returns Inf or NaN anywhere in the macro step, ts->vec_sol is restored to the state at t0,
+    ts->ptime stays t0 and ts->reason = TS_DIVERGED_STEP_REJECTED, or an error is raised with
+    -ts_error_if_step_fails (one reduction per macro step finds the earliest such output).
+  - TS_EXACTFINALTIME_MATCHSTEP is handled here: other types leave it to TSAdaptChoose(), which
+    shortens the step to end on the final time, but TSVSHMM uses no TSAdapt (DeltaT is the
+    sampling interval), so the last macro step is shortened here instead, without changing
+    ts->time_step: it is a macro step of the shorter length (its kernel periods shrink with it).
+  - TSPreStage()/TSPostStage() are not called: a macro step has no stages of its own. Its
+    thousands of inner Runge-Kutta stages belong to the fields G_l of the levels, not to the
+    TS's right-hand side, and the stage states are not states of the TS's ODE. TSSetUp_VSHMM()
+    refuses pre- and post-stage functions; TSPreStep()/TSPostStep() are called by TSSolve()
+    around every macro step.
+*/
 static PetscErrorCode TSStep_VSHMM(TS ts)
 {
   TS_VSHMM *vs   = (TS_VSHMM *)ts->data;
@@ -437,41 +382,6 @@ static PetscErrorCode TSStep_VSHMM(TS ts)
     PetscFunctionReturn(0);
   }
   ts->ptime = last ? ts->max_time : t0 + DeltaT;
-  PetscFunctionReturn(0);
-}
-
-/* One macro step of length DeltaT from t0 with the given schedule, on X. */
-PetscErrorCode TSVSHMMRunMacroStep_Private(TS ts, const vshmm::MesoscopicSchedule &schedule, PetscReal t0, PetscReal DeltaT, Vec X, vshmm::MacroStepCounts *counts)
-{
-  TS_VSHMM    *vs = (TS_VSHMM *)ts->data;
-  LevelStepOps ops{vs, X, 0};
-
-  PetscFunctionBegin;
-  int err = vshmm::runMacroStep(
-    schedule, DeltaT,
-    [&](int level, double tau, double h) -> int {
-      ops.level = level;
-      PetscCall(PetscLogEventBegin(vs->level_events[level], ts, 0, 0, 0));
-      PetscCall(vshmm::explicitRungeKuttaStep(*vs->tableau, ops, t0 + tau, h));
-      PetscCall(PetscLogEventEnd(vs->level_events[level], ts, 0, 0, 0));
-      return 0;
-    },
-    counts);
-  PetscCall(err);
-  PetscFunctionReturn(0);
-}
-
-/* The schedule of the mesoscopic steps for micro step dt. */
-PetscErrorCode TSVSHMMCreateSchedule_Private(TS ts, PetscReal dt, std::unique_ptr<vshmm::MesoscopicSchedule> &schedule)
-{
-  TS_VSHMM *vs = (TS_VSHMM *)ts->data;
-
-  PetscFunctionBegin;
-  try {
-    schedule = std::make_unique<vshmm::MesoscopicSchedule>(*vs->kernel, dt, std::vector<double>(vs->savings_used.begin(), vs->savings_used.end()), std::vector<int>(vs->subintervals_used.begin(), vs->subintervals_used.end()));
-  } catch (const std::exception &e) {
-    PetscCall(ParameterError(PetscObjectComm((PetscObject)ts), e.what()));
-  }
   PetscFunctionReturn(0);
 }
 
@@ -655,10 +565,10 @@ static PetscErrorCode TSView_VSHMM(TS ts, PetscViewer viewer)
   PetscCall(PetscViewerASCIIPrintf(viewer, "  scale  split                 step         savings factor  subintervals  RHS evaluations\n"));
   for (PetscInt l = 0, k = 0; l < nscales; ++l) {
     for (; k < vs->level_end[l]; ++k) {
-      const VSHMMSplit &sc = vs->splits[k];
+      const VSHMMSplit &split = vs->splits[k];
       if (l < nscales - 1)
-        PetscCall(PetscViewerASCIIPrintf(viewer, "  %5" PetscInt_FMT "  %-20s  h_%-3" PetscInt_FMT "        %-14g  %-12" PetscInt_FMT "  %" PetscInt64_FMT "\n", l, sc.name.c_str(), l + 1, (double)vs->savings_used[l], vs->subintervals_used[l], vs->rhs_evaluations[k]));
-      else PetscCall(PetscViewerASCIIPrintf(viewer, "  %5" PetscInt_FMT "  %-20s  dt (micro)   %-14s  %-12s  %" PetscInt64_FMT "\n", l, sc.name.c_str(), "-", "-", vs->rhs_evaluations[k]));
+        PetscCall(PetscViewerASCIIPrintf(viewer, "  %5" PetscInt_FMT "  %-20s  h_%-3" PetscInt_FMT "        %-14g  %-12" PetscInt_FMT "  %" PetscInt64_FMT "\n", l, split.name.c_str(), l + 1, (double)vs->savings_used[l], vs->subintervals_used[l], vs->rhs_evaluations[k]));
+      else PetscCall(PetscViewerASCIIPrintf(viewer, "  %5" PetscInt_FMT "  %-20s  dt (micro)   %-14s  %-12s  %" PetscInt64_FMT "\n", l, split.name.c_str(), "-", "-", vs->rhs_evaluations[k]));
     }
   }
   PetscInt64 steps = 0, evals = 0;

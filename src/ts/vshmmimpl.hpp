@@ -106,14 +106,19 @@ struct TS_VSHMM {
 static constexpr PetscInt  kDefaultMicroStepsPerMacroStep = 100;
 static constexpr PetscReal kMinMicroStepFraction          = 1e-13; /* dt / DeltaT below this cannot advance time */
 
+/* vshmm.cpp: the type */
 PETSC_INTERN PetscErrorCode TSCreate_VSHMM(TS);
+/* vshmmlevel.cpp: the levels' fields and steps, their log events */
 PETSC_INTERN PetscErrorCode TSVSHMMEvaluateLevel_Private(TS_VSHMM *, PetscInt, PetscReal, Vec, Vec);
 PETSC_INTERN PetscErrorCode TSVSHMMCreateSchedule_Private(TS, PetscReal, std::unique_ptr<vshmm::MesoscopicSchedule> &);
+PETSC_INTERN PetscErrorCode TSVSHMMRunMacroStep_Private(TS, const vshmm::MesoscopicSchedule &, PetscReal, PetscReal, Vec, vshmm::MacroStepCounts *);
+PETSC_INTERN PetscErrorCode TSVSHMMGetLevelEvent_Private(PetscInt, PetscLogEvent *);
+PETSC_INTERN PetscErrorCode TSVSHMMResetLevelEvents_Private(void);
+/* vshmmstability.cpp: spectra of the levels, the stability check */
 PETSC_INTERN PetscErrorCode TSVSHMMCheckStability_Private(TS);
 PETSC_INTERN PetscErrorCode TSVSHMMLevelSpectra_Private(TS);
+/* vshmmadapt.cpp: the separation check, accuracy control */
 PETSC_INTERN PetscErrorCode TSVSHMMCheckSeparation_Private(TS);
-PETSC_INTERN PetscErrorCode TSVSHMMRunMacroStep_Private(TS, const vshmm::MesoscopicSchedule &, PetscReal, PetscReal, Vec, vshmm::MacroStepCounts *);
 PETSC_INTERN PetscErrorCode TSVSHMMAdaptStep_Private(TS, PetscReal, PetscReal);
 PETSC_INTERN PetscErrorCode TSVSHMMAdaptSetUp_Private(TS);
 PETSC_INTERN PetscErrorCode TSVSHMMAdaptReset_Private(TS);
-PETSC_INTERN PetscErrorCode TSVSHMMGetLevelEvent_Private(PetscInt, PetscLogEvent *);

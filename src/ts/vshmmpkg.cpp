@@ -3,10 +3,7 @@
 */
 #include "vshmmimpl.hpp"
 
-#include <cstdio>
-
-static PetscBool                  TSVSHMMPackageInitialized = PETSC_FALSE;
-static std::vector<PetscLogEvent> TSVSHMMLevelEvents; /* one per level, registered on demand */
+static PetscBool TSVSHMMPackageInitialized = PETSC_FALSE;
 
 /*@C
    TSVSHMMFinalizePackage - Resets the TSVSHMM package state; called from `PetscFinalize()`
@@ -19,7 +16,7 @@ PetscErrorCode TSVSHMMFinalizePackage(void)
 {
   PetscFunctionBegin;
   TSVSHMMPackageInitialized = PETSC_FALSE;
-  TSVSHMMLevelEvents.clear();
+  PetscCall(TSVSHMMResetLevelEvents_Private());
   PetscFunctionReturn(0);
 }
 
@@ -46,22 +43,6 @@ PetscErrorCode TSVSHMMInitializePackage(void)
   PetscCall(TSInitializePackage());
   PetscCall(TSRegister(TSVSHMM, TSCreate_VSHMM));
   PetscCall(PetscRegisterFinalize(TSVSHMMFinalizePackage));
-  PetscFunctionReturn(0);
-}
-
-/* The log event of one level ("VSHMMLevel<l>"), registered the first time it is needed. */
-PetscErrorCode TSVSHMMGetLevelEvent_Private(PetscInt level, PetscLogEvent *event)
-{
-  PetscFunctionBegin;
-  while ((PetscInt)TSVSHMMLevelEvents.size() <= level) {
-    char          name[64];
-    PetscLogEvent e;
-
-    std::snprintf(name, sizeof(name), "VSHMMLevel%d", (int)TSVSHMMLevelEvents.size());
-    PetscCall(PetscLogEventRegister(name, TS_CLASSID, &e));
-    TSVSHMMLevelEvents.push_back(e);
-  }
-  *event = TSVSHMMLevelEvents[level];
   PetscFunctionReturn(0);
 }
 

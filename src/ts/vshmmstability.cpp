@@ -119,27 +119,6 @@ static std::string LevelSplits(const TS_VSHMM *vs, PetscInt level)
   return s;
 }
 
-/* The largest savings factor alpha_j (0 < alpha <= alpha_now) for which level j - 1 damps lambda
-   by kDampingTarget over a macro step. */
-static PetscErrorCode LargestStableSavingsFactor(TS ts, PetscReal dt, PetscInt j, std::complex<double> lambda, const vshmm::StabilityFunction &R, PetscReal *alpha)
-{
-  TS_VSHMM *vs  = (TS_VSHMM *)ts->data;
-  PetscReal now = vs->savings_used[j - 1], lo = 0, hi = now;
-
-  PetscFunctionBegin;
-  for (int it = 0; it < 40; ++it) {
-    const PetscReal mid = 0.5 * (lo + hi);
-    vs->savings_used[j - 1] = mid;
-    std::unique_ptr<vshmm::MesoscopicSchedule> schedule;
-    PetscCall(TSVSHMMCreateSchedule_Private(ts, dt, schedule));
-    const vshmm::LevelAmplification a = vshmm::levelAmplification(R, *schedule, ts->time_step, (int)(j - 1), lambda);
-    (a.logAmplification <= std::log(kDampingTarget) && a.largestGrowth <= std::log(kMaxTransientGrowth) ? lo : hi) = mid;
-  }
-  vs->savings_used[j - 1] = now;
-  *alpha                  = lo;
-  PetscFunctionReturn(0);
-}
-
 /* Estimates, for every level, the spectral radius of its field's Jacobian at the current state,
    the decaying or oscillating modes that limit an explicit step and the largest stable step of
    the inner Runge-Kutta method for them (infinite where none limits). */
@@ -250,8 +229,12 @@ PetscErrorCode TSVSHMMCheckStability_Private(TS ts)
       continue;
     }
     if (logA <= 1e-8) grows = peaks; /* damped in the end, but too much growth on the way */
-    PetscReal alpha_max;
-    PetscCall(LargestStableSavingsFactor(ts, dt, j, grows, R, &alpha_max));
+    PetscReal alpha_max = 0; /* the largest alpha_j that damps it, found by the core without touching the TS */
+    try {
+      alpha_max = vshmm::largestStableSavingsFactor(R, *vs->kernel, dt, std::vector<double>(vs->savings_used.begin(), vs->savings_used.end()), std::vector<int>(vs->subintervals_used.begin(), vs->subintervals_used.end()), DeltaT, (int)j, grows, kDampingTarget, kMaxTransientGrowth);
+    } catch (const std::exception &e) {
+      SETERRQ(comm, PETSC_ERR_ARG_OUTOFRANGE, "TSVSHMM: %s", e.what());
+    }
     SETERRQ(comm, PETSC_ERR_ARG_OUTOFRANGE,
             "TSVSHMM stability check at t = %g: level %" PetscInt_FMT " (splits %s) is unstable with its mesoscopic step h_%" PetscInt_FMT ": its largest step %g times the estimated eigenvalue %g%+gi (spectral radius %g) lies outside the stability region of TSRK %s, whose largest stable step for it is %g; within a macro step the level's steps amplify that mode by up to %g (at most %g is tolerated) and over the macro step by %g. Use a savings factor alpha_%" PetscInt_FMT " <= %g (now %g) in -ts_vshmm_savings_factors, -ts_vshmm_adapt, or -ts_vshmm_check_stability false to skip the check",
             (double)t, level, LevelSplits(vs, level).c_str(), j, hpeak, grows.real(), grows.imag(), radius, rk, R.largestStableStep(grows), std::exp(growth), (double)kMaxTransientGrowth, std::exp(logA), j, (double)alpha_max, (double)vs->savings_used[j - 1]);

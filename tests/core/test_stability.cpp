@@ -106,4 +106,29 @@ TEST(LevelAmplification, VariableStepsBeyondThePeakLimitCanStillDampOverAPeriod)
   EXPECT_NEAR(top.logAmplification, top.steps * std::log(std::abs(R(-1.0))), 1e-9 * top.steps);
 }
 
+TEST(LargestStableSavingsFactor, IsTheEdgeOfTheCriterion)
+{
+  // The paper's dissipative parameters with lambda = -3000 at level 1: alpha_2 = 10 does not
+  // damp the mode over a macro step (above). The factor found passes the criterion, a slightly
+  // larger one fails, and the parameters passed in are left as they were.
+  auto                      kernel = vshmm::Kernel::create(vshmm::KernelType::Cosine);
+  vshmm::StabilityFunction  R(RK4());
+  const std::vector<double> savings = {100, 10};
+  const std::vector<int>    subintervals = {1, 1};
+  const double              target = 0.5, growth = 100, lambda = -3000;
+  const double              alpha = vshmm::largestStableSavingsFactor(R, *kernel, 1e-4, savings, subintervals, 0.1, 2, lambda, target, growth);
+  EXPECT_EQ(savings, (std::vector<double>{100, 10}));
+  ASSERT_GT(alpha, 1.0);
+  ASSERT_LT(alpha, 10.0);
+  auto passes = [&](double a) {
+    const vshmm::MesoscopicSchedule          schedule(*kernel, 1e-4, {100, a}, subintervals);
+    const vshmm::LevelAmplification amp = vshmm::levelAmplification(R, schedule, 0.1, 1, lambda);
+    return amp.logAmplification <= std::log(target) && amp.largestGrowth <= std::log(growth);
+  };
+  EXPECT_TRUE(passes(alpha));
+  EXPECT_FALSE(passes(alpha * (1 + 1e-6)));
+  // Where even tiny steps do not damp enough (a growing mode), no positive factor passes.
+  EXPECT_EQ(vshmm::largestStableSavingsFactor(R, *kernel, 1e-4, savings, subintervals, 0.1, 2, 10.0, target, growth), 0.0);
+}
+
 } // namespace

@@ -1,5 +1,5 @@
-# CTest runs of the examples (included by the top-level CMakeLists.txt; vshmm_example_test() is
-# in cmake/VSHMMTesting.cmake). Expected outputs are in examples/<dir>/output/. Every run passes
+# CTest runs of examples/ode/dissipative.c (included by the top-level CMakeLists.txt;
+# vshmm_example_test() is in cmake/VSHMMTesting.cmake). Expected outputs are in output/. Every run passes
 # -no_timing so that its output is deterministic. Numbers are compared by tests/numdiff.sh:
 # |a - b| <= ATOL or |a - b| <= RTOL max(|a|,|b|); with RTOL 0 the step and evaluation counts
 # must match exactly. Total time of these tests: a few seconds (the DNS runs take ~1 s each).
@@ -20,12 +20,12 @@ foreach(np 1 2)
   endif()
   vshmm_example_test(NAME dissipative_dns${_sfx} EXE dissipative NP ${np}
                      ARGS -ts_type rk -ts_rk_type 4 -ts_dt 1e-5 -no_timing
-                     OUTPUT ode/output/dissipative_dns.out RTOL 0 ATOL 2e-8)
+                     OUTPUT output/dissipative_dns.out RTOL 0 ATOL 2e-8)
   # The averaged equation dXi/dt = sin(2 Xi) - Xi^2/5 (on 2 ranks one rank owns nothing):
   # RK4 dt = 1e-3, within 2e-8 of its converged values.
   vshmm_example_test(NAME dissipative_averaged${_sfx} EXE dissipative NP ${np}
                      ARGS -mode averaged -ts_type rk -ts_rk_type 4 -ts_dt 1e-3 -no_timing
-                     OUTPUT ode/output/dissipative_averaged.out RTOL 0 ATOL 2e-8)
+                     OUTPUT output/dissipative_averaged.out RTOL 0 ATOL 2e-8)
 endforeach()
 
 # VSHMM with the paper's parameters (dt = 1e-4, alpha = 100,10, DeltaT = 0.1), component and
@@ -37,7 +37,7 @@ foreach(kind component additive)
   foreach(np 1 2)
     vshmm_example_test(NAME dissipative_vshmm_${kind}_np${np} EXE dissipative NP ${np}
                        ARGS ${_diss_vshmm} -ts_vshmm_savings_factors 100,10 -split_kind ${kind} -no_timing
-                       OUTPUT ode/output/dissipative_vshmm_paper.out RTOL 1e-7 ATOL 1e-9)
+                       OUTPUT output/dissipative_vshmm_paper.out RTOL 1e-7 ATOL 1e-9)
   endforeach()
 endforeach()
 
@@ -45,13 +45,28 @@ endforeach()
 # - the paper's parameters at the final time t = 2 (error 8.1e-3);
 vshmm_example_test(NAME dissipative_vshmm_paper_vs_dns EXE dissipative NP 1
                    ARGS ${_diss_vshmm} -ts_vshmm_savings_factors 100,10 -print_interval 2 -no_timing
-                   OUTPUT ode/output/dissipative_vshmm_paper_vs_dns.out RTOL 0 ATOL 2e-2)
+                   OUTPUT output/dissipative_vshmm_paper_vs_dns.out RTOL 0 ATOL 2e-2)
 # - smaller savings factors alpha = 20,5 at every printed time (max error 1.2e-2 at t = 1).
 vshmm_example_test(NAME dissipative_vshmm_alpha20_vs_dns_np2 EXE dissipative NP 2
                    ARGS ${_diss_vshmm} -ts_vshmm_savings_factors 20,5 -split_kind additive -no_timing
-                   OUTPUT ode/output/dissipative_vshmm_alpha20_vs_dns.out RTOL 0 ATOL 2e-2)
+                   OUTPUT output/dissipative_vshmm_alpha20_vs_dns.out RTOL 0 ATOL 2e-2)
 
 # PETSc's own allocations are all freed at PetscFinalize: -malloc_dump prints nothing more.
 vshmm_example_test(NAME dissipative_vshmm_malloc_dump EXE dissipative NP 1
                    ARGS ${_diss_vshmm} -ts_vshmm_savings_factors 100,10 -no_timing -malloc_debug -malloc_dump
-                   OUTPUT ode/output/dissipative_vshmm_paper.out RTOL 1e-7 ATOL 1e-9)
+                   OUTPUT output/dissipative_vshmm_paper.out RTOL 1e-7 ATOL 1e-9)
+
+# Bad input to the ODE examples: a clear error naming the option (PETSc's readers accept inf and
+# would drop extra -x0 values).
+vshmm_mpiexec_command(_ode_launch 1)
+function(_ode_error_test name exe regex)
+  add_test(NAME ode_error_${name} COMMAND ${_ode_launch} $<TARGET_FILE:${exe}> ${ARGN})
+  set_tests_properties(ode_error_${name} PROPERTIES PASS_REGULAR_EXPRESSION "${regex}" LABELS example TIMEOUT 60)
+endfunction()
+_ode_error_test(dissipative_eps_inf dissipative "-eps must be positive and finite, got inf" -eps inf)
+_ode_error_test(dissipative_x0_extra dissipative "-x0 takes 3 values xi,eta,zeta, got more than 3" -x0 1,2,3,4)
+_ode_error_test(dissipative_x0_short dissipative "-x0 takes 3 values xi,eta,zeta, got 2" -x0 1,2)
+_ode_error_test(dissipative_x0_nan dissipative "-x0 value 2 is nan.*: the initial state must be finite" -x0 1,nan,3)
+_ode_error_test(oscillatory_eps_inf oscillatory "-eps must be positive and finite, got inf" -eps inf)
+_ode_error_test(oscillatory_x0_extra oscillatory "-x0 takes 4 values x1,x2,y1,y2, got more than 4" -x0 1,2,3,4,5)
+_ode_error_test(chain_x0_extra chain "-x0 takes 1 to 3 values x0,...,xK, got more than 3" -scales 3 -x0 1,2,3,4)

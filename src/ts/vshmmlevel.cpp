@@ -1,0 +1,185 @@
+/*
+  The levels of TSVSHMM: evaluation of a level's field G_l = f_0 + ... + f_l from the RHS splits
+  (with the watch for Inf/NaN), one macro step of Runge-Kutta steps of the levels along the
+  schedule of the mesoscopic steps, and the log event of each level.
+
+  Used by the stepper (vshmm.cpp), the stability check (vshmmstability.cpp) and the accuracy
+  control (vshmmadapt.cpp); it calls none of them.
+*/
+#include "vshmmimpl.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+static std::vector<PetscLogEvent> TSVSHMMLevelEvents; /* one per level, registered on demand */
+
+/* The log event of one level ("VSHMMLevel<l>"), registered the first time it is needed. */
+PetscErrorCode TSVSHMMGetLevelEvent_Private(PetscInt level, PetscLogEvent *event)
+{
+  PetscFunctionBegin;
+  while ((PetscInt)TSVSHMMLevelEvents.size() <= level) {
+    char          name[64];
+    PetscLogEvent e;
+
+    std::snprintf(name, sizeof(name), "VSHMMLevel%d", (int)TSVSHMMLevelEvents.size());
+    PetscCall(PetscLogEventRegister(name, TS_CLASSID, &e));
+    TSVSHMMLevelEvents.push_back(e);
+  }
+  *event = TSVSHMMLevelEvents[level];
+  PetscFunctionReturn(0);
+}
+
+/* Forgets the level events (PetscFinalize(): a later PetscInitialize() registers them again). */
+PetscErrorCode TSVSHMMResetLevelEvents_Private(void)
+{
+  PetscFunctionBegin;
+  TSVSHMMLevelEvents.clear();
+  PetscFunctionReturn(0);
+}
+
+/* ------------------------------------------------------------------------------------------ */
+/* Evaluation of a level's field G_l = f_0 + ... + f_l                                          */
+
+/* Remembers the first non-finite split output of this rank in the current macro step. */
+static inline void NoteNonFinite(TS_VSHMM *vs, PetscInt k, PetscReal t)
+{
+  if (vs->nonfinite_split < 0) {
+    vs->nonfinite_split = k;
+    vs->nonfinite_level = vs->current_level;
+    vs->nonfinite_time  = t;
+  }
+}
+
+static inline bool AllFinite(const PetscScalar *f, PetscInt n)
+{
+  bool ok = true;
+  for (PetscInt i = 0; i < n; ++i) ok &= (bool)std::isfinite(PetscRealPart(f[i]));
+  return ok;
+}
+
+/* G += F, the output of split k (one split: a scale may be a group of them), checking F for Inf/NaN
+   locally (no reduction) while no fault is known. */
+static PetscErrorCode AddSplit(TS_VSHMM *vs, PetscInt k, PetscReal t, Vec F, Vec G)
+{
+  VSHMMSplit        &split = vs->splits[k];
+  const PetscScalar *f;
+  PetscInt           n;
+
+  PetscFunctionBegin;
+  PetscCall(VecGetLocalSize(F, &n));
+  if (split.local) {
+    PetscScalar *g;
+    bool         ok = true;
+
+    PetscCall(VecGetArrayRead(F, &f));
+    PetscCall(VecGetArray(G, &g));
+    g += split.offset;
+    for (PetscInt i = 0; i < n; ++i) {
+      g[i] += f[i];
+      ok &= (bool)std::isfinite(PetscRealPart(f[i]));
+    }
+    PetscCall(VecRestoreArray(G, &g));
+    PetscCall(VecRestoreArrayRead(F, &f));
+    if (!ok) NoteNonFinite(vs, k, t);
+  } else {
+    if (vs->nonfinite_split < 0) {
+      PetscCall(VecGetArrayRead(F, &f));
+      if (!AllFinite(f, n)) NoteNonFinite(vs, k, t);
+      PetscCall(VecRestoreArrayRead(F, &f));
+    }
+    PetscCall(VecScatterBegin(split.scatter, F, G, ADD_VALUES, SCATTER_FORWARD));
+    PetscCall(VecScatterEnd(split.scatter, F, G, ADD_VALUES, SCATTER_FORWARD));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* G = f_0(t,Y) + ... + f_level(t,Y): each split function called with the full state. */
+PetscErrorCode TSVSHMMEvaluateLevel_Private(TS_VSHMM *vs, PetscInt level, PetscReal t, Vec Y, Vec G)
+{
+  PetscFunctionBegin;
+  vs->current_level = level;
+  const PetscBool counting = vs->counting == TS_VSHMM::COUNT_STEPS ? PETSC_TRUE : PETSC_FALSE;
+  if (counting) vs->level_evaluations[level]++;
+  else if (vs->counting == TS_VSHMM::COUNT_STABILITY) vs->stability_evaluations += vs->level_end[level]; /* split calls */
+  else vs->adapt_evaluations += vs->level_end[level];
+  for (PetscInt k = 0; k < vs->level_end[level]; ++k) {
+    VSHMMSplit &split = vs->splits[k];
+
+    if (k == 0 && split.additive) { /* the slowest additive split writes G itself */
+      PetscCall(TSComputeRHSFunction(split.subts, t, Y, G));
+      if (counting) vs->rhs_evaluations[k]++;
+      if (vs->nonfinite_split < 0) {
+        const PetscScalar *g;
+        PetscInt           n;
+
+        PetscCall(VecGetLocalSize(G, &n));
+        PetscCall(VecGetArrayRead(G, &g));
+        if (!AllFinite(g, n)) NoteNonFinite(vs, k, t);
+        PetscCall(VecRestoreArrayRead(G, &g));
+      }
+      continue;
+    }
+    if (k == 0) PetscCall(VecZeroEntries(G));
+    PetscCall(TSComputeRHSFunction(split.subts, t, Y, split.F));
+    if (counting) vs->rhs_evaluations[k]++;
+    PetscCall(AddSplit(vs, k, t, split.F, G));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The vector operations of one explicit Runge-Kutta step of one level, on PETSc Vecs. */
+struct LevelStepOps {
+  TS_VSHMM *vs;
+  Vec       X;
+  PetscInt  level;
+
+  int stage(int i, double ti, const double *w)
+  {
+    Vec Yi = X;
+    if (i > 0) {
+      PetscCall(VecCopy(X, vs->Y));
+      PetscCall(VecMAXPY(vs->Y, i, w, vs->K.data()));
+      Yi = vs->Y;
+    }
+    return TSVSHMMEvaluateLevel_Private(vs, level, ti, Yi, vs->K[i]);
+  }
+  int update(int s, const double *w) { return VecMAXPY(X, s, w, vs->K.data()); }
+};
+
+/* ------------------------------------------------------------------------------------------ */
+/* One macro step                                                                               */
+
+/* One macro step of length DeltaT from t0 with the given schedule, on X. */
+PetscErrorCode TSVSHMMRunMacroStep_Private(TS ts, const vshmm::MesoscopicSchedule &schedule, PetscReal t0, PetscReal DeltaT, Vec X, vshmm::MacroStepCounts *counts)
+{
+  TS_VSHMM    *vs = (TS_VSHMM *)ts->data;
+  LevelStepOps ops{vs, X, 0};
+
+  PetscFunctionBegin;
+  int err = vshmm::runMacroStep(
+    schedule, DeltaT,
+    [&](int level, double tau, double h) -> int {
+      ops.level = level;
+      PetscCall(PetscLogEventBegin(vs->level_events[level], ts, 0, 0, 0));
+      PetscCall(vshmm::explicitRungeKuttaStep(*vs->tableau, ops, t0 + tau, h));
+      PetscCall(PetscLogEventEnd(vs->level_events[level], ts, 0, 0, 0));
+      return 0;
+    },
+    counts);
+  PetscCall(err);
+  PetscFunctionReturn(0);
+}
+
+/* The schedule of the mesoscopic steps for micro step dt. */
+PetscErrorCode TSVSHMMCreateSchedule_Private(TS ts, PetscReal dt, std::unique_ptr<vshmm::MesoscopicSchedule> &schedule)
+{
+  TS_VSHMM *vs = (TS_VSHMM *)ts->data;
+
+  PetscFunctionBegin;
+  try {
+    schedule = std::make_unique<vshmm::MesoscopicSchedule>(*vs->kernel, dt, std::vector<double>(vs->savings_used.begin(), vs->savings_used.end()), std::vector<int>(vs->subintervals_used.begin(), vs->subintervals_used.end()));
+  } catch (const std::exception &e) {
+    SETERRQ(PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "TSVSHMM: %s", e.what());
+  }
+  PetscFunctionReturn(0);
+}
