@@ -414,7 +414,7 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
       next                              = vshmm::chooseParameters(p, vs->adapt_model, target, bounds);
       vshmm::limitWorkChange(next, same, PetscMin(kMaxCheaper, PetscMax(1.0, PetscSqrtReal(target / PetscMax(E, PETSC_SMALL)))), kMaxDearer);
     }
-    PetscBool refinable = vs->adapt_model.total(next) < 0.99 * vs->adapt_model.total(p) ? PETSC_TRUE : PETSC_FALSE; /* the model expects a lower error */
+    PetscBool refinable = vs->adapt_model.total(next) < 0.9 * vs->adapt_model.total(p) ? PETSC_TRUE : PETSC_FALSE; /* the model expects a clearly lower error */
     if (!std::isfinite(E) || (E > kFloorAccept * budget && !refinable)) { /* no estimate, or far off and the model is stuck: every parameter finer */
       next = p;
       if (!bounds.fixedMicroStep) next.microStep *= 0.5;
@@ -424,9 +424,13 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
     }
     LimitToStableSteps(ts, next);
     PetscCall(PetscInfo(ts, "Adapt: macro step [%g, %g] try %" PetscInt_FMT ": dt %g, cycle %g, %" PetscInt64_FMT " cycles; estimate %g of its share %g\n", (double)t0, (double)t1, attempt, (double)p.microStep, (double)vshmm::cycleLength(p), counts.cycles, (double)E, (double)budget));
-    /* a noise floor: twice, finer parameters did not lower an estimate that is near the share */
+    /* a floor: twice, finer parameters did not lower an estimate that is near the share (or the
+       savings cannot be taken back any further); far above it, the savings go on falling (their
+       limit, no savings, is a single-rate Runge-Kutta method with the micro step) */
     stalled               = (attempt > 0 && E > kFloorFactor * Eprev) ? stalled + 1 : 0;
-    const PetscBool floor = (stalled >= 2 && E <= kFloorAccept * budget) ? PETSC_TRUE : PETSC_FALSE;
+    PetscBool       savings = PETSC_FALSE; /* savings the choice may still take back */
+    for (double r : p.ratios) savings = (r > 1.0 + 1e-6 && !bounds.fixedRatios) ? PETSC_TRUE : savings;
+    const PetscBool floor = (stalled >= 2 && (E <= kFloorAccept * budget || !savings)) ? PETSC_TRUE : PETSC_FALSE;
     Eprev                 = E;
     if (E > budget && refinable && !floor && attempt + 1 < kMaxAttempts) { /* redo with finer parameters */
       DiscardTry(vs, rhs0, lev0);
@@ -434,14 +438,15 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
       continue;
     }
     if (E > budget) {
-      const char *why = floor ? "finer parameters do not lower the estimate" : !refinable ? "no finer parameters allowed (user-set parameters or stability bounds)" : "too many tries";
+      const PetscBool noise = (floor && savings) ? PETSC_TRUE : PETSC_FALSE;
+      const char     *why   = noise ? "finer parameters do not lower the estimate" : floor ? "finer micro steps do not lower the estimate, and the savings factors are set or none are left" : !refinable ? "no finer parameters allowed (user-set parameters or stability bounds)" : "too many tries";
       PetscCall(PetscInfo(ts, "Adapt: macro step [%g, %g] accepted with estimate %g above its share %g: %s\n", (double)t0, (double)t1, (double)E, (double)budget, why));
       if (!vs->floor_warned && E > kWarn * budget) {
         vs->floor_warned = PETSC_TRUE;
         PetscCall(PetscFPrintf(PetscObjectComm((PetscObject)ts), PETSC_STDERR,
                                "TSVSHMM warning (-ts_vshmm_adapt): the macro step [%g, %g] is accepted with an error estimate of %g times its share of the tolerance (%s). %s The run goes on; the estimates are in the statistics (TSVSHMMGetStatistics(), -ts_view). This warning is given once per solve.\n",
                                (double)t0, (double)t1, (double)(E / budget), why,
-                               floor ? "The sampled values carry a part VSHMM does not resolve (typically fast fluctuations): a tolerance this far below -ts_rtol/-ts_atol is out of reach for VSHMM here." : "Loosen the tolerance, or leave the micro step and savings factors to -ts_vshmm_adapt, or use a single-rate TS type."));
+                               noise ? "The sampled values carry a part VSHMM does not resolve (typically fast fluctuations): a tolerance this far below -ts_rtol/-ts_atol is out of reach for VSHMM here." : "Loosen the tolerance, or leave the micro step and savings factors to -ts_vshmm_adapt, or use a single-rate TS type."));
       }
     }
     PetscCall(VecCopy(vs->Xbase, ts->vec_sol));
