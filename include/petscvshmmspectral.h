@@ -73,7 +73,6 @@ PETSC_EXTERN PetscErrorCode VSHMMSpectralCreate(MPI_Comm, VSHMMSpectral *);
 PETSC_EXTERN PetscErrorCode VSHMMSpectralDestroy(VSHMMSpectral *);
 PETSC_EXTERN PetscErrorCode VSHMMSpectralSetDefaultScene(VSHMMSpectral, const char[]);
 PETSC_EXTERN PetscErrorCode VSHMMSpectralSetOptionsPrefix(VSHMMSpectral, const char[]);
-PETSC_EXTERN PetscErrorCode VSHMMSpectralAppendOptionsPrefix(VSHMMSpectral, const char[]);
 PETSC_EXTERN PetscErrorCode VSHMMSpectralGetOptionsPrefix(VSHMMSpectral, const char *[]);
 PETSC_EXTERN PetscErrorCode VSHMMSpectralSetFromOptions(VSHMMSpectral);
 PETSC_EXTERN PetscErrorCode VSHMMSpectralSetUp(VSHMMSpectral);

@@ -237,34 +237,13 @@ PetscErrorCode VSHMMSpectralSetDefaultScene(VSHMMSpectral sp, const char scene[]
 
    Level: intermediate
 
-.seealso: `VSHMMSpectralAppendOptionsPrefix()`, `VSHMMSpectralGetOptionsPrefix()`, `VSHMMSpectralSetFromOptions()`
+.seealso: `VSHMMSpectralGetOptionsPrefix()`, `VSHMMSpectralSetFromOptions()`
 @*/
 PetscErrorCode VSHMMSpectralSetOptionsPrefix(VSHMMSpectral sp, const char prefix[])
 {
   PetscFunctionBegin;
   PetscValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
   PetscCall(PetscObjectSetOptionsPrefix((PetscObject)sp, prefix));
-  PetscFunctionReturn(0);
-}
-
-/*@C
-   VSHMMSpectralAppendOptionsPrefix - Appends to the prefix of the object's options
-
-   Logically Collective
-
-   Input Parameters:
-+  sp     - the object
--  prefix - the text to append
-
-   Level: intermediate
-
-.seealso: `VSHMMSpectralSetOptionsPrefix()`
-@*/
-PetscErrorCode VSHMMSpectralAppendOptionsPrefix(VSHMMSpectral sp, const char prefix[])
-{
-  PetscFunctionBegin;
-  PetscValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
-  PetscCall(PetscObjectAppendOptionsPrefix((PetscObject)sp, prefix));
   PetscFunctionReturn(0);
 }
 

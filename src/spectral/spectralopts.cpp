@@ -27,46 +27,39 @@ static PetscErrorCode ListLength(const std::function<PetscErrorCode(PetscInt, Pe
   PetscFunctionReturn(0);
 }
 
-/* A real list of any length. v holds the default on entry and the values given on return. */
-static PetscErrorCode OptionsRealList(PetscOptionItems *PetscOptionsObject, VSHMMSpectral sp, const char opt[], const char text[], std::vector<PetscReal> &v, PetscBool *set)
+/* A real or integer list of any length (PETSc's integer ranges a-b included): sized with get
+   (PetscOptionsGetRealArray/IntArray), then read with read (PetscOptionsRealArray/IntArray) for
+   -help. v holds the default on entry and the values given on return. */
+template <typename T>
+static PetscErrorCode OptionsList(PetscOptionItems *PetscOptionsObject, VSHMMSpectral sp, const char opt[], const char text[], std::vector<T> &v, PetscBool *set, PetscErrorCode (*get)(PetscOptions, const char[], const char[], T[], PetscInt *, PetscBool *),
+                                  PetscErrorCode (*read)(PetscOptionItems *, const char[], const char[], const char[], T[], PetscInt *, PetscBool *))
 {
-  PetscInt               length, n;
-  std::vector<PetscReal> buf;
+  PetscInt       length, n;
+  std::vector<T> buf;
 
   PetscFunctionBegin;
   PetscCall(ListLength(
     [&](PetscInt capacity, PetscInt *m, PetscBool *flg) {
       buf.resize(capacity);
-      return PetscOptionsGetRealArray(((PetscObject)sp)->options, ((PetscObject)sp)->prefix, opt, buf.data(), m, flg);
+      return get(((PetscObject)sp)->options, ((PetscObject)sp)->prefix, opt, buf.data(), m, flg);
     },
     &length));
   buf = v;
   buf.resize(PetscMax(1, PetscMax(length, (PetscInt)v.size())));
   n = (PetscInt)buf.size();
-  PetscCall(PetscOptionsRealArray(opt, text, "VSHMMSpectralSetFromOptions", buf.data(), &n, set));
+  PetscCall(read(PetscOptionsObject, opt, text, "VSHMMSpectralSetFromOptions", buf.data(), &n, set));
   if (*set) v.assign(buf.begin(), buf.begin() + n);
   PetscFunctionReturn(0);
 }
 
-/* An integer list of any length (PETSc's ranges a-b included). */
+static PetscErrorCode OptionsRealList(PetscOptionItems *PetscOptionsObject, VSHMMSpectral sp, const char opt[], const char text[], std::vector<PetscReal> &v, PetscBool *set)
+{
+  return OptionsList<PetscReal>(PetscOptionsObject, sp, opt, text, v, set, PetscOptionsGetRealArray, PetscOptionsRealArray_Private);
+}
+
 static PetscErrorCode OptionsIntList(PetscOptionItems *PetscOptionsObject, VSHMMSpectral sp, const char opt[], const char text[], std::vector<PetscInt> &v, PetscBool *set)
 {
-  PetscInt              length, n;
-  std::vector<PetscInt> buf;
-
-  PetscFunctionBegin;
-  PetscCall(ListLength(
-    [&](PetscInt capacity, PetscInt *m, PetscBool *flg) {
-      buf.resize(capacity);
-      return PetscOptionsGetIntArray(((PetscObject)sp)->options, ((PetscObject)sp)->prefix, opt, buf.data(), m, flg);
-    },
-    &length));
-  buf = v;
-  buf.resize(PetscMax(1, PetscMax(length, (PetscInt)v.size())));
-  n = (PetscInt)buf.size();
-  PetscCall(PetscOptionsIntArray(opt, text, "VSHMMSpectralSetFromOptions", buf.data(), &n, set));
-  if (*set) v.assign(buf.begin(), buf.begin() + n);
-  PetscFunctionReturn(0);
+  return OptionsList<PetscInt>(PetscOptionsObject, sp, opt, text, v, set, PetscOptionsGetIntArray, PetscOptionsIntArray_Private);
 }
 
 /* A list of names of any length. */

@@ -132,22 +132,24 @@ TEST(VSHMMSpectralOptions, ListsTakeEveryValue)
   EXPECT_EQ(Scene("-spectral_terms advection -spectral_velocity fourier -spectral_velocity_offset 1 -spectral_velocity_wavenumbers " + k + " -spectral_velocity_sin " + sines + ",0.001").error(), "");
 }
 
+// The view of a scene that must set up without an error.
+static std::string ViewOf(const std::string &options)
+{
+  Scene s(options);
+  EXPECT_EQ(s.error(), "") << options;
+  return s.view();
+}
+
 TEST(VSHMMSpectralOptions, FieldFormStartsFromItsStatedDefaults)
 {
+  const std::string adv = "-spectral_grid_points 64 -spectral_terms advection ";
   // issue 9: this ran a = 1 + 0.2 cos 24x + 0.6 sin 24x (parameters inherited from the paper's a)
-  Scene fourier("-spectral_grid_points 64 -spectral_terms advection -spectral_velocity fourier -spectral_velocity_wavenumbers 24 -spectral_velocity_sin 0.6");
-  EXPECT_EQ(fourier.error(), "");
-  EXPECT_CONTAINS(fourier.view(), "a = fourier 0 + 0.6 sin(24x)\n");
+  EXPECT_CONTAINS(ViewOf(adv + "-spectral_velocity fourier -spectral_velocity_wavenumbers 24 -spectral_velocity_sin 0.6"), "a = fourier 0 + 0.6 sin(24x)\n");
   // parameters without the form change the scene's default field (the paper's a)
-  Scene paper("-spectral_grid_points 64 -spectral_terms advection -spectral_velocity_scale 0.5");
-  EXPECT_EQ(paper.error(), "");
-  EXPECT_CONTAINS(paper.view(), "a = exp_ratio 0.5 exp((0.6 + 0.2 cos(3x)) / (1 + 0.35 sin(64x) + 0.35 sin(256x)))");
-  Scene ratio("-spectral_grid_points 64 -spectral_terms advection -spectral_velocity exp_ratio -spectral_velocity_numerator_wavenumbers 2 -spectral_velocity_numerator_cos 0.5");
-  EXPECT_EQ(ratio.error(), "");
-  EXPECT_CONTAINS(ratio.view(), "a = exp_ratio 1 exp((0 + 0.5 cos(2x)) / (1))");
-  Scene gauss("-spectral_u0 gaussian -spectral_u0_width 0.5");
-  EXPECT_EQ(gauss.error(), "");
-  EXPECT_CONTAINS(gauss.view(), "u0 = gaussian 0 + 1 exp(-((x - 3.14159)/0.5)^2)");
+  EXPECT_CONTAINS(ViewOf(adv + "-spectral_velocity_scale 0.5"), "a = exp_ratio 0.5 exp((0.6 + 0.2 cos(3x)) / (1 + 0.35 sin(64x) + 0.35 sin(256x)))");
+  EXPECT_CONTAINS(ViewOf(adv + "-spectral_velocity exp_ratio -spectral_velocity_numerator_wavenumbers 2 -spectral_velocity_numerator_cos 0.5"), "a = exp_ratio 1 exp((0 + 0.5 cos(2x)) / (1))");
+  EXPECT_CONTAINS(ViewOf("-spectral_u0 gaussian -spectral_u0_width 0.5"), "u0 = gaussian 0 + 1 exp(-((x - 3.14159)/0.5)^2)");
+  EXPECT_CONTAINS(ViewOf("-spectral_diffusion_coefficient constant"), "d = constant 0\n");
 }
 
 TEST(VSHMMSpectralObject, IsAPetscObject)
