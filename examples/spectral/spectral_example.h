@@ -38,7 +38,7 @@ typedef struct {
 static PetscErrorCode ReadOutputTimes(PetscOptionItems *PetscOptionsObject, SpectralRun *run)
 {
   PetscInt  capacity = 16, n;
-  PetscBool set      = PETSC_FALSE;
+  PetscBool set = PETSC_FALSE, given;
 
   PetscFunctionBeginUser;
   for (;; capacity *= 2) {
@@ -51,7 +51,8 @@ static PetscErrorCode ReadOutputTimes(PetscOptionItems *PetscOptionsObject, Spec
   n = capacity;
   PetscCall(PetscOptionsRealArray("-output_times", "times at which to print the work and write the grid solution", NULL, run->times, &n, &set));
   run->ntimes = set ? n : 0;
-  PetscCheck(!set || n > 0, PETSC_COMM_WORLD, PETSC_ERR_ARG_WRONG, "-output_times needs at least one time");
+  PetscCall(PetscOptionsHasName(NULL, NULL, "-output_times", &given)); /* PETSc takes a value-less option for an absent one */
+  PetscCheck(given == set && (!set || n > 0), PETSC_COMM_WORLD, PETSC_ERR_ARG_WRONG, "-output_times needs at least one time");
   PetscFunctionReturn(0);
 }
 

@@ -6,6 +6,7 @@
 #include "spectralimpl.hpp"
 
 #include <cmath>
+#include <cstring>
 #include <functional>
 
 static const char *const FieldForms[] = {"constant", "gaussian", "expsin", "fourier", "exp_ratio", "samples", "VSHMMSpectralFieldForm", "", nullptr};
@@ -27,6 +28,24 @@ static PetscErrorCode ListLength(const std::function<PetscErrorCode(PetscInt, Pe
   PetscFunctionReturn(0);
 }
 
+/* PETSc's readers take an option given without a value for one not given, and drop empty list
+   items ("1,,2", "1,2,"); both are refused here, from the option's value in the database. */
+static PetscErrorCode CheckValue(VSHMMSpectral sp, const char opt[], bool list)
+{
+  const char *value;
+  PetscBool   found;
+
+  PetscFunctionBegin;
+  PetscCall(PetscOptionsFindPair(((PetscObject)sp)->options, ((PetscObject)sp)->prefix, opt, &value, &found));
+  if (!found) PetscFunctionReturn(0);
+  PetscCheck(value && value[0], PetscObjectComm((PetscObject)sp), PETSC_ERR_ARG_WRONG, "-%s%s is given without a value", VSHMMSpectralPrefix(sp), opt + 1);
+  if (list) {
+    const size_t n = std::strlen(value);
+    PetscCheck(value[0] != ',' && value[n - 1] != ',' && !std::strstr(value, ",,"), PetscObjectComm((PetscObject)sp), PETSC_ERR_ARG_WRONG, "-%s%s %s has an empty item (two commas in a row, or a comma at an end)", VSHMMSpectralPrefix(sp), opt + 1, value);
+  }
+  PetscFunctionReturn(0);
+}
+
 /* A real or integer list of any length (PETSc's integer ranges a-b included): sized with get
    (PetscOptionsGetRealArray/IntArray), then read with read (PetscOptionsRealArray/IntArray) for
    -help. v holds the default on entry and the values given on return. */
@@ -38,6 +57,7 @@ static PetscErrorCode OptionsList(PetscOptionItems *PetscOptionsObject, VSHMMSpe
   std::vector<T> buf;
 
   PetscFunctionBegin;
+  PetscCall(CheckValue(sp, opt, true));
   PetscCall(ListLength(
     [&](PetscInt capacity, PetscInt *m, PetscBool *flg) {
       buf.resize(capacity);
@@ -69,6 +89,7 @@ static PetscErrorCode OptionsStringList(PetscOptionItems *PetscOptionsObject, VS
   std::vector<char *> buf;
 
   PetscFunctionBegin;
+  PetscCall(CheckValue(sp, opt, true));
   PetscCall(ListLength(
     [&](PetscInt capacity, PetscInt *m, PetscBool *flg) {
       buf.assign(capacity, nullptr);
@@ -93,10 +114,44 @@ static std::string Opt(const char field[], const char parameter[])
   return o;
 }
 
-static PetscErrorCode OptionsReal(PetscOptionItems *PetscOptionsObject, const char field[], const char parameter[], const char text[], PetscReal *value)
+/* PETSc's scalar readers, each followed by CheckValue(). */
+static PetscErrorCode OptionsReal(PetscOptionItems *PetscOptionsObject, VSHMMSpectral sp, const std::string &opt, const char text[], PetscReal *value)
 {
   PetscFunctionBegin;
-  PetscCall(PetscOptionsReal(Opt(field, parameter).c_str(), text, "VSHMMSpectralSetFromOptions", *value, value, NULL));
+  PetscCall(CheckValue(sp, opt.c_str(), false));
+  PetscCall(PetscOptionsReal(opt.c_str(), text, "VSHMMSpectralSetFromOptions", *value, value, NULL));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode OptionsInt(PetscOptionItems *PetscOptionsObject, VSHMMSpectral sp, const char opt[], const char text[], PetscInt *value)
+{
+  PetscFunctionBegin;
+  PetscCall(CheckValue(sp, opt, false));
+  PetscCall(PetscOptionsInt(opt, text, "VSHMMSpectralSetFromOptions", *value, value, NULL));
+  PetscFunctionReturn(0);
+}
+
+template <typename E>
+static PetscErrorCode OptionsEnum(PetscOptionItems *PetscOptionsObject, VSHMMSpectral sp, const char opt[], const char text[], const char *const names[], E *value, PetscBool *set)
+{
+  PetscEnum e = (PetscEnum)*value;
+
+  PetscFunctionBegin;
+  PetscCall(CheckValue(sp, opt, false));
+  PetscCall(PetscOptionsEnum(opt, text, "VSHMMSpectralSetFromOptions", names, e, &e, set));
+  *value = (E)e;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode OptionsString(PetscOptionItems *PetscOptionsObject, VSHMMSpectral sp, const char opt[], const char text[], std::string &value, PetscBool *set)
+{
+  char buf[PETSC_MAX_PATH_LEN];
+
+  PetscFunctionBegin;
+  PetscCall(CheckValue(sp, opt, false));
+  PetscCall(PetscStrncpy(buf, value.c_str(), sizeof(buf)));
+  PetscCall(PetscOptionsString(opt, text, "VSHMMSpectralSetFromOptions", buf, buf, sizeof(buf), set));
+  if (*set) value = buf;
   PetscFunctionReturn(0);
 }
 
@@ -106,7 +161,7 @@ static PetscErrorCode OptionsSeries(PetscOptionItems *PetscOptionsObject, VSHMMS
   PetscBool         set;
 
   PetscFunctionBegin;
-  PetscCall(OptionsReal(PetscOptionsObject, field, (p + "offset").c_str(), "constant term of the series (default 0)", &s.offset));
+  PetscCall(OptionsReal(PetscOptionsObject, sp, Opt(field, (p + "offset").c_str()), "constant term of the series (default 0)", &s.offset));
   PetscCall(OptionsRealList(PetscOptionsObject, sp, Opt(field, (p + "wavenumbers").c_str()).c_str(), "wavenumbers k_i of the series", s.wavenumbers, &set));
   PetscCall(OptionsRealList(PetscOptionsObject, sp, Opt(field, (p + "cos").c_str()).c_str(), "cosine coefficients, one per wavenumber (left out: all 0)", s.cosines, &set));
   PetscCall(OptionsRealList(PetscOptionsObject, sp, Opt(field, (p + "sin").c_str()).c_str(), "sine coefficients, one per wavenumber (left out: all 0)", s.sines, &set));
@@ -118,27 +173,27 @@ static PetscErrorCode OptionsSeries(PetscOptionItems *PetscOptionsObject, VSHMMS
    without it the parameters given change the scene's default field. */
 static PetscErrorCode OptionsField(PetscOptionItems *PetscOptionsObject, VSHMMSpectral sp, const char field[], const char text[], spc::Field &f)
 {
-  PetscEnum form = (PetscEnum)f.form;
-  PetscBool set;
+  spc::Field::Form form = f.form;
+  PetscBool        set;
 
   PetscFunctionBegin;
-  PetscCall(PetscOptionsEnum(Opt(field, "").c_str(), text, "VSHMMSpectralSetFromOptions", FieldForms, form, &form, &set));
-  if (set) f = spc::Field::ofForm((spc::Field::Form)form);
+  PetscCall(OptionsEnum(PetscOptionsObject, sp, Opt(field, "").c_str(), text, FieldForms, &form, &set));
+  if (set) f = spc::Field::ofForm(form);
   switch (f.form) {
   case spc::Field::Form::Constant:
-    PetscCall(OptionsReal(PetscOptionsObject, field, "value", "constant: the value (default 0)", &f.value));
+    PetscCall(OptionsReal(PetscOptionsObject, sp, Opt(field, "value"), "constant: the value (default 0)", &f.value));
     break;
   case spc::Field::Form::Gaussian: {
     PetscBool periodic = f.periodic ? PETSC_TRUE : PETSC_FALSE;
-    PetscCall(OptionsReal(PetscOptionsObject, field, "offset", "gaussian: constant added (default 0)", &f.offset));
-    PetscCall(OptionsReal(PetscOptionsObject, field, "amplitude", "gaussian: amplitude (default 1)", &f.amplitude));
-    PetscCall(OptionsReal(PetscOptionsObject, field, "center", "gaussian: center (default pi)", &f.center));
-    PetscCall(OptionsReal(PetscOptionsObject, field, "width", "gaussian: width w in exp(-((x-c)/w)^2) (default 1)", &f.width));
+    PetscCall(OptionsReal(PetscOptionsObject, sp, Opt(field, "offset"), "gaussian: constant added (default 0)", &f.offset));
+    PetscCall(OptionsReal(PetscOptionsObject, sp, Opt(field, "amplitude"), "gaussian: amplitude (default 1)", &f.amplitude));
+    PetscCall(OptionsReal(PetscOptionsObject, sp, Opt(field, "center"), "gaussian: center (default pi)", &f.center));
+    PetscCall(OptionsReal(PetscOptionsObject, sp, Opt(field, "width"), "gaussian: width w in exp(-((x-c)/w)^2) (default 1)", &f.width));
     PetscCall(PetscOptionsBool(Opt(field, "periodic").c_str(), "gaussian: periodic distance to the center", "VSHMMSpectralSetFromOptions", periodic, &periodic, NULL));
     f.periodic = periodic;
   } break;
   case spc::Field::Form::ExpSin:
-    PetscCall(OptionsReal(PetscOptionsObject, field, "offset", "expsin: constant added (default 0)", &f.offset));
+    PetscCall(OptionsReal(PetscOptionsObject, sp, Opt(field, "offset"), "expsin: constant added (default 0)", &f.offset));
     PetscCall(OptionsRealList(PetscOptionsObject, sp, Opt(field, "weights").c_str(), "expsin: weights w_i", f.weights, &set));
     PetscCall(OptionsRealList(PetscOptionsObject, sp, Opt(field, "wavenumbers").c_str(), "expsin: wavenumbers k_i, one per weight", f.wavenumbers, &set));
     PetscCall(OptionsRealList(PetscOptionsObject, sp, Opt(field, "amplitudes").c_str(), "expsin: amplitudes s_i in exp(s_i sin(k_i x + p_i)) (left out: all 1)", f.amplitudes, &set));
@@ -148,15 +203,15 @@ static PetscErrorCode OptionsField(PetscOptionItems *PetscOptionsObject, VSHMMSp
     PetscCall(OptionsSeries(PetscOptionsObject, sp, field, "", f.numerator));
     break;
   case spc::Field::Form::ExpRatio:
-    PetscCall(OptionsReal(PetscOptionsObject, field, "scale", "exp_ratio: the factor s in s exp(num/den) (default 1)", &f.scale));
+    PetscCall(OptionsReal(PetscOptionsObject, sp, Opt(field, "scale"), "exp_ratio: the factor s in s exp(num/den) (default 1)", &f.scale));
     PetscCall(OptionsSeries(PetscOptionsObject, sp, field, "numerator", f.numerator));
     PetscCall(OptionsSeries(PetscOptionsObject, sp, field, "denominator", f.denominator));
     break;
   case spc::Field::Form::Samples: {
-    char file[PETSC_MAX_PATH_LEN] = "";
-    PetscCall(PetscOptionsString(Opt(field, "file").c_str(), "samples: grid file of N lines 'x value' or 'value'", "VSHMMSpectralSetFromOptions", file, file, sizeof(file), &set));
-    PetscCheck(set && file[0], PetscObjectComm((PetscObject)sp), PETSC_ERR_ARG_WRONGSTATE, "-%sspectral_%s samples needs -%sspectral_%s_file <grid file>", VSHMMSpectralPrefix(sp), field, VSHMMSpectralPrefix(sp), field);
-    PetscCall(VSHMMSpectralReadGridFile_Private(PetscObjectComm((PetscObject)sp), file, f.samples));
+    std::string file;
+    PetscCall(OptionsString(PetscOptionsObject, sp, Opt(field, "file").c_str(), "samples: grid file of N lines 'x value' or 'value'", file, &set));
+    PetscCheck(set && !file.empty(), PetscObjectComm((PetscObject)sp), PETSC_ERR_ARG_WRONGSTATE, "-%sspectral_%s samples needs -%sspectral_%s_file <grid file>", VSHMMSpectralPrefix(sp), field, VSHMMSpectralPrefix(sp), field);
+    PetscCall(VSHMMSpectralReadGridFile_Private(PetscObjectComm((PetscObject)sp), file.c_str(), f.samples));
   } break;
   }
   PetscFunctionReturn(0);
@@ -228,51 +283,32 @@ static PetscErrorCode CheckOptions(VSHMMSpectral sp)
 PetscErrorCode VSHMMSpectralSetFromOptions(VSHMMSpectral sp)
 {
   VSHMMSpectral_Data *s;
-  char                buf[PETSC_MAX_PATH_LEN];
+  std::string         clusters;
   PetscBool           set;
-  PetscEnum           e;
 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
   s = sp->data;
   PetscObjectOptionsBegin((PetscObject)sp);
-  PetscCall(PetscOptionsInt("-spectral_grid_points", "grid points N (at least 4)", "VSHMMSpectralSetFromOptions", s->N, &s->N, NULL));
+  PetscCall(OptionsInt(PetscOptionsObject, sp, "-spectral_grid_points", "grid points N (at least 4)", &s->N));
   PetscCall(OptionsStringList(PetscOptionsObject, sp, "-spectral_terms", "terms of F(u): diffusion, advection", s->terms, &set));
   PetscCall(OptionsField(PetscOptionsObject, sp, "diffusion_coefficient", "diffusion coefficient d(x) (form)", s->diff));
   PetscCall(OptionsField(PetscOptionsObject, sp, "velocity", "advection velocity a(x) (form)", s->vel));
   PetscCall(OptionsField(PetscOptionsObject, sp, "u0", "initial data u0(x) (form)", s->u0));
-  e = (PetscEnum)s->mode;
-  PetscCall(PetscOptionsEnum("-spectral_mode", "dns: every mode; sparse: the clusters' modes", "VSHMMSpectralSetFromOptions", VSHMMSpectralModes, e, &e, NULL));
-  s->mode = (VSHMMSpectralMode)e;
-  PetscCall(PetscStrncpy(buf, s->cluster_spec.c_str(), sizeof(buf)));
-  PetscCall(PetscOptionsString("-spectral_clusters", "explicit clusters, e.g. 0:3,62:66,192:193,255:257 (none: no explicit clusters)", "VSHMMSpectralSetFromOptions", buf, buf, sizeof(buf), &set));
-  if (set) {
-    PetscCheck(buf[0], PetscObjectComm((PetscObject)sp), PETSC_ERR_ARG_WRONG, "-%sspectral_clusters is empty: give clusters as lo:hi ranges separated by commas, e.g. 0:3,62:66 (or none to drop explicit clusters)", VSHMMSpectralPrefix(sp));
-    s->cluster_spec = std::string(buf) == "none" ? std::string() : std::string(buf);
-  }
-  e = (PetscEnum)s->detect;
-  PetscCall(PetscOptionsEnum("-spectral_cluster_detect", "find the clusters by soft thresholding", "VSHMMSpectralSetFromOptions", VSHMMSpectralDetects, e, &e, NULL));
-  s->detect = (VSHMMSpectralDetect)e;
-  PetscCall(PetscOptionsReal("-spectral_cluster_lambda", "shrinkage value of the soft thresholding", "VSHMMSpectralSetFromOptions", s->lambda, &s->lambda, NULL));
-  e = (PetscEnum)s->norm;
-  PetscCall(PetscOptionsEnum("-spectral_cluster_normalization", "scaling of the coefficients before thresholding", "VSHMMSpectralSetFromOptions", VSHMMSpectralNormalizations, e, &e, NULL));
-  s->norm = (spc::Normalization)e;
-  PetscCall(PetscOptionsInt("-spectral_cluster_gap", "at most this many missing wavenumbers inside a cluster", "VSHMMSpectralSetFromOptions", s->gap, &s->gap, NULL));
+  PetscCall(OptionsEnum(PetscOptionsObject, sp, "-spectral_mode", "dns: every mode; sparse: the clusters' modes", VSHMMSpectralModes, &s->mode, &set));
+  PetscCall(OptionsString(PetscOptionsObject, sp, "-spectral_clusters", "explicit clusters, e.g. 0:3,62:66,192:193,255:257 (none: no explicit clusters)", clusters, &set));
+  if (set) s->cluster_spec = clusters == "none" ? std::string() : clusters;
+  PetscCall(OptionsEnum(PetscOptionsObject, sp, "-spectral_cluster_detect", "find the clusters by soft thresholding", VSHMMSpectralDetects, &s->detect, &set));
+  PetscCall(OptionsReal(PetscOptionsObject, sp, "-spectral_cluster_lambda", "shrinkage value of the soft thresholding", &s->lambda));
+  PetscCall(OptionsEnum(PetscOptionsObject, sp, "-spectral_cluster_normalization", "scaling of the coefficients before thresholding", VSHMMSpectralNormalizations, &s->norm, &set));
+  PetscCall(OptionsInt(PetscOptionsObject, sp, "-spectral_cluster_gap", "at most this many missing wavenumbers inside a cluster", &s->gap));
   PetscCall(OptionsIntList(PetscOptionsObject, sp, "-spectral_cluster_buffers", "buffer widths around the clusters (one, or one per cluster)", s->buffers, &set));
   PetscCall(OptionsRealList(PetscOptionsObject, sp, "-spectral_cluster_detect_times", "snapshot times of the detection DNS", s->detect_times, &set));
-  PetscCall(PetscOptionsReal("-spectral_cluster_detect_dt", "time step of the detection DNS (0: estimate)", "VSHMMSpectralSetFromOptions", s->detect_dt, &s->detect_dt, NULL));
-  PetscCall(PetscStrncpy(buf, s->detect_file.c_str(), sizeof(buf)));
-  PetscCall(PetscOptionsString("-spectral_cluster_detect_file", "grid file to threshold", "VSHMMSpectralSetFromOptions", buf, buf, sizeof(buf), &set));
-  if (set) s->detect_file = buf;
-  e = (PetscEnum)s->evaluation;
-  PetscCall(PetscOptionsEnum("-spectral_evaluation", "fft or matrix", "VSHMMSpectralSetFromOptions", VSHMMSpectralEvaluations, e, &e, NULL));
-  s->evaluation = (VSHMMSpectralEvaluation)e;
-  e             = (PetscEnum)s->projection;
-  PetscCall(PetscOptionsEnum("-spectral_projection", "auto, fft or direct", "VSHMMSpectralSetFromOptions", VSHMMSpectralProjections, e, &e, NULL));
-  s->projection = (VSHMMSpectralProjection)e;
-  e             = (PetscEnum)s->planner;
-  PetscCall(PetscOptionsEnum("-spectral_fftw_planner", "FFTW planning rigour", "VSHMMSpectralSetFromOptions", VSHMMSpectralPlanners, e, &e, NULL));
-  s->planner = (VSHMMSpectralPlanner)e;
+  PetscCall(OptionsReal(PetscOptionsObject, sp, "-spectral_cluster_detect_dt", "time step of the detection DNS (0: estimate)", &s->detect_dt));
+  PetscCall(OptionsString(PetscOptionsObject, sp, "-spectral_cluster_detect_file", "grid file to threshold", s->detect_file, &set));
+  PetscCall(OptionsEnum(PetscOptionsObject, sp, "-spectral_evaluation", "fft or matrix", VSHMMSpectralEvaluations, &s->evaluation, &set));
+  PetscCall(OptionsEnum(PetscOptionsObject, sp, "-spectral_projection", "auto, fft or direct", VSHMMSpectralProjections, &s->projection, &set));
+  PetscCall(OptionsEnum(PetscOptionsObject, sp, "-spectral_fftw_planner", "FFTW planning rigour", VSHMMSpectralPlanners, &s->planner, &set));
   PetscCall(PetscObjectProcessOptionsHandlers((PetscObject)sp, PetscOptionsObject));
   PetscOptionsEnd();
   PetscCall(CheckOptions(sp));

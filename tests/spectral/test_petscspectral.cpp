@@ -98,6 +98,18 @@ TEST(VSHMMSpectralOptions, BadValuesNameTheOption)
   EXPECT_CONTAINS(Scene("-spectral_diffusion_coefficient_weights 1").error(), "-spectral_diffusion_coefficient: expsin: 1 weights but 2 wavenumbers");
 }
 
+TEST(VSHMMSpectralOptions, ValuesPetscWouldDropAreRefused)
+{
+  // PETSc's readers take a value-less option for an absent one and drop empty list items
+  EXPECT_CONTAINS(Scene("-spectral_grid_points 64 -spectral_cluster_lambda").error(), "-spectral_cluster_lambda is given without a value");
+  EXPECT_CONTAINS(Scene("-spectral_terms").error(), "-spectral_terms is given without a value");
+  EXPECT_CONTAINS(Scene("-spectral_mode").error(), "-spectral_mode is given without a value");
+  EXPECT_CONTAINS(Scene("-spectral_u0 gaussian -spectral_u0_width").error(), "-spectral_u0_width is given without a value");
+  EXPECT_CONTAINS(Scene("-spectral_terms diffusion,,advection").error(), "-spectral_terms diffusion,,advection has an empty item");
+  EXPECT_CONTAINS(Scene("-spectral_cluster_detect_times 0.1,0.2,").error(), "-spectral_cluster_detect_times 0.1,0.2, has an empty item");
+  EXPECT_CONTAINS(Scene("-spectral_diffusion_coefficient_weights ,1,1").error(), "-spectral_diffusion_coefficient_weights ,1,1 has an empty item");
+}
+
 TEST(VSHMMSpectralOptions, ErrorsCarryThePrefix)
 {
   EXPECT_CONTAINS(Scene("-a_spectral_grid_points 3", "a_").error(), "-a_spectral_grid_points 3 is too small");
