@@ -80,34 +80,39 @@ TEST(VSHMMSpectralOptions, GoodSceneHasNoError)
   EXPECT_EQ(nclusters, 2);
 }
 
+// Options and a part of the error message they must give.
+struct BadOptions {
+  const char *options, *message;
+};
+
+static const BadOptions kBadValues[] = {
+  {"-spectral_grid_points 2", "-spectral_grid_points 2 is too small"},
+  {"-spectral_terms diffusion,reaction", "Unknown term 'reaction' in -spectral_terms"},
+  {"-spectral_terms diffusion,diffusion", "appears twice in -spectral_terms"},
+  {"-spectral_mode fast", "Unknown option fast for -spectral_mode. Available options: dns sparse"},
+  {"-spectral_u0 wavelet", "-spectral_u0"},
+  {"-spectral_cluster_lambda -1", "-spectral_cluster_lambda must be finite and nonnegative"},
+  {"-spectral_cluster_gap -1", "-spectral_cluster_gap must be nonnegative"},
+  {"-spectral_cluster_buffers 1,-2", "-spectral_cluster_buffers"},
+  {"-spectral_cluster_detect_times 0.2,0.1", "-spectral_cluster_detect_times must be finite, nonnegative and increasing; item 2"},
+  {"-spectral_cluster_detect_dt -1", "-spectral_cluster_detect_dt"},
+  {"-spectral_u0 samples", "-spectral_u0 samples needs -spectral_u0_file"},
+  {"-spectral_mode sparse", "-spectral_mode sparse needs clusters"},
+  {"-spectral_mode sparse -spectral_cluster_detect dns", "needs -spectral_cluster_detect_times"},
+  {"-spectral_diffusion_coefficient_weights 1", "-spectral_diffusion_coefficient: expsin: 1 weights but 2 wavenumbers"},
+  // PETSc's readers take a value-less option for an absent one and drop empty list items
+  {"-spectral_grid_points 64 -spectral_cluster_lambda", "-spectral_cluster_lambda is given without a value"},
+  {"-spectral_terms", "-spectral_terms is given without a value"},
+  {"-spectral_mode", "-spectral_mode is given without a value"},
+  {"-spectral_u0 gaussian -spectral_u0_width", "-spectral_u0_width is given without a value"},
+  {"-spectral_terms diffusion,,advection", "-spectral_terms diffusion,,advection has an empty item"},
+  {"-spectral_cluster_detect_times 0.1,0.2,", "-spectral_cluster_detect_times 0.1,0.2, has an empty item"},
+  {"-spectral_diffusion_coefficient_weights ,1,1", "-spectral_diffusion_coefficient_weights ,1,1 has an empty item"},
+};
+
 TEST(VSHMMSpectralOptions, BadValuesNameTheOption)
 {
-  EXPECT_CONTAINS(Scene("-spectral_grid_points 2").error(), "-spectral_grid_points 2 is too small");
-  EXPECT_CONTAINS(Scene("-spectral_terms diffusion,reaction").error(), "Unknown term 'reaction' in -spectral_terms");
-  EXPECT_CONTAINS(Scene("-spectral_terms diffusion,diffusion").error(), "appears twice in -spectral_terms");
-  EXPECT_CONTAINS(Scene("-spectral_mode fast").error(), "-spectral_mode");
-  EXPECT_CONTAINS(Scene("-spectral_u0 wavelet").error(), "-spectral_u0");
-  EXPECT_CONTAINS(Scene("-spectral_cluster_lambda -1").error(), "-spectral_cluster_lambda must be finite and nonnegative");
-  EXPECT_CONTAINS(Scene("-spectral_cluster_gap -1").error(), "-spectral_cluster_gap must be nonnegative");
-  EXPECT_CONTAINS(Scene("-spectral_cluster_buffers 1,-2").error(), "-spectral_cluster_buffers");
-  EXPECT_CONTAINS(Scene("-spectral_cluster_detect_times 0.2,0.1").error(), "-spectral_cluster_detect_times must be finite, nonnegative and increasing; item 2");
-  EXPECT_CONTAINS(Scene("-spectral_cluster_detect_dt -1").error(), "-spectral_cluster_detect_dt");
-  EXPECT_CONTAINS(Scene("-spectral_u0 samples").error(), "-spectral_u0 samples needs -spectral_u0_file");
-  EXPECT_CONTAINS(Scene("-spectral_mode sparse").error(), "-spectral_mode sparse needs clusters");
-  EXPECT_CONTAINS(Scene("-spectral_mode sparse -spectral_cluster_detect dns").error(), "needs -spectral_cluster_detect_times");
-  EXPECT_CONTAINS(Scene("-spectral_diffusion_coefficient_weights 1").error(), "-spectral_diffusion_coefficient: expsin: 1 weights but 2 wavenumbers");
-}
-
-TEST(VSHMMSpectralOptions, ValuesPetscWouldDropAreRefused)
-{
-  // PETSc's readers take a value-less option for an absent one and drop empty list items
-  EXPECT_CONTAINS(Scene("-spectral_grid_points 64 -spectral_cluster_lambda").error(), "-spectral_cluster_lambda is given without a value");
-  EXPECT_CONTAINS(Scene("-spectral_terms").error(), "-spectral_terms is given without a value");
-  EXPECT_CONTAINS(Scene("-spectral_mode").error(), "-spectral_mode is given without a value");
-  EXPECT_CONTAINS(Scene("-spectral_u0 gaussian -spectral_u0_width").error(), "-spectral_u0_width is given without a value");
-  EXPECT_CONTAINS(Scene("-spectral_terms diffusion,,advection").error(), "-spectral_terms diffusion,,advection has an empty item");
-  EXPECT_CONTAINS(Scene("-spectral_cluster_detect_times 0.1,0.2,").error(), "-spectral_cluster_detect_times 0.1,0.2, has an empty item");
-  EXPECT_CONTAINS(Scene("-spectral_diffusion_coefficient_weights ,1,1").error(), "-spectral_diffusion_coefficient_weights ,1,1 has an empty item");
+  for (const BadOptions &bad : kBadValues) EXPECT_CONTAINS(Scene(bad.options).error(), bad.message);
 }
 
 TEST(VSHMMSpectralOptions, ErrorsCarryThePrefix)
