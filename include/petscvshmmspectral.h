@@ -17,8 +17,11 @@
    Re c_k, Im c_k, except k = 0 and k = N/2 (N even), which store Re c_k only. In mode "dns"
    every k = 0..N/2 is retained and the Vec has N entries.
 
-   See docs/spectral.md for the options (-terms, -diffusion_coefficient, -velocity, -u0,
-   -clusters, -cluster_detect, -output_times, -grid_solution_file, ...).
+   A VSHMMSpectral is a PetscObject (class id VSHMMSPECTRAL_CLASSID) whose options are named
+   -[prefix]spectral_<name>: -spectral_grid_points, -spectral_terms, -spectral_diffusion_coefficient,
+   -spectral_velocity, -spectral_u0, -spectral_mode, -spectral_clusters, -spectral_cluster_detect, ...
+   (see VSHMMSpectralSetFromOptions() and docs/spectral.md). The library writes nothing itself:
+   VSHMMSpectralView() shows the scene; the examples in examples/spectral write the solutions.
 */
 #ifndef PETSCVSHMMSPECTRAL_H
 #define PETSCVSHMMSPECTRAL_H
@@ -31,9 +34,11 @@
 
    Level: beginner
 
-.seealso: `VSHMMSpectralCreate()`, `VSHMMSpectralSetFromOptions()`, `VSHMMSpectralSetUpTS()`, `VSHMMSpectralSolve()`
+.seealso: `VSHMMSpectralCreate()`, `VSHMMSpectralSetFromOptions()`, `VSHMMSpectralSetUpTS()`, `VSHMMSpectralView()`
 S*/
-typedef struct _n_VSHMMSpectral *VSHMMSpectral;
+typedef struct _p_VSHMMSpectral *VSHMMSpectral;
+
+PETSC_EXTERN PetscClassId VSHMMSPECTRAL_CLASSID;
 
 /*S
    VSHMMSpectralStatistics - work counted by a VSHMMSpectral since its set-up
@@ -62,21 +67,28 @@ typedef struct {
   PetscInt64 cache_hits;
 } VSHMMSpectralStatistics;
 
+PETSC_EXTERN PetscErrorCode VSHMMSpectralInitializePackage(void);
+PETSC_EXTERN PetscErrorCode VSHMMSpectralFinalizePackage(void);
 PETSC_EXTERN PetscErrorCode VSHMMSpectralCreate(MPI_Comm, VSHMMSpectral *);
 PETSC_EXTERN PetscErrorCode VSHMMSpectralDestroy(VSHMMSpectral *);
 PETSC_EXTERN PetscErrorCode VSHMMSpectralSetDefaultScene(VSHMMSpectral, const char[]);
+PETSC_EXTERN PetscErrorCode VSHMMSpectralSetOptionsPrefix(VSHMMSpectral, const char[]);
+PETSC_EXTERN PetscErrorCode VSHMMSpectralGetOptionsPrefix(VSHMMSpectral, const char *[]);
 PETSC_EXTERN PetscErrorCode VSHMMSpectralSetFromOptions(VSHMMSpectral);
 PETSC_EXTERN PetscErrorCode VSHMMSpectralSetUp(VSHMMSpectral);
 PETSC_EXTERN PetscErrorCode VSHMMSpectralView(VSHMMSpectral, PetscViewer);
+PETSC_EXTERN PetscErrorCode VSHMMSpectralViewFromOptions(VSHMMSpectral, PetscObject, const char[]);
 PETSC_EXTERN PetscErrorCode VSHMMSpectralGetSizes(VSHMMSpectral, PetscInt *, PetscInt *, PetscInt *);
 PETSC_EXTERN PetscErrorCode VSHMMSpectralGetCluster(VSHMMSpectral, PetscInt, PetscInt *, const PetscInt *[], PetscInt *, PetscInt *);
+PETSC_EXTERN PetscErrorCode VSHMMSpectralGetModes(VSHMMSpectral, PetscInt *, const PetscInt *[]);
 PETSC_EXTERN PetscErrorCode VSHMMSpectralCreateVec(VSHMMSpectral, Vec *);
 PETSC_EXTERN PetscErrorCode VSHMMSpectralSetInitialCondition(VSHMMSpectral, Vec);
 PETSC_EXTERN PetscErrorCode VSHMMSpectralGetGridValues(VSHMMSpectral, Vec, PetscReal[]);
+PETSC_EXTERN PetscErrorCode VSHMMSpectralGetModeMagnitudes(VSHMMSpectral, Vec, PetscReal[]);
+PETSC_EXTERN PetscErrorCode VSHMMSpectralReadGridValues(VSHMMSpectral, const char[], PetscReal[]);
 PETSC_EXTERN PetscErrorCode VSHMMSpectralRHSFunction(TS, PetscReal, Vec, Vec, void *);
 PETSC_EXTERN PetscErrorCode VSHMMSpectralSetUpTS(VSHMMSpectral, TS);
 PETSC_EXTERN PetscErrorCode VSHMMSpectralEstimateTimeStep(VSHMMSpectral, PetscReal *);
-PETSC_EXTERN PetscErrorCode VSHMMSpectralSolve(VSHMMSpectral, TS, Vec);
 PETSC_EXTERN PetscErrorCode VSHMMSpectralGetStatistics(VSHMMSpectral, VSHMMSpectralStatistics *);
 
 #endif

@@ -60,30 +60,30 @@ run() { # run NAME EXE OPTIONS...: stdout to $tmp/NAME.out, its work/error lines
 # ---------------------------------------------------------------------------------------------
 echo "1. multiscale diffusion (N = 2048)"
 yd=$scenes/diffusion.yaml
-run diff_dns "$diff" -options_file_yaml "$yd" -mode dns -ts_type rk -ts_rk_type 3 -ts_dt 1e-6 \
+run diff_dns "$diff" -options_file_yaml "$yd" -spectral_mode dns -ts_type rk -ts_rk_type 3 -ts_dt 1e-6 \
   -grid_solution_file diffusion_dns -spectrum_file "$tmp/diffusion_spectrum.txt" -spectrum_interval 0.005
 run diff_vshmm "$diff" -options_file_yaml "$yd" -grid_solution_file diffusion_vshmm -compare_grid_solution diffusion_dns
 run diff_vshmm_matrix "$diff" -options_file_yaml "$yd" -spectral_evaluation matrix -compare_grid_solution diffusion_dns
 run diff_sparse_dt1e-5 "$diff" -options_file_yaml "$yd" -ts_type rk -ts_rk_type 3 -ts_dt 1e-5 -compare_grid_solution diffusion_dns
 run diff_sparse_dt5e-5 "$diff" -options_file_yaml "$yd" -ts_type rk -ts_rk_type 3 -ts_dt 5e-5 -compare_grid_solution diffusion_dns
 run diff_sparse_dt1e-5_matrix "$diff" -options_file_yaml "$yd" -spectral_evaluation matrix -ts_type rk -ts_rk_type 3 -ts_dt 1e-5 -compare_grid_solution diffusion_dns
-run diff_sparse9_dt5e-6 "$diff" -options_file_yaml "$yd" -clusters 0:6,58:70,122:134,186:198,250:262,314:326,378:390,506:518 \
+run diff_sparse9_dt5e-6 "$diff" -options_file_yaml "$yd" -spectral_clusters 0:6,58:70,122:134,186:198,250:262,314:326,378:390,506:518 \
   -ts_type rk -ts_rk_type 3 -ts_dt 5e-6 -compare_grid_solution diffusion_dns
-run diff_detect "$diff" -options_file_yaml "$yd" -clusters none -cluster_detect file -cluster_detect_file diffusion_dns_1.txt -cluster_gap 2 -output_times 0.001
+run diff_detect "$diff" -options_file_yaml "$yd" -spectral_clusters none -spectral_cluster_detect file -spectral_cluster_detect_file diffusion_dns_1.txt -spectral_cluster_gap 2 -output_times 0.001
 
 echo "2. multiscale advection (N = 1024)"
 ya=$scenes/advection.yaml
-run adv_dns "$adv" -options_file_yaml "$ya" -mode dns -ts_type rk -ts_rk_type 3 -ts_dt 1.6e-4 \
+run adv_dns "$adv" -options_file_yaml "$ya" -spectral_mode dns -ts_type rk -ts_rk_type 3 -ts_dt 1.6e-4 \
   -grid_solution_file advection_dns -spectrum_file "$tmp/advection_spectrum.txt" -spectrum_interval 0.25
 run adv_vshmm "$adv" -options_file_yaml "$ya" -grid_solution_file advection_vshmm -compare_grid_solution advection_dns
 run adv_sparse_dt1e-3 "$adv" -options_file_yaml "$ya" -ts_type rk -ts_rk_type 3 -ts_dt 1e-3 -compare_grid_solution advection_dns
 
 if [ "${SPECTRAL_CONVERGENCE:-0}" = 1 ]; then
   echo "3. convergence of the references"
-  run diff_dns_dt5e-7 "$diff" -options_file_yaml "$yd" -mode dns -ts_type rk -ts_rk_type 3 -ts_dt 5e-7 -compare_grid_solution diffusion_dns
-  run adv_dns_dt8e-5 "$adv" -options_file_yaml "$ya" -mode dns -ts_type rk -ts_rk_type 3 -ts_dt 8e-5 -compare_grid_solution advection_dns
-  run adv_dns_N2048 "$adv" -options_file_yaml "$ya" -N 2048 -mode dns -ts_type rk -ts_rk_type 3 -ts_dt 8e-5 -grid_solution_file advection_dns_N2048
-  run diff_dns_N4096 "$diff" -options_file_yaml "$yd" -N 4096 -mode dns -ts_type rk -ts_rk_type 3 -ts_dt 2.5e-7 -grid_solution_file diffusion_dns_N4096
+  run diff_dns_dt5e-7 "$diff" -options_file_yaml "$yd" -spectral_mode dns -ts_type rk -ts_rk_type 3 -ts_dt 5e-7 -compare_grid_solution diffusion_dns
+  run adv_dns_dt8e-5 "$adv" -options_file_yaml "$ya" -spectral_mode dns -ts_type rk -ts_rk_type 3 -ts_dt 8e-5 -compare_grid_solution advection_dns
+  run adv_dns_N2048 "$adv" -options_file_yaml "$ya" -spectral_grid_points 2048 -spectral_mode dns -ts_type rk -ts_rk_type 3 -ts_dt 8e-5 -grid_solution_file advection_dns_N2048
+  run diff_dns_N4096 "$diff" -options_file_yaml "$yd" -spectral_grid_points 4096 -spectral_mode dns -ts_type rk -ts_rk_type 3 -ts_dt 2.5e-7 -grid_solution_file diffusion_dns_N4096
   { # the finer grid at the coarse grid's points (every other point)
     echo "## N refinement: relative L2 difference of N = 2048 (4096 for diffusion) and N = 1024 (2048) at the coarse grid points"
     for t in 0.25 0.5 0.75 1; do

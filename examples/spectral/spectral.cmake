@@ -6,15 +6,16 @@
 # The reduced diffusion scene: N = 256, d = (exp(sin 16x) + exp(sin 64x))/4 (the paper's
 # wavenumbers 64, 256 divided by 4), u0 = exp(-(x - pi)^2), clusters scaled alike:
 # 0:3, 14:18, 48:49, 63:65. The reduced advection scene: N = 256, a with sin 16x, sin 64x in
-# the denominator, clusters 0:6, 10:22, 29:41, 62:66. (-grid_points is -N: `cmake -P`, which
-# runs these tests, would take -N for its own option.)
+# the denominator, clusters 0:6, 10:22, 29:41, 62:66. The scene's options are the VSHMMSpectral
+# object's (-spectral_*); -output_times, -grid_solution_file, -compare_* and -no_timing are the
+# example's (spectral_example.h).
 
 set(_sp_dir ${PROJECT_BINARY_DIR}/tests/output)
-set(_sp_diff -grid_points 256 -diffusion_coefficient_wavenumbers 16,64 -output_times 0.125,0.25)
-set(_sp_diff_sparse -mode sparse -clusters 0:3,14:18,48:49,63:65)
+set(_sp_diff -spectral_grid_points 256 -spectral_diffusion_coefficient_wavenumbers 16,64 -output_times 0.125,0.25)
+set(_sp_diff_sparse -spectral_mode sparse -spectral_clusters 0:3,14:18,48:49,63:65)
 set(_sp_diff_vshmm -ts_type vshmm -ts_dt 0.125 -ts_vshmm_micro_dt 1e-4 -ts_vshmm_savings_factors 150,18,1.5 -ts_vshmm_rk_type 3)
-set(_sp_adv -grid_points 256 -velocity_denominator_wavenumbers 16,64 -output_times 2,4,8)
-set(_sp_adv_sparse -mode sparse -clusters 0:6,10:22,29:41,62:66)
+set(_sp_adv -spectral_grid_points 256 -spectral_velocity_denominator_wavenumbers 16,64 -output_times 2,4,8)
+set(_sp_adv_sparse -spectral_mode sparse -spectral_clusters 0:6,10:22,29:41,62:66)
 set(_sp_adv_vshmm -ts_type vshmm -ts_dt 1 -ts_vshmm_micro_dt 4e-3 -ts_vshmm_savings_factors 26,9,2 -ts_vshmm_rk_type 3)
 
 # --- reference runs (their output, with the work counts, must match exactly) -----------------
@@ -60,6 +61,14 @@ vshmm_example_test(NAME spectral_diffusion_vshmm_small_fftproj EXE diffusion
                    ARGS ${_sp_diff} ${_sp_diff_sparse} ${_sp_diff_vshmm} -spectral_projection fft
                         -compare_grid_solution ${_sp_dir}/spectral_diffusion_sparse_small/sparse -compare_tolerance 6e-3 -no_timing
                    REGEX "direct_modes 0")
+# -ts_vshmm_splits groups clusters into scales: K0+K1 as the slowest scale, K2, K3 (savings factors
+# 18, 1.5): VSHMM's error against the sparse method 7.2e-5, 4.1e-5 (four scales: 3.9e-3, 3.5e-3)
+# for 4.5 times the field evaluations (1023 against 228).
+vshmm_example_test(NAME spectral_diffusion_vshmm_small_split_groups EXE diffusion
+                   ARGS ${_sp_diff} ${_sp_diff_sparse} ${_sp_diff_vshmm} -ts_vshmm_savings_factors 18,1.5 -ts_vshmm_splits K0+K1,K2,K3
+                        -ts_vshmm_check_separation off
+                        -compare_grid_solution ${_sp_dir}/spectral_diffusion_sparse_small/sparse -compare_tolerance 2e-4 -no_timing
+                   REGEX "output t 0.25 rhs_evaluations 1023 split_evaluations 3069 inverse_ffts 1023 forward_ffts 1023 direct_modes 0\ncompare t 0.25 relative_l2_error")
 # advection (issue 12: checked tightly enough to see a stale physical-space cache, which moved the
 # error at t = 2 by 5-17% and the transform counts by a third, while the old tolerance was 0.2).
 # Each run's expected output holds its measured errors, compared within 2% (RTOL 2e-2, so the
@@ -96,7 +105,7 @@ vshmm_example_test(NAME spectral_advection_scene_vshmm EXE advection
 set_tests_properties(spectral_advection_scene_vshmm PROPERTIES FIXTURES_REQUIRED spectral_advection_scene_ref)
 # Odd N (no Nyquist mode: N = 255, wavenumbers 0..127): the reduced advection scene, DNS and VSHMM
 # against it (errors 3.6e-2, 9.7e-2 at t = 2, 4; N = 256: 4.6e-2, 1.2e-1), VSHMM on 1 and 2 ranks.
-set(_sp_odd -grid_points 255 -velocity_denominator_wavenumbers 16,64 -output_times 2,4)
+set(_sp_odd -spectral_grid_points 255 -spectral_velocity_denominator_wavenumbers 16,64 -output_times 2,4)
 vshmm_example_test(NAME spectral_advection_dns_odd EXE advection
                    ARGS ${_sp_odd} -ts_dt 2e-3 -grid_solution_file dns -no_timing
                    OUTPUT output/advection_dns_odd.out RTOL 1e-9 ATOL 1e-12)
@@ -111,17 +120,18 @@ foreach(np 1 2)
 endforeach()
 set_tests_properties(spectral_diffusion_vshmm_small_vs_dns spectral_diffusion_vshmm_small_vs_sparse
   spectral_diffusion_vshmm_small_vs_sparse_np2 spectral_diffusion_vshmm_small_matrix spectral_diffusion_vshmm_small_fftproj
+  spectral_diffusion_vshmm_small_split_groups
   PROPERTIES FIXTURES_REQUIRED spectral_diffusion_refs)
 set_tests_properties(spectral_advection_vshmm_small_vs_dns spectral_advection_vshmm_small_rk4_np1 spectral_advection_vshmm_small_rk4_np2
   PROPERTIES FIXTURES_REQUIRED spectral_advection_refs)
 
 # --- cluster detection (soft thresholding, lambda = 10^-2.5, unitary normalisation) ----------
 vshmm_example_test(NAME spectral_detect_dns_small EXE diffusion
-                   ARGS -grid_points 256 -diffusion_coefficient_wavenumbers 16,64 -mode sparse -cluster_detect dns
-                        -cluster_detect_times 0.25 -cluster_gap 2 -output_times 0.001 -no_timing
+                   ARGS -spectral_grid_points 256 -spectral_diffusion_coefficient_wavenumbers 16,64 -spectral_mode sparse -spectral_cluster_detect dns
+                        -spectral_cluster_detect_times 0.25 -spectral_cluster_gap 2 -output_times 0.001 -no_timing
                    REGEX "K0 = {0..4}: 5 wavenumbers.*K1 = {13..15,17..19}.*K4 = {79,81}")
 vshmm_example_test(NAME spectral_detect_initial_buffers EXE diffusion
-                   ARGS -grid_points 256 -mode sparse -cluster_detect initial -cluster_buffers 2 -output_times 0.001 -no_timing
+                   ARGS -spectral_grid_points 256 -spectral_mode sparse -spectral_cluster_detect initial -spectral_cluster_buffers 2 -output_times 0.001 -no_timing
                    REGEX "6 wavenumbers retained in 1 clusters.*K0 = {0..7}: 8 wavenumbers")
 set_tests_properties(spectral_detect_dns_small spectral_detect_initial_buffers PROPERTIES LABELS "example;spectral")
 
@@ -133,22 +143,41 @@ vshmm_example_test(NAME spectral_scene_advection EXE advection
                    ARGS -options_file_yaml ${PROJECT_SOURCE_DIR}/examples/scenes/advection.yaml -output_times 0.5 -no_timing
                    REGEX "K2 = {114..162}.*ts_type vshmm: sampling interval 1, micro step 0.001.*output t 0.5")
 
+# --- a list option takes every value given (issue 9: 300 output times were cut at 256) ------------
+set(_sp_many_times 0.001)
+foreach(i RANGE 2 300)
+  if(i LESS 10)
+    string(APPEND _sp_many_times ",0.00${i}")
+  elseif(i LESS 100)
+    string(APPEND _sp_many_times ",0.0${i}")
+  else()
+    string(APPEND _sp_many_times ",0.${i}")
+  endif()
+endforeach()
+vshmm_example_test(NAME spectral_output_times_300 EXE diffusion
+                   ARGS -spectral_grid_points 64 -output_times ${_sp_many_times} -no_timing
+                   REGEX "output t 0.256 [^\n]*\noutput t 0.257 .*output t 0.3 rhs_evaluations")
+
 # --- bad scene input: a clear error (the regular expression must match the PETSc error) -------
 vshmm_mpiexec_command(_sp_launch 1)
 function(_spectral_error_test name regex)
   add_test(NAME spectral_error_${name} COMMAND ${_sp_launch} $<TARGET_FILE:diffusion> ${ARGN})
   set_tests_properties(spectral_error_${name} PROPERTIES PASS_REGULAR_EXPRESSION "${regex}" LABELS "example;spectral" TIMEOUT 60)
 endfunction()
-_spectral_error_test(unknown_term "Unknown term 'reaction' in -terms: the known terms are diffusion" -terms diffusion,reaction)
-_spectral_error_test(empty_clusters "-clusters is empty" -mode sparse -clusters "")
-_spectral_error_test(no_clusters "-mode sparse needs clusters" -mode sparse)
-_spectral_error_test(overlapping_clusters "clusters K0 and K1 overlap: both contain wavenumber 2" -mode sparse -clusters 0:3,2:5)
-_spectral_error_test(cluster_above_nyquist "has wavenumber 300, outside 0..128" -grid_points 256 -mode sparse -clusters 0:3,300)
-_spectral_error_test(bad_cluster_item "'6x' is not a wavenumber" -mode sparse -clusters 0:3,6x)
-_spectral_error_test(threshold_no_mode "Soft thresholding with -cluster_lambda 100.* leaves no mode" -grid_points 256 -mode sparse -cluster_detect initial -cluster_lambda 100)
-_spectral_error_test(buffers_overlap "after adding the buffers: clusters K0 and K1 overlap" -grid_points 256 -mode sparse -clusters 0:3,10:12 -cluster_buffers 5)
-_spectral_error_test(unknown_form "-velocity: unknown field form 'wavelet'" -terms advection -velocity wavelet)
-_spectral_error_test(bad_denominator "exp_ratio: the denominator is .* <= 0" -grid_points 64 -terms advection -velocity_denominator_sin 0.6,0.6 -velocity_denominator_wavenumbers 1,2)
-_spectral_error_test(small_grid "-N 2 is too small" -N 2)
-_spectral_error_test(both_cluster_sources "Give either -clusters \\(explicit\\) or -cluster_detect initial" -grid_points 256 -mode sparse -clusters 0:3 -cluster_detect initial)
-_spectral_error_test(output_times_order "-output_times must be increasing" -grid_points 64 -output_times 0.2,0.1)
+_spectral_error_test(unknown_term "Unknown term 'reaction' in -spectral_terms: the known terms are diffusion" -spectral_terms diffusion,reaction)
+_spectral_error_test(empty_clusters "-spectral_clusters is given without a value" -spectral_mode sparse -spectral_clusters "")
+_spectral_error_test(no_clusters "-spectral_mode sparse needs clusters" -spectral_mode sparse)
+_spectral_error_test(overlapping_clusters "clusters K0 and K1 overlap: both contain wavenumber 2" -spectral_mode sparse -spectral_clusters 0:3,2:5)
+_spectral_error_test(cluster_above_nyquist "has wavenumber 300, outside 0..128" -spectral_grid_points 256 -spectral_mode sparse -spectral_clusters 0:3,300)
+_spectral_error_test(bad_cluster_item "'6x' is not a wavenumber" -spectral_mode sparse -spectral_clusters 0:3,6x)
+_spectral_error_test(threshold_no_mode "Soft thresholding with -spectral_cluster_lambda 100.* leaves no mode" -spectral_grid_points 256 -spectral_mode sparse -spectral_cluster_detect initial -spectral_cluster_lambda 100)
+_spectral_error_test(buffers_overlap "after adding the buffers: clusters K0 and K1 overlap" -spectral_grid_points 256 -spectral_mode sparse -spectral_clusters 0:3,10:12 -spectral_cluster_buffers 5)
+_spectral_error_test(unknown_form "Unknown option wavelet for -spectral_velocity. Available options: constant gaussian expsin fourier exp_ratio samples" -spectral_terms advection -spectral_velocity wavelet)
+_spectral_error_test(bad_denominator "exp_ratio: the denominator is .* <= 0" -spectral_grid_points 64 -spectral_terms advection -spectral_velocity_denominator_sin 0.6,0.6 -spectral_velocity_denominator_wavenumbers 1,2)
+_spectral_error_test(small_grid "-spectral_grid_points 2 is too small" -spectral_grid_points 2)
+_spectral_error_test(both_cluster_sources "Give either -spectral_clusters \\(explicit\\) or -spectral_cluster_detect initial" -spectral_grid_points 256 -spectral_mode sparse -spectral_clusters 0:3 -spectral_cluster_detect initial)
+_spectral_error_test(output_times_order "-output_times must be increasing" -spectral_grid_points 64 -output_times 0.2,0.1)
+# issue 9 (fuzzing): checked against N before anything is built; a ',' or '+' at an end refused
+_spectral_error_test(cluster_range_huge "cluster item '0:999999999' has wavenumber 999999999, outside 0..128" -spectral_grid_points 256 -spectral_mode sparse -spectral_clusters 0:999999999)
+_spectral_error_test(cluster_trailing_comma "-spectral_clusters 0:3,: .*empty cluster" -spectral_mode sparse -spectral_clusters 0:3,)
+_spectral_error_test(cluster_trailing_plus "-spectral_clusters 0:3\\+: cluster item '0:3\\+' has an empty range" -spectral_mode sparse -spectral_clusters 0:3+)

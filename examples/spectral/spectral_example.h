@@ -1,46 +1,231 @@
 /*
    spectral_example.h - the program shared by examples/spectral/diffusion.c and advection.c:
-   set up a VSHMMSpectral scene from the options, give the TS the full right-hand side and one
-   RHS split per cluster, and run it to the output times (output contract of VSHMMSpectralSolve()).
+   set up a VSHMMSpectral scene from the options (-spectral_*), give the TS the full right-hand
+   side and one RHS split per cluster, and run it to the output times. The output is the
+   example's, not the library's:
+
+     -output_times t1,t2,...        stop on each t_i (TS_EXACTFINALTIME_MATCHSTEP) and print
+                                    output t <t> rhs_evaluations <n> split_evaluations <n> inverse_ffts <n> forward_ffts <n> direct_modes <n> wall_time <s> [file <name>]
+                                    counted from the start of the solve (any number of times;
+                                    without it: the TS's final time)
+     -grid_solution_file PREFIX     write PREFIX_<t>.txt (<t> by C's %g): N lines "x_j u(x_j)", %.17g
+     -compare_grid_solution PREFIX  print "compare t <t> relative_l2_error <e> max_error <e>" against PREFIX_<t>.txt
+     -compare_tolerance TOL         and stop with an error if a relative L2 error exceeds TOL
+     -spectrum_file FILE            a TS monitor writing "t k |c_k|" blocks every -spectrum_interval
+     -no_timing                     leave the wall times out
 */
 #include <petscvshmm.h>
 #include <petscvshmmspectral.h>
+#include <math.h>
 #include <stdio.h>
 
-/* Runs the scene `scene` ("diffusion" or "advection") with default final time tfinal. */
-static PetscErrorCode RunSpectralExample(const char *scene, PetscReal tfinal)
+typedef struct {
+  VSHMMSpectral    sp;
+  PetscReal       *times; /* output times */
+  PetscInt         ntimes;
+  char             grid_prefix[PETSC_MAX_PATH_LEN], compare_prefix[PETSC_MAX_PATH_LEN], spectrum_file[PETSC_MAX_PATH_LEN];
+  PetscReal        compare_tol, spectrum_interval, next_spectrum;
+  PetscBool        timing;
+  FILE            *spectrum_fp;
+  PetscInt         N, nmodes;
+  const PetscInt  *modes;
+  PetscReal       *u, *mags; /* N grid values; one magnitude per retained mode */
+  PetscMPIInt      rank;
+} SpectralRun;
+
+/* -output_times: any number of values. PETSc's array reader stops silently at the capacity it is
+   given, so the capacity grows until the list fits; then PetscOptionsRealArray() reads it for -help. */
+static PetscErrorCode ReadOutputTimes(PetscOptionItems *PetscOptionsObject, SpectralRun *run)
 {
-  VSHMMSpectral sp;
-  TS            ts;
-  Vec           U;
-  PetscReal     dt;
-  PetscBool     isvshmm, isrk;
-  TSType        type;
-  char          line[512];
+  PetscInt  capacity = 16, n;
+  PetscBool set = PETSC_FALSE, given;
 
   PetscFunctionBeginUser;
-  PetscCall(TSVSHMMInitializePackage());
-  PetscCall(VSHMMSpectralCreate(PETSC_COMM_WORLD, &sp));
-  PetscCall(VSHMMSpectralSetDefaultScene(sp, scene));
-  PetscCall(VSHMMSpectralSetFromOptions(sp));
-  PetscCall(VSHMMSpectralSetUp(sp));
-  PetscCall(VSHMMSpectralView(sp, NULL));
-  PetscCall(VSHMMSpectralCreateVec(sp, &U));
-  PetscCall(VSHMMSpectralSetInitialCondition(sp, U));
+  for (;; capacity *= 2) {
+    PetscCall(PetscCalloc1(capacity, &run->times));
+    n = capacity;
+    PetscCall(PetscOptionsGetRealArray(NULL, NULL, "-output_times", run->times, &n, &set));
+    if (!set || n < capacity) break;
+    PetscCall(PetscFree(run->times));
+  }
+  n = capacity;
+  PetscCall(PetscOptionsRealArray("-output_times", "times at which to print the work and write the grid solution", NULL, run->times, &n, &set));
+  run->ntimes = set ? n : 0;
+  PetscCall(PetscOptionsHasName(NULL, NULL, "-output_times", &given)); /* PETSc takes a value-less option for an absent one */
+  PetscCheck(given == set && (!set || n > 0), PETSC_COMM_WORLD, PETSC_ERR_ARG_WRONG, "-output_times needs at least one time");
+  PetscFunctionReturn(0);
+}
 
-  PetscCall(TSCreate(PETSC_COMM_WORLD, &ts));
-  PetscCall(TSSetProblemType(ts, TS_LINEAR));
-  PetscCall(TSSetSolution(ts, U));
-  PetscCall(VSHMMSpectralSetUpTS(sp, ts));
-  PetscCall(TSSetType(ts, TSRK));
-  PetscCall(TSRKSetType(ts, TSRK3));
-  PetscCall(VSHMMSpectralEstimateTimeStep(sp, &dt)); /* stable for RK3; set -ts_dt for accuracy */
-  PetscCall(TSSetTimeStep(ts, dt));
-  PetscCall(TSSetMaxTime(ts, tfinal));
-  PetscCall(TSSetMaxSteps(ts, PETSC_MAX_INT));
+static PetscErrorCode ReadRunOptions(SpectralRun *run)
+{
+  PetscBool no_timing = PETSC_FALSE;
+
+  PetscFunctionBeginUser;
+  run->compare_tol       = 0;
+  run->spectrum_interval = 0.01;
+  PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "Output of the sparse spectral examples", NULL);
+  PetscCall(ReadOutputTimes(PetscOptionsObject, run));
+  PetscCall(PetscOptionsString("-grid_solution_file", "prefix of the grid solution files PREFIX_<t>.txt", NULL, run->grid_prefix, run->grid_prefix, sizeof(run->grid_prefix), NULL));
+  PetscCall(PetscOptionsString("-compare_grid_solution", "prefix of reference grid solutions PREFIX_<t>.txt to compare with", NULL, run->compare_prefix, run->compare_prefix, sizeof(run->compare_prefix), NULL));
+  PetscCall(PetscOptionsReal("-compare_tolerance", "stop with an error if the relative L2 error exceeds this (0: no check)", NULL, run->compare_tol, &run->compare_tol, NULL));
+  PetscCall(PetscOptionsString("-spectrum_file", "write t k |c_k| blocks to this file", NULL, run->spectrum_file, run->spectrum_file, sizeof(run->spectrum_file), NULL));
+  PetscCall(PetscOptionsReal("-spectrum_interval", "time between two spectra in -spectrum_file", NULL, run->spectrum_interval, &run->spectrum_interval, NULL));
+  PetscCall(PetscOptionsBool("-no_timing", "omit wall times", NULL, no_timing, &no_timing, NULL));
+  PetscOptionsEnd();
+  run->timing = no_timing ? PETSC_FALSE : PETSC_TRUE;
+  PetscCheck(isfinite(run->compare_tol) && run->compare_tol >= 0, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "-compare_tolerance must be finite and nonnegative (0: no check), got %g", (double)run->compare_tol);
+  PetscCheck(isfinite(run->spectrum_interval) && run->spectrum_interval > 0, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "-spectrum_interval must be finite and positive, got %g", (double)run->spectrum_interval);
+  PetscFunctionReturn(0);
+}
+
+/* TS monitor of -spectrum_file: |c_k| of the retained modes every -spectrum_interval. */
+static PetscErrorCode SpectrumMonitor(TS ts, PetscInt step, PetscReal t, Vec U, void *ctx)
+{
+  SpectralRun *run = (SpectralRun *)ctx;
+  PetscInt     i;
+
+  PetscFunctionBeginUser;
+  (void)ts;
+  (void)step;
+  if (t < run->next_spectrum - 1e-9 * run->spectrum_interval) PetscFunctionReturn(0);
+  while (run->next_spectrum <= t + 1e-9 * run->spectrum_interval) run->next_spectrum += run->spectrum_interval;
+  PetscCall(VSHMMSpectralGetModeMagnitudes(run->sp, U, run->mags));
+  if (run->rank == 0) {
+    for (i = 0; i < run->nmodes; i++) fprintf(run->spectrum_fp, "%.10g %d %.6e\n", (double)t, (int)run->modes[i], (double)run->mags[i]);
+    fprintf(run->spectrum_fp, "\n");
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The grid solution at output time t: PREFIX_<t>.txt, N lines "x_j u(x_j)". */
+static PetscErrorCode WriteGridSolution(SpectralRun *run, Vec U, PetscReal t, char file[], size_t len)
+{
+  PetscInt j;
+
+  PetscFunctionBeginUser;
+  PetscCall(VSHMMSpectralGetGridValues(run->sp, U, run->u));
+  snprintf(file, len, "%s_%g.txt", run->grid_prefix, (double)t); /* C's %g, not PETSc's */
+  if (run->rank == 0) {
+    FILE *fp = fopen(file, "w");
+    PetscCheck(fp, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Cannot open the grid solution file %s", file);
+    for (j = 0; j < run->N; j++) fprintf(fp, "%.17g %.17g\n", 2.0 * PETSC_PI * (double)j / (double)run->N, (double)run->u[j]);
+    PetscCheck(fclose(fp) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot write the grid solution file %s", file);
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The relative L2 and max errors against PREFIX_<t>.txt. */
+static PetscErrorCode CompareGridSolution(SpectralRun *run, Vec U, PetscReal t)
+{
+  char      name[PETSC_MAX_PATH_LEN], line[256];
+  double    e2 = 0, r2 = 0, emax = 0, rel;
+  PetscReal *ref;
+  PetscInt  j;
+
+  PetscFunctionBeginUser;
+  PetscCall(VSHMMSpectralGetGridValues(run->sp, U, run->u));
+  snprintf(name, sizeof(name), "%s_%g.txt", run->compare_prefix, (double)t);
+  PetscCall(PetscMalloc1(run->N, &ref));
+  PetscCall(VSHMMSpectralReadGridValues(run->sp, name, ref));
+  for (j = 0; j < run->N; j++) {
+    const double d = run->u[j] - ref[j];
+    e2 += d * d;
+    r2 += ref[j] * ref[j];
+    if (!(fabs(d) <= emax)) emax = fabs(d); /* keeps a NaN */
+  }
+  PetscCall(PetscFree(ref));
+  rel = sqrt(e2 / (r2 > 0 ? r2 : 1.0));
+  snprintf(line, sizeof(line), "compare t %g relative_l2_error %.3e max_error %.3e", (double)t, rel, emax);
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%s\n", line));
+  PetscCheck(run->compare_tol <= 0 || rel <= run->compare_tol, /* false for NaN */ PETSC_COMM_WORLD, PETSC_ERR_NOT_CONVERGED, "The relative L2 error %.3e against %s exceeds -compare_tolerance %g", rel, name, (double)run->compare_tol);
+  PetscFunctionReturn(0);
+}
+
+/* "output t ..." with the work counted by the VSHMMSpectral so far. */
+static PetscErrorCode PrintWork(SpectralRun *run, PetscReal t, double wall, const char *file)
+{
+  VSHMMSpectralStatistics st;
+  char                    line[PETSC_MAX_PATH_LEN + 512];
+  int                     len;
+
+  PetscFunctionBeginUser;
+  PetscCall(VSHMMSpectralGetStatistics(run->sp, &st));
+  /* C's %g (PetscPrintf would print 1 as "1.") */
+  len = snprintf(line, sizeof(line), "output t %g rhs_evaluations %lld split_evaluations %lld inverse_ffts %lld forward_ffts %lld direct_modes %lld", (double)t, (long long)st.field_evaluations, (long long)st.split_calls, (long long)st.inverse_ffts, (long long)st.forward_ffts,
+                 (long long)st.direct_modes);
+  if (run->timing && len > 0 && len < (int)sizeof(line)) len += snprintf(line + len, sizeof(line) - len, " wall_time %.4e", wall);
+  if (file && len > 0 && len < (int)sizeof(line)) len += snprintf(line + len, sizeof(line) - len, " file %s", file);
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%s\n", line));
+  PetscFunctionReturn(0);
+}
+
+/* Runs the TS to each output time (the TS's time step restored before each segment). */
+static PetscErrorCode SolveToOutputTimes(SpectralRun *run, TS ts, Vec U)
+{
+  PetscReal      t0, dt0, tf;
+  PetscLogDouble w0, w1;
+  PetscInt       i;
+
+  PetscFunctionBeginUser;
+  PetscCall(TSGetTime(ts, &t0));
+  PetscCall(TSGetTimeStep(ts, &dt0));
+  if (!run->ntimes) {
+    PetscCall(TSGetMaxTime(ts, &tf));
+    PetscCall(PetscFree(run->times));
+    PetscCall(PetscMalloc1(1, &run->times));
+    run->times[0] = tf;
+    run->ntimes   = 1;
+  }
+  for (i = 0; i < run->ntimes; i++)
+    PetscCheck(isfinite(run->times[i]) && run->times[i] > t0 && (i == 0 || run->times[i] > run->times[i - 1]), PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "-output_times must be increasing and after the initial time %g; item %d is %g", (double)t0, (int)i + 1, (double)run->times[i]);
+  if (run->spectrum_file[0]) {
+    if (run->rank == 0) {
+      run->spectrum_fp = fopen(run->spectrum_file, "w");
+      PetscCheck(run->spectrum_fp, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Cannot open -spectrum_file %s", run->spectrum_file);
+      fprintf(run->spectrum_fp, "# t k |c_k| (Fourier series coefficients; unitary DFT magnitude = sqrt(N) |c_k|, N = %d)\n", (int)run->N);
+    }
+    run->next_spectrum = t0;
+    PetscCall(SpectrumMonitor(ts, 0, t0, U, run));
+    PetscCall(TSMonitorSet(ts, SpectrumMonitor, run, NULL));
+  }
   PetscCall(TSSetExactFinalTime(ts, TS_EXACTFINALTIME_MATCHSTEP));
-  PetscCall(TSSetFromOptions(ts));
+  PetscCall(PetscTime(&w0));
+  for (i = 0; i < run->ntimes; i++) {
+    const PetscReal   ti = run->times[i];
+    PetscReal         t, norm;
+    TSConvergedReason reason;
+    char              file[PETSC_MAX_PATH_LEN] = "";
 
+    PetscCall(TSSetMaxTime(ts, ti));
+    PetscCall(TSSetTimeStep(ts, dt0));
+    PetscCall(TSSolve(ts, U));
+    PetscCall(TSGetSolveTime(ts, &t));
+    PetscCall(TSGetConvergedReason(ts, &reason));
+    PetscCheck(reason >= 0, PETSC_COMM_WORLD, PETSC_ERR_NOT_CONVERGED, "The TS diverged (%s) at t = %g before the output time %g", TSConvergedReasons[reason], (double)t, (double)ti);
+    PetscCheck(fabs(t - ti) <= 1e-9 * PetscMax(1.0, fabs(ti)), PETSC_COMM_WORLD, PETSC_ERR_NOT_CONVERGED, "The TS stopped at t = %.12g, not at the output time %g (%s; raise -ts_max_steps?)", (double)t, (double)ti, TSConvergedReasons[reason]);
+    PetscCall(PetscTime(&w1));
+    PetscCall(VecNorm(U, NORM_2, &norm));
+    PetscCheck(isfinite(norm), PETSC_COMM_WORLD, PETSC_ERR_FP, "The solution at t = %g is not finite (Inf or NaN): the time step is probably too large for the fastest retained mode (see VSHMMSpectralEstimateTimeStep(); -ts_dt, -ts_vshmm_micro_dt, -ts_vshmm_savings_factors)", (double)ti);
+    if (run->grid_prefix[0]) PetscCall(WriteGridSolution(run, U, ti, file, sizeof(file)));
+    PetscCall(PrintWork(run, ti, w1 - w0, file[0] ? file : NULL));
+    if (run->compare_prefix[0]) PetscCall(CompareGridSolution(run, U, ti));
+  }
+  if (run->spectrum_fp) {
+    fclose(run->spectrum_fp);
+    run->spectrum_fp = NULL;
+  }
+  PetscFunctionReturn(0);
+}
+
+/* "ts_type ...": the stepper and its step sizes. */
+static PetscErrorCode PrintStepper(TS ts)
+{
+  PetscReal dt;
+  PetscBool isvshmm, isrk;
+  TSType    type;
+  char      line[512];
+
+  PetscFunctionBeginUser;
   PetscCall(TSGetType(ts, &type));
   PetscCall(TSGetTimeStep(ts, &dt));
   PetscCall(PetscObjectTypeCompare((PetscObject)ts, TSVSHMM, &isvshmm));
@@ -68,11 +253,53 @@ static PetscErrorCode RunSpectralExample(const char *scene, PetscReal tfinal)
     snprintf(line, sizeof(line), "ts_type %s: time step %g", type, (double)dt);
   }
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%s\n", line));
+  PetscFunctionReturn(0);
+}
 
-  PetscCall(VSHMMSpectralSolve(sp, ts, U));
+/* Runs the scene `scene` ("diffusion" or "advection") with default final time tfinal. */
+static PetscErrorCode RunSpectralExample(const char *scene, PetscReal tfinal)
+{
+  SpectralRun run;
+  TS          ts;
+  Vec         U;
+  PetscReal   dt;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMemzero(&run, sizeof(run)));
+  PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &run.rank));
+  PetscCall(TSVSHMMInitializePackage());
+  PetscCall(ReadRunOptions(&run));
+  PetscCall(VSHMMSpectralCreate(PETSC_COMM_WORLD, &run.sp));
+  PetscCall(VSHMMSpectralSetDefaultScene(run.sp, scene));
+  PetscCall(VSHMMSpectralSetFromOptions(run.sp));
+  PetscCall(VSHMMSpectralSetUp(run.sp));
+  PetscCall(VSHMMSpectralView(run.sp, PETSC_VIEWER_STDOUT_WORLD));
+  PetscCall(VSHMMSpectralGetSizes(run.sp, &run.N, NULL, NULL));
+  PetscCall(VSHMMSpectralGetModes(run.sp, &run.nmodes, &run.modes));
+  PetscCall(PetscMalloc2(run.N, &run.u, run.nmodes, &run.mags));
+  PetscCall(VSHMMSpectralCreateVec(run.sp, &U));
+  PetscCall(VSHMMSpectralSetInitialCondition(run.sp, U));
+
+  PetscCall(TSCreate(PETSC_COMM_WORLD, &ts));
+  PetscCall(TSSetProblemType(ts, TS_LINEAR));
+  PetscCall(TSSetSolution(ts, U));
+  PetscCall(VSHMMSpectralSetUpTS(run.sp, ts));
+  PetscCall(TSSetType(ts, TSRK));
+  PetscCall(TSRKSetType(ts, TSRK3));
+  PetscCall(VSHMMSpectralEstimateTimeStep(run.sp, &dt)); /* stable for RK3; set -ts_dt for accuracy */
+  PetscCall(TSSetTimeStep(ts, dt));
+  PetscCall(TSSetMaxTime(ts, tfinal));
+  PetscCall(TSSetMaxSteps(ts, PETSC_MAX_INT));
+  PetscCall(TSSetExactFinalTime(ts, TS_EXACTFINALTIME_MATCHSTEP));
+  PetscCall(TSSetFromOptions(ts));
+  PetscCall(PrintStepper(ts));
+
+  PetscCall(SolveToOutputTimes(&run, ts, U));
 
   PetscCall(TSDestroy(&ts));
   PetscCall(VecDestroy(&U));
-  PetscCall(VSHMMSpectralDestroy(&sp));
+  PetscCall(PetscFree2(run.u, run.mags));
+  PetscCall(PetscFree(run.times));
+  PetscCall(VSHMMSpectralDestroy(&run.sp));
   PetscFunctionReturn(0);
 }

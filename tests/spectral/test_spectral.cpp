@@ -254,6 +254,10 @@ TEST(Clusters, BadInput)
   EXPECT_NE(parseError("5:3", 64).find("lo > hi"), std::string::npos);
   EXPECT_NE(parseError("-1:3", 64).find("nonnegative"), std::string::npos);
   EXPECT_NE(parseError("1+1", 64).find("twice"), std::string::npos);
+  EXPECT_NE(parseError("0:3,", 64).find("empty cluster"), std::string::npos);     // trailing ','
+  EXPECT_NE(parseError("0:3,5+", 64).find("empty range"), std::string::npos);     // trailing '+'
+  EXPECT_NE(parseError("0:3,+5", 64).find("empty range"), std::string::npos);
+  EXPECT_NE(parseError("0:999999999", 64).find("outside 0..32"), std::string::npos); // before expanding
 }
 
 TEST(Clusters, SortByLowest)
@@ -355,5 +359,10 @@ TEST(Fields, Forms)
   f.numerator.wavenumbers = {2};
   f.numerator.sines       = {0.5, 0.1};
   EXPECT_THROW(f.sample(N), std::invalid_argument); // two sines for one wavenumber
-  EXPECT_THROW(Field::formFromName("wavelet"), std::invalid_argument);
+  Field r = Field::ofForm(Field::Form::ExpRatio); // exp(0 / 1) = 1
+  EXPECT_EQ(r.sample(N)[3], 1.0);
+  Field q = Field::ofForm(Field::Form::Fourier); // cos left out: 0
+  q.numerator.wavenumbers = {24};
+  q.numerator.sines       = {0.6};
+  EXPECT_NEAR(q.sample(N)[1], 0.6 * std::sin(24 * gridPoint(N, 1)), 1e-15);
 }

@@ -15,7 +15,6 @@ namespace spectral {
 enum class Normalization { Unitary, Series, DFT };
 double             normalizationFactor(Normalization n, int N);
 const char        *normalizationName(Normalization n);
-Normalization      normalizationFromName(const std::string &name); // throws std::invalid_argument
 
 // Soft thresholding: v^s_k = max(|v_k| - lambda, 0) v_k / |v_k|. The support is the set of k
 // with |v_k| > lambda.

@@ -45,19 +45,28 @@ static int parseWavenumber(const std::string &text, const std::string &item)
   return (int)v;
 }
 
+// The parts of text between separators, empty ones included ("a," gives "a" and "").
+static std::vector<std::string> splitAt(const std::string &text, char sep)
+{
+  std::vector<std::string> parts;
+  size_t                   begin = 0;
+  for (size_t end; (end = text.find(sep, begin)) != std::string::npos; begin = end + 1) parts.push_back(text.substr(begin, end - begin));
+  parts.push_back(text.substr(begin));
+  return parts;
+}
+
 ClusterSet ClusterSet::parse(const std::string &spec, int N)
 {
   ClusterSet cs;
   cs.N = N;
+  if (N < 2) throw std::invalid_argument("the grid needs at least 2 points, got N = " + std::to_string(N));
   if (trim(spec).empty()) throw std::invalid_argument("the cluster list is empty: give clusters as lo:hi ranges separated by commas, e.g. 0:3,62:66");
-  std::stringstream all(spec);
-  std::string       item;
-  while (std::getline(all, item, ',')) {
+  const int kmax = maxWavenumber(N);
+  for (const std::string &item : splitAt(spec, ',')) {
     if (trim(item).empty()) throw std::invalid_argument("the cluster list '" + spec + "' has an empty cluster (two commas in a row, or a comma at an end)");
-    std::vector<int>  c;
-    std::stringstream parts(item);
-    std::string       range;
-    while (std::getline(parts, range, '+')) {
+    std::vector<int> c;
+    for (const std::string &range : splitAt(item, '+')) {
+      if (trim(range).empty()) throw std::invalid_argument("cluster item '" + trim(item) + "' has an empty range ('+' at an end, or two in a row)");
       const size_t colon = range.find(':');
       int          lo, hi;
       if (colon == std::string::npos) lo = hi = parseWavenumber(range, trim(item));
@@ -66,6 +75,12 @@ ClusterSet ClusterSet::parse(const std::string &spec, int N)
         hi = parseWavenumber(range.substr(colon + 1), trim(item));
       }
       if (hi < lo) throw std::invalid_argument("cluster item '" + trim(item) + "': the range " + std::to_string(lo) + ":" + std::to_string(hi) + " is empty (lo > hi)");
+      // checked before the range is expanded: 0:999999999 must not allocate
+      if (hi > kmax) {
+        std::ostringstream m;
+        m << "cluster item '" << trim(item) << "' has wavenumber " << hi << ", outside 0.." << kmax << " (N = " << N << " grid points resolve |k| <= N/2)";
+        throw std::invalid_argument(m.str());
+      }
       for (int k = lo; k <= hi; ++k) c.push_back(k);
     }
     std::sort(c.begin(), c.end());
@@ -108,14 +123,6 @@ bool ClusterSet::sortByLowest()
   bool changed = !std::is_sorted(clusters.begin(), clusters.end(), lowest);
   std::stable_sort(clusters.begin(), clusters.end(), lowest);
   return changed;
-}
-
-std::vector<int> ClusterSet::allModes() const
-{
-  std::vector<int> m;
-  for (const auto &c : clusters) m.insert(m.end(), c.begin(), c.end());
-  std::sort(m.begin(), m.end());
-  return m;
 }
 
 std::string formatModes(const std::vector<int> &modes)
@@ -211,14 +218,13 @@ static const char *const kFormNames[] = {"constant", "gaussian", "expsin", "four
 
 const char *Field::formName(Form f) { return kFormNames[(int)f]; }
 
-Field::Form Field::formFromName(const std::string &name)
+Field Field::ofForm(Form f)
 {
-  for (int i = 0; i < 6; ++i)
-    if (name == kFormNames[i]) return (Form)i;
-  throw std::invalid_argument("unknown field form '" + name + "': use " + formNames());
+  Field field;
+  field.form = f;
+  if (f == Form::ExpRatio) field.denominator.offset = 1.0; // exp(num / 1): a denominator of 0 is never meant
+  return field;
 }
-
-std::string Field::formNames() { return "constant, gaussian, expsin, fourier, exp_ratio or samples"; }
 
 std::vector<double> Field::sample(int N) const
 {

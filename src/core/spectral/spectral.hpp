@@ -37,14 +37,14 @@ struct ClusterSet {
 
   // Parses "0:3,62:66,192:193,255:257": clusters separated by ',', a cluster is one or more
   // ranges joined by '+', a range is "k" or "lo:hi" (inclusive). Throws std::invalid_argument
-  // with a message that names the bad item.
+  // with a message that names the bad item: an empty item (also a ',' or '+' at an end), a
+  // wavenumber above N/2 (checked before a range is expanded), overlaps.
   static ClusterSet parse(const std::string &spec, int N);
   // Throws unless there is at least one cluster, none is empty, every k is in 0..N/2 and no
   // wavenumber is in two clusters.
   void validate() const;
   // Sorts the clusters by their lowest wavenumber (slowest first). Returns true if it changed the order.
   bool sortByLowest();
-  std::vector<int> allModes() const; // sorted union
   size_t           size() const { return clusters.size(); }
   std::string      format() const;   // "K0 = {0..3}, K1 = {62,63,65,66}"
 };
@@ -108,8 +108,10 @@ struct Field {
   std::vector<double> samples;
 
   static const char *formName(Form f);
-  static Form        formFromName(const std::string &name); // throws std::invalid_argument
-  static std::string formNames();                           // "constant, gaussian, ..."
+  // A field of form f with its defaults: every parameter 0 or empty (a series term left out is
+  // 0), except gaussian amplitude 1, center pi, width 1; expsin amplitudes 1 (empty list);
+  // exp_ratio scale 1 and denominator offset 1.
+  static Field ofForm(Form f);
   // Values at x_j, j = 0..N-1. Throws std::invalid_argument for inconsistent parameters,
   // a non-positive exp_ratio denominator or non-finite values.
   std::vector<double> sample(int N) const;

@@ -32,14 +32,6 @@ const char *normalizationName(Normalization n)
   }
 }
 
-Normalization normalizationFromName(const std::string &name)
-{
-  if (name == "unitary") return Normalization::Unitary;
-  if (name == "series") return Normalization::Series;
-  if (name == "dft") return Normalization::DFT;
-  throw std::invalid_argument("unknown normalization '" + name + "': use unitary (1/sqrt(N)), series (1/N) or dft (unnormalised)");
-}
-
 double softThreshold(double magnitude, double lambda) { return std::max(magnitude - lambda, 0.0); }
 
 std::vector<int> thresholdSupport(const std::vector<std::vector<double>> &mags, int N, double lambda, Normalization norm)

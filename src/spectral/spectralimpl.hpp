@@ -1,0 +1,155 @@
+/*
+  Private header of VSHMMSpectral (include/petscvshmmspectral.h): the object, its log events and
+  the functions shared by the files of src/spectral, split by concern as SLEPc splits
+  src/eps/interface:
+
+    spectralbasic.cpp  the package (class id, log events), creation, destruction, options prefix,
+                       default scenes, sizes, clusters, statistics
+    spectralopts.cpp   VSHMMSpectralSetFromOptions(): the scene read with PETSc's readers
+    spectralsetup.cpp  VSHMMSpectralSetUp(): fields, clusters (explicit or detected), operator
+    spectralrhs.cpp    the state Vec, the right-hand side, the splits and the physical-space cache
+    spectralview.cpp   VSHMMSpectralView()
+
+  The numerical core (no PETSc) is src/core/spectral.
+*/
+#pragma once
+
+#include <petscvshmmspectral.h>
+#include <petsc/private/petscimpl.h>
+
+#include "detect.hpp"
+#include "spectral.hpp"
+
+#include <exception>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace spc = vshmm::spectral;
+
+typedef enum {
+  VSHMMSPECTRAL_MODE_DNS,
+  VSHMMSPECTRAL_MODE_SPARSE
+} VSHMMSpectralMode;
+PETSC_INTERN const char *const VSHMMSpectralModes[];
+
+typedef enum {
+  VSHMMSPECTRAL_DETECT_NONE,
+  VSHMMSPECTRAL_DETECT_INITIAL,
+  VSHMMSPECTRAL_DETECT_DNS,
+  VSHMMSPECTRAL_DETECT_FILE
+} VSHMMSpectralDetect;
+PETSC_INTERN const char *const VSHMMSpectralDetects[];
+
+typedef enum {
+  VSHMMSPECTRAL_PROJECTION_AUTO,
+  VSHMMSPECTRAL_PROJECTION_FFT,
+  VSHMMSPECTRAL_PROJECTION_DIRECT
+} VSHMMSpectralProjection;
+PETSC_INTERN const char *const VSHMMSpectralProjections[];
+
+typedef enum {
+  VSHMMSPECTRAL_EVALUATION_FFT,
+  VSHMMSPECTRAL_EVALUATION_MATRIX
+} VSHMMSpectralEvaluation;
+PETSC_INTERN const char *const VSHMMSpectralEvaluations[];
+
+typedef enum {
+  VSHMMSPECTRAL_PLANNER_ESTIMATE,
+  VSHMMSPECTRAL_PLANNER_MEASURE,
+  VSHMMSPECTRAL_PLANNER_PATIENT
+} VSHMMSpectralPlanner;
+PETSC_INTERN const char *const VSHMMSpectralPlanners[];
+
+PETSC_INTERN const char *const VSHMMSpectralNormalizations[];
+
+/* The cluster detection's outcome, for VSHMMSpectralView() (the library prints nothing itself). */
+struct VSHMMSpectralDetection {
+  PetscReal              dt = 0;         /* time step of the detection DNS (0: no DNS) */
+  std::vector<PetscReal> times;          /* its snapshot times */
+  PetscInt               support = 0;    /* wavenumbers above the threshold */
+  PetscInt               merged  = 0;    /* clusters before buffers */
+};
+
+struct SplitCtx {
+  VSHMMSpectral sp;
+  PetscInt      j;
+};
+
+/* The C++ state of a VSHMMSpectral: the scene, the set-up and the physical-space cache. */
+struct VSHMMSpectral_Data {
+  /* the scene */
+  std::string              scene = "diffusion";
+  PetscInt                 N     = 2048;
+  std::vector<std::string> terms;
+  spc::Field                diff, vel, u0;
+  VSHMMSpectralMode        mode = VSHMMSPECTRAL_MODE_DNS;
+  std::string              cluster_spec;
+  VSHMMSpectralDetect      detect = VSHMMSPECTRAL_DETECT_NONE;
+  PetscReal                lambda = 3.1622776601683794e-3; /* 10^-2.5 */
+  PetscInt                 gap    = 1;
+  std::vector<PetscInt>    buffers;
+  spc::Normalization        norm = spc::Normalization::Unitary;
+  std::vector<PetscReal>   detect_times;
+  std::string              detect_file;
+  PetscReal                detect_dt  = 0;
+  VSHMMSpectralProjection  projection = VSHMMSPECTRAL_PROJECTION_AUTO;
+  VSHMMSpectralEvaluation  evaluation = VSHMMSPECTRAL_EVALUATION_FFT;
+  VSHMMSpectralPlanner     planner    = VSHMMSPECTRAL_PLANNER_MEASURE;
+
+  /* set-up */
+  spc::ClusterSet                        clusters;
+  VSHMMSpectralDetection                detection;
+  std::unique_ptr<spc::Layout>           layout;
+  std::unique_ptr<spc::SpectralOperator> op;
+  std::unique_ptr<spc::DenseOperator>    dense;
+  std::vector<std::vector<PetscInt>>    cluster_modes; /* for VSHMMSpectralGetCluster() */
+  std::vector<PetscInt>                 modes;         /* every retained wavenumber, in the layout */
+  std::vector<SplitCtx>                 split_ctx;
+  VecScatter                            gather = nullptr;
+  Vec                                   Useq   = nullptr;
+  std::vector<double>                   out;
+
+  /* the physical-space field of the last state seen */
+  PetscBool        cache_valid = PETSC_FALSE, fft_done = PETSC_FALSE;
+  PetscObjectId    cache_id    = 0;
+  PetscObjectState cache_state = 0;
+  PetscReal        cache_t     = 0;
+  double           direct_spent = 0;
+
+  VSHMMSpectralStatistics stats = {};
+};
+
+typedef struct _VSHMMSpectralOps *VSHMMSpectralOps;
+struct _VSHMMSpectralOps {
+  PetscErrorCode (*view)(VSHMMSpectral, PetscViewer);
+};
+
+struct _p_VSHMMSpectral {
+  PETSCHEADER(struct _VSHMMSpectralOps);
+  VSHMMSpectral_Data *data;
+  PetscBool           setupcalled;
+};
+
+/* log events (registered by VSHMMSpectralInitializePackage()) */
+PETSC_INTERN PetscLogEvent VSHMMSPECTRAL_SetUp, VSHMMSPECTRAL_RHS, VSHMMSPECTRAL_Split, VSHMMSPECTRAL_Physical, VSHMMSPECTRAL_ForwardFFT, VSHMMSPECTRAL_ProjDirect, VSHMMSPECTRAL_MatVec;
+
+/* The options prefix of sp ("" without one), for error messages that name an option. */
+static inline const char *VSHMMSpectralPrefix(VSHMMSpectral sp)
+{
+  return ((PetscObject)sp)->prefix ? ((PetscObject)sp)->prefix : "";
+}
+
+/* An error of the numerical core (a std::exception) as a PETSc error naming the option. */
+PETSC_INTERN PetscErrorCode VSHMMSpectralOptionError_Private(VSHMMSpectral, const char[], const std::exception &);
+/* u0, d or a on the grid; an error names the option of the field. */
+PETSC_INTERN PetscErrorCode VSHMMSpectralSampleField_Private(VSHMMSpectral, const char[], const spc::Field &, std::vector<double> &);
+/* Grid values "x u" (or "u") per line, the format of the examples' grid solution files. */
+PETSC_INTERN PetscErrorCode VSHMMSpectralReadGridFile_Private(MPI_Comm, const char[], std::vector<double> &);
+/* The fields D = sum of diffusion coefficients, A = - sum of velocities, on the grid. */
+PETSC_INTERN PetscErrorCode VSHMMSpectralBuildCoefficients_Private(VSHMMSpectral, std::vector<double> &, std::vector<double> &);
+/* A stable explicit RK3 step for the modes up to kmax. */
+PETSC_INTERN double VSHMMSpectralStableStep_Private(const std::vector<double> &, const std::vector<double> &, int);
+/* The whole state on every rank (the Vec's own array on one rank, a gathered copy otherwise). */
+PETSC_INTERN PetscErrorCode VSHMMSpectralGetCoefficients_Private(VSHMMSpectral, Vec, const PetscScalar **);
+PETSC_INTERN PetscErrorCode VSHMMSpectralRestoreCoefficients_Private(VSHMMSpectral, Vec, const PetscScalar **);

@@ -1,0 +1,98 @@
+/*
+  VSHMMSpectralView(): the scene, the clusters (and how they were found) and the evaluation.
+*/
+#include "spectralimpl.hpp"
+
+#include <sstream>
+
+/* The cluster detection's parameters and outcome (C's %g, as in the rest of the view). */
+static std::string DescribeDetection(const VSHMMSpectral_Data *s)
+{
+  std::ostringstream m;
+  if (s->detection.dt > 0) {
+    m << "cluster detection: direct simulation with " << s->N << " modes, RK3 dt = " << s->detection.dt << ", snapshots at";
+    for (PetscReal t : s->detection.times) m << " " << t;
+    m << "\n";
+  }
+  m << "cluster detection: lambda " << s->lambda << " (" << spc::normalizationName(s->norm) << " normalisation), gap " << s->gap << ": " << s->detection.support << " wavenumbers retained in " << s->detection.merged << " clusters\n";
+  return m.str();
+}
+
+/* The scene, its clusters and its evaluation, as VSHMMSpectralView() prints them. */
+static std::string DescribeScene(const VSHMMSpectral_Data *s)
+{
+  std::ostringstream m;
+  if (s->mode == VSHMMSPECTRAL_MODE_SPARSE && s->detect != VSHMMSPECTRAL_DETECT_NONE) m << DescribeDetection(s);
+  m << "scene: N = " << s->N << " grid points on [0, 2 pi), wavenumbers 0.." << spc::maxWavenumber((int)s->N) << "\n";
+  for (const std::string &t : s->terms) {
+    if (t == "diffusion") m << "  term diffusion: u_t += (d u_x)_x, d = " << s->diff.describe() << "\n";
+    else m << "  term advection: u_t += -a u_x, a = " << s->vel.describe() << "\n";
+  }
+  m << "  u0 = " << s->u0.describe() << "\n";
+  if (s->mode == VSHMMSPECTRAL_MODE_DNS) m << "mode dns: every wavenumber, " << s->layout->size() << " coefficients\n";
+  else {
+    m << "mode sparse: " << s->layout->modeCount() << " wavenumbers (" << s->layout->size() << " coefficients) in " << s->layout->clusterCount() << " clusters, one RHS split each (slowest first)\n";
+    for (int j = 0; j < s->layout->clusterCount(); ++j) {
+      std::vector<int> modes(s->cluster_modes[j].begin(), s->cluster_modes[j].end());
+      m << "  K" << j << " = {" << spc::formatModes(modes) << "}: " << modes.size() << " wavenumbers, coefficients " << s->layout->clusterOffsetBegin(j) << ".." << s->layout->clusterOffsetEnd(j) - 1 << "\n";
+    }
+  }
+  if (s->evaluation == VSHMMSPECTRAL_EVALUATION_MATRIX) m << "evaluation: dense operator on the retained modes (" << s->layout->size() << " x " << s->layout->size() << ")\n";
+  else m << "evaluation: pseudo-spectral with FFTW (" << VSHMMSpectralPlanners[s->planner] << " planner), cluster projection " << VSHMMSpectralProjections[s->projection] << "\n";
+  return m.str();
+}
+
+/*@C
+   VSHMMSpectralView - Prints the scene: grid, terms and fields, initial data, mode, clusters
+   (and how they were detected), evaluation
+
+   Collective
+
+   Input Parameters:
++  sp     - the object (set up here if it is not)
+-  viewer - an ASCII or string viewer (NULL: stdout of the object's communicator)
+
+   Level: beginner
+
+.seealso: `VSHMMSpectralSetUp()`, `VSHMMSpectralViewFromOptions()`
+@*/
+PetscErrorCode VSHMMSpectralView(VSHMMSpectral sp, PetscViewer viewer)
+{
+  PetscBool isascii, isstring;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
+  if (!viewer) PetscCall(PetscViewerASCIIGetStdout(PetscObjectComm((PetscObject)sp), &viewer));
+  PetscValidHeaderSpecific(viewer, PETSC_VIEWER_CLASSID, 2);
+  PetscCheckSameComm(sp, 1, viewer, 2);
+  PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &isascii));
+  PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERSTRING, &isstring));
+  if (!isascii && !isstring) PetscFunctionReturn(0);
+  PetscCall(VSHMMSpectralSetUp(sp));
+  const std::string text = DescribeScene(sp->data);
+  if (isascii) PetscCall(PetscViewerASCIIPrintf(viewer, "%s", text.c_str()));
+  else PetscCall(PetscViewerStringSPrintf(viewer, "%s", text.c_str()));
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   VSHMMSpectralViewFromOptions - Views the object if an option asks for it
+
+   Collective
+
+   Input Parameters:
++  sp   - the object
+.  obj  - an object whose options prefix is used (NULL: the object's own)
+-  name - the option, e.g. "-spectral_view"
+
+   Level: intermediate
+
+.seealso: `VSHMMSpectralView()`, `PetscObjectViewFromOptions()`
+@*/
+PetscErrorCode VSHMMSpectralViewFromOptions(VSHMMSpectral sp, PetscObject obj, const char name[])
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
+  PetscCall(PetscObjectViewFromOptions((PetscObject)sp, obj, name));
+  PetscFunctionReturn(0);
+}
