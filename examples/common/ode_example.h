@@ -274,6 +274,28 @@ static PetscErrorCode OdeExampleGetComponent(OdeExample *ex, Vec U, PetscInt i, 
   PetscFunctionReturn(0);
 }
 
+/* The observable of -ts_vshmm_adapt of the examples whose slow variable is component 0 (the
+   tolerance then applies to it; TSVSHMMSetObservables()); ctx is the OdeExample. */
+static PetscErrorCode OdeExampleFirstComponent(TS ts, PetscReal t, Vec U, PetscReal q[], void *ctx)
+{
+  PetscFunctionBeginUser;
+  PetscCall(OdeExampleGetComponent((OdeExample *)ctx, U, 0, &q[0]));
+  PetscFunctionReturn(0);
+}
+
+/* -observe_state: -ts_vshmm_adapt controls the whole state (PETSc's weighted norm) instead of
+   component 0. Registers the observable unless it is given. Call after TSSetFromOptions() (the
+   setter acts on a TS of type TSVSHMM only). */
+static PetscErrorCode OdeExampleSetObservable(OdeExample *ex, TS ts)
+{
+  PetscBool state = PETSC_FALSE;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsGetBool(NULL, NULL, "-observe_state", &state, NULL));
+  if (!state) PetscCall(TSVSHMMSetObservables(ts, 1, OdeExampleFirstComponent, ex));
+  PetscFunctionReturn(0);
+}
+
 /* Assembles the Jacobian matrices after MatSetValues() on B. */
 static PetscErrorCode OdeExampleAssembleJacobian(Mat A, Mat B)
 {

@@ -143,14 +143,6 @@ ODE_EXAMPLE_SPLIT(RHSSlow, 0)
 ODE_EXAMPLE_SPLIT(RHSMedium, 1)
 ODE_EXAMPLE_SPLIT(RHSFast, 2)
 
-/* The observable of -ts_vshmm_adapt: the slow variable xi (TSVSHMMSetObservables()). */
-static PetscErrorCode Observables(TS ts, PetscReal t, Vec U, PetscReal q[], void *ctx)
-{
-  PetscFunctionBeginUser;
-  PetscCall(OdeExampleGetComponent(&((AppCtx *)ctx)->ex, U, 0, &q[0]));
-  PetscFunctionReturn(0);
-}
-
 /* xi at the sampled times: printed at multiples of -print_interval, written to the CSV file. */
 static PetscErrorCode Monitor(TS ts, PetscInt step, PetscReal t, Vec U, void *ctx)
 {
@@ -174,7 +166,6 @@ int main(int argc, char **argv)
   PetscInt          split_kind = SPLIT_COMPONENT, mode = MODE_FULL;
   const char       *splitnames[3] = {"slow", "medium", "fast"};
   const char *const slow[]        = {"xi"};
-  PetscBool         observe_state = PETSC_FALSE;
 
   PetscFunctionBeginUser;
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
@@ -189,7 +180,6 @@ int main(int argc, char **argv)
   PetscCall(PetscOptionsEList("-split_kind", "how the three scales are split", NULL, SplitKinds, 2, SplitKinds[split_kind], &split_kind, NULL));
   PetscCall(PetscOptionsEList("-mode", "full system or averaged equation", NULL, Modes, 2, Modes[mode], &mode, NULL));
   PetscCall(OdeExampleOptionsOutput(PetscOptionsObject, &user.ex));
-  PetscCall(PetscOptionsBool("-observe_state", "-ts_vshmm_adapt controls the whole state, not xi", NULL, observe_state, &observe_state, NULL));
   PetscOptionsEnd();
   PetscCall(OdeExampleCheckPositive("-eps", user.eps));
   user.split_kind = (SplitKind)split_kind;
@@ -208,8 +198,8 @@ int main(int argc, char **argv)
     for (k = 0; k < 3; k++) PetscCall(OdeExampleSetSplit(ts, splitnames[k], user.split_kind == SPLIT_COMPONENT ? ODE_SPLIT_COMPONENT : ODE_SPLIT_ALL, k, splitfns[k], &user));
   }
   PetscCall(TSSetRHSJacobian(ts, J, J, RHSJacobian, &user));
-  if (user.mode == MODE_FULL && !observe_state) PetscCall(TSVSHMMSetObservables(ts, 1, Observables, &user)); /* the tolerance of -ts_vshmm_adapt applies to xi */
   PetscCall(TSSetFromOptions(ts));
+  if (user.mode == MODE_FULL) PetscCall(OdeExampleSetObservable(&user.ex, ts)); /* the tolerance of -ts_vshmm_adapt applies to xi */
 
   PetscCall(OdeExampleSolve(&user.ex, ts, U));
   PetscCall(OdeExampleGetComponent(&user.ex, U, 0, &xi));

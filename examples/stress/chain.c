@@ -24,6 +24,8 @@ Options:\n\
   -slow_csv <file>               : write t,x0 after every step (every sampled time) as CSV\n\
   -slow_csv_stride <1>           : write only every n-th step (and the last) to the CSV file\n\
   -no_timing                     : do not print the wall_time line (for output comparisons)\n\
+  -observe_state                 : -ts_vshmm_adapt controls the error of the whole state (in PETSc's\n\
+                                   weighted norm) instead of the slow variable x0\n\
 \n\
 Besides x0 at the printed times it prints the largest |xk| over all components and all steps\n\
 (sampled times), which shows that the whole state stays bounded.\n\
@@ -211,6 +213,7 @@ int main(int argc, char **argv)
   }
   PetscCall(TSSetRHSJacobian(ts, J, J, RHSJacobian, &user));
   PetscCall(TSSetFromOptions(ts));
+  if (user.mode == MODE_FULL) PetscCall(OdeExampleSetObservable(&user.ex, ts)); /* the tolerance of -ts_vshmm_adapt applies to x0 */
 
   PetscCall(OdeExampleSolve(&user.ex, ts, U));
   PetscCall(OdeExampleGetComponent(&user.ex, U, 0, &xs));

@@ -51,9 +51,10 @@ static PetscErrorCode ObservableDifference(TS ts, PetscReal t, Vec Xa, Vec Xb, P
   TS_VSHMM *vs = (TS_VSHMM *)ts->data;
 
   PetscFunctionBegin;
-  PetscReal xb;
-  PetscCall(VecNorm(Xb, NORM_INFINITY, &xb));
-  if (!std::isfinite(xb)) { /* the coarser run blew up */
+  PetscReal xa, xb;
+  PetscCall(VecNorm(Xa, NORM_1, &xa)); /* the 1-norm: a NaN in any entry makes it NaN (the max-norm may skip it) */
+  PetscCall(VecNorm(Xb, NORM_1, &xb));
+  if (!std::isfinite(xa) || !std::isfinite(xb)) { /* a run blew up */
     *norm = PETSC_INFINITY;
     PetscFunctionReturn(0);
   }
@@ -378,7 +379,7 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
     PetscCall(VecCopy(vs->X0, vs->Xbase));
     PetscCall(TSVSHMMRunMacroStep_Private(ts, *schedule, t0, DeltaT, vs->Xbase, &counts));
     PetscReal xnorm;
-    PetscCall(VecNorm(vs->Xbase, NORM_INFINITY, &xnorm));
+    PetscCall(VecNorm(vs->Xbase, NORM_1, &xnorm));
     if (!std::isfinite(xnorm) && attempt + 1 < kMaxAttempts) { /* blew up: redo with every parameter finer */
       DiscardTry(vs, rhs0, lev0);
       PetscCall(PetscInfo(ts, "Adapt: macro step [%g, %g] try %" PetscInt_FMT " is not finite: every parameter finer\n", (double)t0, (double)t1, attempt));
