@@ -14,7 +14,8 @@
 #      stress and spectral runs; about two minutes on one core).
 # Then it puts the file back. Outcomes:
 #   KILLED     a test failed or timed out (its name is given), or the mutant does not build;
-#   SURVIVED   every test passed ("equivalent" when LIST gives the reason it cannot be killed);
+#   SURVIVED   every test passed: a test is missing;
+#   EQUIVALENT every test passed and LIST gives the reason why no test can kill it;
 #   NOT FOUND  the original text is not in exactly one line of the file (or the file is gone): the
 #              list is out of date (the script says where else the text occurs); not run, not
 #              counted in the kill rate, and the exit status is non-zero.
@@ -136,7 +137,7 @@ while IFS= read -r line; do
   else
     survived=$((survived + 1))
     if [ -n "$equiv" ]; then
-      result="SURVIVED" by="equivalent: ${equiv#equivalent: }"
+      result="EQUIVALENT" by="survived; ${equiv#equivalent: }"
       equivalent=$((equivalent + 1))
     else
       result="SURVIVED" by="NOT EQUIVALENT: needs a test"
@@ -159,8 +160,8 @@ rate_ne=$(awk -v k="$killed" -v t="$((applied - equivalent))" 'BEGIN { printf "%
 {
   echo
   echo "summary (#, outcome, time, file, mutation):"
-  awk -F'\t' '{ printf "  %3s  %-9s %6s  %-32s %s\n", $1, $2, $3, $4, $5 }' "$work/summary"
-  echo "mutants: $total listed, $applied applied: $killed killed, $survived survived ($equivalent marked equivalent), $notfound not found"
+  awk -F'\t' '{ printf "  %3s  %-10s %6s  %-32s %s\n", $1, $2, $3, $4, $5 }' "$work/summary"
+  echo "mutants: $total listed, $applied applied: $killed killed, $unexpected survived, $equivalent equivalent (survived, marked in the list); $notfound not found"
   echo "kill rate: $rate% of the applied mutants, $rate_ne% of the applied mutants not marked equivalent"
   echo "time: $(($(date +%s) - start_all)) s"
   if [ "$unexpected" -gt 0 ]; then echo "FAIL: $unexpected mutant(s) not marked equivalent survived: add tests that kill them"; fi
