@@ -72,7 +72,10 @@ run_tests() {
       # and the first failing GoogleTest case, if any: "[  FAILED  ] VSHMMFaults.X (12 ms)"
       gcase=$(sed -E 's/\x1b\[[0-9;]*m//g' "$work/ctest.log" | sed -n -E 's/^\[  FAILED  \] ([A-Za-z_][A-Za-z0-9_]*\.[A-Za-z0-9_/.]+)( \(.*|, .*)$/\1/p' | head -n 1)
       if [ -n "$gcase" ] && [ -s "$work/failed" ]; then printf '%s: %s\n' "$(cat "$work/failed")" "$gcase" >"$work/failed"; fi
-      [ -s "$work/failed" ] || echo "the tests of stage $stage exceeded $t s" >"$work/failed"
+      if [ ! -s "$work/failed" ]; then # stopped by the time limit: name the test that was running
+        running=$(sed -n -E 's/^ *Start +[0-9]+: ([^ ]+).*/\1/p' "$work/ctest.log" | tail -n 1)
+        echo "${running:-ctest} (the tests of stage $stage exceeded $t s)" >"$work/failed"
+      fi
       return 1
     fi
   done
