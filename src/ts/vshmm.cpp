@@ -359,16 +359,20 @@ static PetscErrorCode TSStep_VSHMM(TS ts)
   }
   vs->macro_steps++;
 
-  /* One reduction per macro step: the earliest Inf/NaN of any split on any rank. */
+  /* One reduction per macro step: the earliest Inf/NaN of any split on any rank, in the order of
+     evaluation (not of time: NaN from one rank reaches the splits of another at the same time t,
+     in the next level's evaluation). */
   const int nsplits = (int)vs->splits.size();
   struct {
-    double t;
+    double when; /* the field evaluation's number, exact in a double */
     int    where; /* level * nsplits + split, or -1 */
-  } fault = {(double)vs->nonfinite_time, vs->nonfinite_split < 0 ? -1 : (int)(vs->nonfinite_level * nsplits + vs->nonfinite_split)};
-  if (fault.where < 0) fault.t = PETSC_MAX_REAL; /* ranks without a fault lose the MINLOC */
+  } fault = {(double)vs->nonfinite_evaluation, vs->nonfinite_split < 0 ? -1 : (int)(vs->nonfinite_level * nsplits + vs->nonfinite_split)};
+  if (fault.where < 0) fault.when = PETSC_MAX_REAL; /* ranks without a fault lose the MINLOC */
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &fault, 1, MPI_DOUBLE_INT, MPI_MINLOC, comm));
-  if (fault.where >= 0 && fault.t < PETSC_MAX_REAL) {
+  if (fault.where >= 0 && fault.when < PETSC_MAX_REAL) {
     const int   split = fault.where % nsplits, level = fault.where / nsplits;
+    PetscReal   t_fault = vs->nonfinite_split >= 0 && (double)vs->nonfinite_evaluation == fault.when ? vs->nonfinite_time : PETSC_MAX_REAL;
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &t_fault, 1, MPIU_REAL, MPIU_MIN, comm)); /* the time of that evaluation */
     const char *name  = vs->splits[split].name.c_str();
     int         scale = 0; /* the scale the split belongs to */
     while (vs->level_end[scale] <= split) scale++;
@@ -376,9 +380,9 @@ static PetscErrorCode TSStep_VSHMM(TS ts)
     PetscCall(VecCopy(vs->X0, ts->vec_sol)); /* keep the last good sampled state */
     ts->reason = TS_DIVERGED_STEP_REJECTED;
     PetscCheck(!ts->errorifstepfailed, comm, PETSC_ERR_FP,
-               "TSVSHMM: split '%s' (scale %d) produced Inf or NaN at t = %.17g, evaluated for level %d, in the macro step from t = %g to %g; the solution was left at t = %g (use -ts_error_if_step_fails false to stop with TS_DIVERGED_STEP_REJECTED instead)", name, scale, fault.t, level, (double)t0, (double)(t0 + DeltaT), (double)t0);
-    PetscCall(PetscInfo(ts, "Split '%s' (scale %d) produced Inf or NaN at t = %.17g, evaluated for level %d; stopping with TS_DIVERGED_STEP_REJECTED at t = %g\n", name, scale, fault.t, level, (double)t0));
-    PetscCall(PetscFPrintf(comm, PETSC_STDERR, "TSVSHMM: split '%s' (scale %d) produced Inf or NaN at t = %.17g, evaluated for level %d; the solve stops with TS_DIVERGED_STEP_REJECTED at t = %g\n", name, scale, fault.t, level, (double)t0));
+               "TSVSHMM: split '%s' (scale %d) produced Inf or NaN at t = %.17g, evaluated for level %d, in the macro step from t = %g to %g; the solution was left at t = %g (use -ts_error_if_step_fails false to stop with TS_DIVERGED_STEP_REJECTED instead)", name, scale, (double)t_fault, level, (double)t0, (double)(t0 + DeltaT), (double)t0);
+    PetscCall(PetscInfo(ts, "Split '%s' (scale %d) produced Inf or NaN at t = %.17g, evaluated for level %d; stopping with TS_DIVERGED_STEP_REJECTED at t = %g\n", name, scale, (double)t_fault, level, (double)t0));
+    PetscCall(PetscFPrintf(comm, PETSC_STDERR, "TSVSHMM: split '%s' (scale %d) produced Inf or NaN at t = %.17g, evaluated for level %d; the solve stops with TS_DIVERGED_STEP_REJECTED at t = %g\n", name, scale, (double)t_fault, level, (double)t0));
     PetscFunctionReturn(0);
   }
   ts->ptime = last ? ts->max_time : t0 + DeltaT;

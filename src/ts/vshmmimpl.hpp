@@ -98,9 +98,10 @@ struct TS_VSHMM {
   std::vector<PetscInt64>   level_steps, level_evaluations;   // per level (scale)
 
   // First non-finite split output seen on this rank in the current macro step
-  PetscReal nonfinite_time  = PETSC_MAX_REAL;
-  PetscInt  nonfinite_split = -1, nonfinite_level = -1;
-  PetscInt  current_level   = 0; // the level whose field is being evaluated
+  PetscReal  nonfinite_time  = PETSC_MAX_REAL;
+  PetscInt   nonfinite_split = -1, nonfinite_level = -1;
+  PetscInt   current_level   = 0; // the level whose field is being evaluated
+  PetscInt64 field_evaluations = 0, nonfinite_evaluation = -1; // level-field evaluations so far (the same on every rank); the faulty one
 };
 
 static constexpr PetscInt  kDefaultMicroStepsPerMacroStep = 100;

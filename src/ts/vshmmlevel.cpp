@@ -47,6 +47,7 @@ static inline void NoteNonFinite(TS_VSHMM *vs, PetscInt k, PetscReal t)
     vs->nonfinite_split = k;
     vs->nonfinite_level = vs->current_level;
     vs->nonfinite_time  = t;
+    vs->nonfinite_evaluation = vs->field_evaluations;
   }
 }
 
@@ -98,6 +99,7 @@ PetscErrorCode TSVSHMMEvaluateLevel_Private(TS_VSHMM *vs, PetscInt level, PetscR
 {
   PetscFunctionBegin;
   vs->current_level = level;
+  vs->field_evaluations++; /* every rank evaluates every level field: a clock common to all ranks */
   const PetscBool counting = vs->counting == TS_VSHMM::COUNT_STEPS ? PETSC_TRUE : PETSC_FALSE;
   if (counting) vs->level_evaluations[level]++;
   else if (vs->counting == TS_VSHMM::COUNT_STABILITY) vs->stability_evaluations += vs->level_end[level]; /* split calls */

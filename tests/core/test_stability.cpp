@@ -87,6 +87,27 @@ TEST(LevelAmplification, ConstantKernelGivesThePowerOfOneStep)
   EXPECT_LE(a.logAmplification, (a.steps - 1) * per_step + 1e-9);
 }
 
+TEST(LevelAmplification, AGrowingModeIsMeasuredAgainstItsOwnGrowth)
+{
+  // The amplification of a mode with Re lambda > 0 is taken relative to the exact flow's growth:
+  // sum over the level's steps of log|R(h lambda)| - h Re lambda. Constant kernel: steps of 1e-3
+  // (but the shortened last one), so the sum lies between (steps - 1) and steps times one full
+  // step's term (the term decreases from 0 along both rays below).
+  auto                      kernel = vshmm::Kernel::create(vshmm::KernelType::Constant);
+  vshmm::MesoscopicSchedule schedule(*kernel, 1e-4, {100, 10}, {1, 1});
+  vshmm::StabilityFunction  R(RK4());
+  // A real growing mode, z = 0.05: RK4 follows exp(z) to -z^5/120 per step (about -2.6e-9).
+  // An oscillation growing slowly, z = 1.1e-4 + 1.5i: |R(1.5i)| = 0.9414 damps, growth 1.1e-4.
+  for (const cd lambda : {cd(50.0, 0.0), cd(0.11, 1500.0)}) {
+    const vshmm::LevelAmplification a = vshmm::levelAmplification(R, schedule, 0.1, 1, lambda);
+    ASSERT_GT(a.steps, 5);
+    const double per_step = std::log(std::abs(R(1e-3 * lambda))) - 1e-3 * lambda.real();
+    ASSERT_LT(per_step, 0.0);
+    EXPECT_GE(a.logAmplification, a.steps * per_step - 1e-12 * a.steps) << lambda;
+    EXPECT_LE(a.logAmplification, (a.steps - 1) * per_step + 1e-12 * a.steps) << lambda;
+  }
+}
+
 TEST(LevelAmplification, VariableStepsBeyondThePeakLimitCanStillDampOverAPeriod)
 {
   // The paper's dissipative parameters: level 1 (alpha_2 = 10, dt = 1e-4, cosine kernel) peaks at

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <complex>
+#include <limits>
 #include <random>
 
 using namespace vshmm::spectral;
@@ -163,6 +164,32 @@ TEST(Operator, ConstantCoefficients)
   adv.apply(c.data(), F.data());
   ff = toComplex(full, F);
   for (int k = 0; k < N / 2; ++k) EXPECT_NEAR(std::abs(ff[k] - cplx(0, -3.0 * k) * cc[k]), 0.0, 1e-12);
+}
+
+TEST(Operator, NyquistModeReadsOnlyItsOneReal)
+{
+  // The Nyquist mode k = N/2 (even N) is stored as one real and has no derivative. Wherever it
+  // sits in the layout (first, with the clusters in the order given; last, as in the full layout
+  // and in sorted clusters) the operator must not take a second real for it: that would be the
+  // next mode's coefficient, or the value past the end of the vector (NaN here).
+  const int           N = 16;
+  std::vector<double> D = randomVector(N, 41), A = randomVector(N, 42);
+  for (double &d : D) d += 2.0;
+  for (const char *spec : {"8,1:3", "0:8"}) {
+    Layout           l(ClusterSet::parse(spec, N));
+    SpectralOperator op(l, D, A, Planner::Estimate);
+    ASSERT_EQ(l.mode(spec[0] == '8' ? 0 : l.modeCount() - 1), N / 2) << spec;
+    std::vector<double> c = randomVector(l.size() + 1, 43), F(l.size());
+    c[l.size()]           = std::numeric_limits<double>::quiet_NaN();
+    op.apply(c.data(), F.data());
+    c.pop_back();
+    std::vector<cplx> ref = directOperator(N, toComplex(l, c), D, A), got = toComplex(l, F);
+    for (int i = 0; i < l.modeCount(); ++i) {
+      const int k = l.mode(i);
+      EXPECT_NEAR(got[k].real(), ref[k].real(), 1e-11 * N * N) << spec << ": k = " << k;
+      EXPECT_NEAR(got[k].imag(), ref[k].imag(), 1e-11 * N * N) << spec << ": k = " << k;
+    }
+  }
 }
 
 TEST(Operator, ProjectionsDirectEqualFFT)
