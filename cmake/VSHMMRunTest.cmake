@@ -1,6 +1,7 @@
 # Runs one test program for vshmm_example_test() (see VSHMMTesting.cmake):
 #   cmake -DNAME=<test> -DNUMDIFF=<numdiff.sh> [-DOUTPUT=<expected>] [-DRTOL=r] [-DATOL=a]
-#         [-DREGEX=<regex>] -P VSHMMRunTest.cmake -- <command> <args>...
+#         [-DREGEX=<regex>] [-DSTDERR_REGEX=<regex>] [-DVALUE_REGEX=<regex> -DVALUE_MAX=<x>]
+#         [-DEXPECT_FAILURE=1] -P VSHMMRunTest.cmake -- <command> <args>...
 # in the test's working directory; stdout is kept in stdout.txt there.
 
 set(cmd)
@@ -28,11 +29,27 @@ if(NOT err STREQUAL "")
 endif()
 message("----------------")
 
-if(NOT rc STREQUAL "0")
+if(EXPECT_FAILURE)
+  if(rc STREQUAL "0")
+    message(FATAL_ERROR "${NAME}: FAILED, the program was to stop with an error but exited with 0")
+  endif()
+elseif(NOT rc STREQUAL "0")
   message(FATAL_ERROR "${NAME}: FAILED, exit status ${rc}")
 endif()
 if(DEFINED REGEX AND NOT out MATCHES "${REGEX}")
   message(FATAL_ERROR "${NAME}: FAILED, stdout does not match the regular expression '${REGEX}'")
+endif()
+if(DEFINED STDERR_REGEX AND NOT err MATCHES "${STDERR_REGEX}")
+  message(FATAL_ERROR "${NAME}: FAILED, stderr does not match the regular expression '${STDERR_REGEX}'")
+endif()
+if(DEFINED VALUE_REGEX)
+  if(NOT out MATCHES "${VALUE_REGEX}")
+    message(FATAL_ERROR "${NAME}: FAILED, stdout does not match the regular expression '${VALUE_REGEX}'")
+  endif()
+  set(value "${CMAKE_MATCH_1}")
+  if(NOT value LESS_EQUAL "${VALUE_MAX}") # also false for nan and for a value that is not a number
+    message(FATAL_ERROR "${NAME}: FAILED, the value ${value} matched by '${VALUE_REGEX}' is not at most ${VALUE_MAX}")
+  endif()
 endif()
 if(DEFINED OUTPUT)
   set(tol)
