@@ -51,9 +51,9 @@ SPECTRAL_OPTS = {
 SPECTRAL_SCENES = {
     # name: scene file, program, final time (full), final time (quick), reference DNS step
     'diffusion': dict(scene='examples/scenes/diffusion.yaml', exe='examples/spectral/diffusion',
-                      T=1.0, Tquick=0.25, dt_ref=1e-6, nout=4, search_t=0.01),
+                      T=1.0, Tquick=0.25, dt_ref=1e-6, nout=4, search_t=0.01),  # DNS: fast growth, dear runs
     'advection': dict(scene='examples/scenes/advection.yaml', exe='examples/spectral/advection',
-                      T=36.0, Tquick=9.0, dt_ref=4e-5, nout=4, search_t=1.0),
+                      T=36.0, Tquick=9.0, dt_ref=4e-5, nout=4, search_t=None),  # advection: slow growth, search to T
 }
 
 # Converged references of the ODE problems (docs/ode-experiments.md "Converged references", RK4
@@ -195,7 +195,7 @@ class Bench:
                 if 4 * T / meth[3] > self.max_evals:
                     self.note('%s, %s: not run: about %.2g evaluations at the stability limit (%.3g), beyond the budget of this sweep' % (name, meth[1], 4 * T / meth[3], meth[3]))
                     continue
-                dt = self.search_stable(prog_exe, base, meth[2], T, min(ref), meth[3])
+                dt = self.search_stable(name, prog_exe, base, meth[2], T, min(ref), meth[3])
                 if dt:
                     out, st = self.run([prog_exe] + base + ['-ts_type', 'rk', '-ts_rk_type', meth[2], '-ts_dt', '%.17g' % dt,
                                                             '-ts_max_time', '%g' % T])
@@ -203,11 +203,14 @@ class Bench:
             elif kind == 'rk-adapt':
                 for tol in meth[3]:
                     out, st = self.run([prog_exe] + base + ['-ts_type', 'rk', '-ts_rk_type', meth[2], '-ts_adapt_type', 'basic',
-                                                            '-ts_rtol', '%g' % tol, '-ts_atol', '%g' % tol, '-ts_dt', '1e-6', '-ts_max_steps', self.max_steps,
+                                                            '-ts_rtol', '%g' % tol, '-ts_atol', '%g' % tol, '-ts_dt', '1e-10', '-ts_max_steps', self.max_steps,
                                                             '-ts_max_time', '%g' % T, '-ts_time_span', '0,' + times])
                     self.finish_example(name, meth[1], 'tol %g' % tol, out, st, obs, ref, nterms)
             elif kind == 'mprk':
                 for mtype, dt in meth[2]:
+                    if 4 * T / dt > self.max_evals:
+                        self.note('%s, %s %s dt = %.3g: not run (about %.2g evaluations, beyond the budget of this sweep)' % (name, meth[1], mtype, dt, 4 * T / dt))
+                        continue
                     out, st = self.run([prog_exe] + base + ['-ts_type', 'mprk', '-ts_mprk_type', mtype, '-ts_dt', '%.17g' % dt,
                                                             '-ts_max_time', '%g' % T])
                     self.finish_example(name, meth[1], '%s dt %.3g' % (mtype, dt), out, st, obs, ref, nterms)
@@ -242,7 +245,7 @@ class Bench:
                     self.value(out, 'term_evaluations', math.nan) / nterms,
                     self.value(out, 'jacobian_evaluations', 0), self.value(out, 'wall_time', math.nan), st)
 
-    def search_stable(self, prog_exe, base, rktype, T, interval, guess):
+    def search_stable(self, name, prog_exe, base, rktype, T, interval, guess):
         """Largest step (interval/n) for which an RK run to T stays bounded: bisection on n."""
         def stable(n):
             dt = interval / n
@@ -271,7 +274,7 @@ class Bench:
                 hi = mid
             else:
                 lo = mid
-        self.note('largest stable TSRK %s step for %s: %.4g (bisection: %.4g unstable)' % (rktype, os.path.basename(prog_exe) + ' ' + ' '.join(base), interval / hi, interval / lo))
+        self.note('%s: largest stable TSRK %s step %.4g (bisection: %.4g unstable)' % (name, rktype, interval / hi, interval / lo))
         return interval / hi
 
     def note(self, text):
@@ -287,6 +290,7 @@ class Bench:
         times = ','.join('%g' % t for t in outs)
         exe = self.exe(sc['exe'])
         scene = [O['scene'], os.path.join(ROOT, sc['scene'])]
+        ts = sc['search_t'] or T  # the DNS stability search runs to this time
         print('\n== spectral %s (t = %s)' % (name, times))
         prob = 'spectral %s' % name
         ref = os.path.join(self.work, '%s_ref' % name)
@@ -316,36 +320,41 @@ class Bench:
         dns = [O['mode'], 'dns', '-ts_type', 'rk', '-ts_rk_type', '3']
         dtr = sc['dt_ref'] * (1.5 if self.quick else 1.0)
         t0 = time.time()
-        out, st = self.run([exe] + scene + dns + ['-ts_dt', '%g' % dtr, O['output_times'], '%g,%s' % (sc['search_t'], times),
+        out, st = self.run([exe] + scene + dns + ['-ts_dt', '%g' % dtr, O['output_times'], ('%g,%s' % (ts, times)) if ts < T else times,
                                                   O['grid_file'], ref], timeout=20 * self.timeout)
         if st != 'ok':
             self.note('spectral %s: reference DNS failed (%s); scene skipped' % (name, st))
             return
         self.refnotes.append('spectral %s: reference DNS RK3 dt = %g to t = %g (%.0f s)' % (name, dtr, T, time.time() - t0))
 
-        def stable(mode_opts, dt):
-            return go('', '', mode_opts + ['-ts_dt', '%.6g' % dt], tms='%g' % sc['search_t'], record=False) < 0.5
+        def stable(mode_opts, dt, horizon):
+            return go('', '', mode_opts + ['-ts_dt', '%.6g' % dt], tms='%g' % horizon, record=False) < 0.5
 
-        def search(mode_opts, guess):
+        def search(mode_opts, guess, horizon):
             lo, hi = guess / 8, guess * 2
-            while not stable(mode_opts, lo):
+            while not stable(mode_opts, lo, horizon):
                 lo /= 2
-            while stable(mode_opts, hi):
+            while stable(mode_opts, hi, horizon):
                 hi *= 2
             for _ in range(5 if self.quick else 8):
                 mid = math.sqrt(lo * hi)
-                if stable(mode_opts, mid):
+                if stable(mode_opts, mid, horizon):
                     lo = mid
                 else:
                     hi = mid
-            self.note('spectral %s, %s: largest stable RK3 step %.4g (%.4g unstable; bisection to t = %g)' % (name, ' '.join(mode_opts) or 'sparse', lo, hi, sc['search_t']))
+            self.note('spectral %s, %s: largest stable RK3 step %.4g (%.4g unstable; bisection, runs to t = %g)' % (name, 'DNS' if O['mode'] in mode_opts else 'sparse', lo, hi, horizon))
             return lo
 
-        dt_dns = search(dns, 1e-5 if name == 'diffusion' else 1e-4)
-        go('dt %.3g (largest stable)' % dt_dns, 'DNS RK3', dns + ['-ts_dt', '%.6g' % dt_dns])
+        dt_dns = search(dns, 1e-5 if name == 'diffusion' else 1e-4, ts)
+        for _ in range(6):  # a short search horizon can miss a slow growth: check the step on the whole run
+            if go('dt %.3g (largest stable)' % dt_dns, 'DNS RK3', dns + ['-ts_dt', '%.6g' % dt_dns]) < 0.5:
+                break
+            self.rows.pop()
+            self.note('spectral %s, DNS: RK3 step %.4g unstable over the whole run; 5%% smaller' % (name, dt_dns))
+            dt_dns *= 0.95
         # the reference against the DNS at the largest stable step: its own convergence
         sparse = ['-ts_type', 'rk', '-ts_rk_type', '3']
-        dt_sp = search(sparse, 1e-5 if name == 'diffusion' else 1e-3)
+        dt_sp = search(sparse, 1e-5 if name == 'diffusion' else 1e-3, T)  # the sparse runs are cheap: to T
         for f in ([1] if self.quick else [1, 2, 4]):
             go('dt %.3g%s' % (dt_sp / f, ' (largest stable)' if f == 1 else ''), 'sparse RK3', sparse + ['-ts_dt', '%.6g' % (dt_sp / f)])
         scales = [0.5, 1] if self.quick else [0.25, 0.5, 1, 2, 4]
@@ -378,11 +387,53 @@ class Bench:
             print('  n %d: %s' % (n, d))
 
     # --- output -----------------------------------------------------------------------------
+    def load_previous(self):
+        """--keep: read the previous run's rows, notes and overheads from the output directory."""
+        import json
+        path = os.path.join(self.out, 'results.csv')
+        state = os.path.join(self.out, 'state.json')
+        self.prev = None
+        if os.path.exists(path) and os.path.exists(state):
+            with open(path) as f:
+                old = list(csv.DictReader(f))
+            for r in old:
+                for k in ('error', 'calls', 'ffe', 'jac', 'wall'):
+                    r[k] = float(r[k]) if r[k] not in ('', None) else math.nan
+            self.prev = dict(rows=old, **json.load(open(state)))
+
+    def merged(self):
+        """(rows, notes, refnotes, overheads): this run's, plus the previous run's for what this run did not redo."""
+        prev = getattr(self, 'prev', None)
+        ov = getattr(self, 'overheads', None)
+        if not prev:
+            return self.rows, self.notes, self.refnotes, ov
+        redone = []
+        for r in self.rows:
+            if r['problem'] not in redone:
+                redone.append(r['problem'])
+        rows, done = [], set()
+        for r in prev['rows']:
+            if r['problem'] in redone:
+                if r['problem'] not in done:
+                    rows += [n for n in self.rows if n['problem'] == r['problem']]
+                    done.add(r['problem'])
+            else:
+                rows.append(r)
+        rows += [n for n in self.rows if n['problem'] not in done]
+        keep = lambda n: not any(n.startswith(p + ':') or n.startswith(p + ',') for p in redone)
+        notes = [n for n in prev['notes'] if keep(n) and n not in self.notes] + self.notes
+        refnotes = [n for n in prev['refnotes'] if n not in self.refnotes] + self.refnotes
+        return rows, notes, refnotes, ov or prev.get('overheads')
+
     def flush(self):
+        import json
+        rows, notes, refnotes, ov = self.merged()
+        with open(os.path.join(self.out, 'state.json'), 'w') as f:
+            json.dump(dict(notes=notes, refnotes=refnotes, overheads=ov), f, indent=1)
         with open(os.path.join(self.out, 'results.csv'), 'w', newline='') as f:
             w = csv.DictWriter(f, fieldnames=['problem', 'method', 'family', 'config', 'error', 'calls', 'ffe', 'jac', 'wall', 'status'])
             w.writeheader()
-            for r in self.rows:
+            for r in rows:
                 w.writerow(r)
 
 
@@ -413,7 +464,7 @@ def ode_sweeps(b, quick):
     Q = quick
     budget_steps = b.max_steps  # step limit of the adaptive peers (a run that hits it has no error)
     sun_cap = ['-max_steps', budget_steps, '-max_calls', '%d' % b.max_evals]
-    pet_cap = ['-ts_max_steps', budget_steps]
+    pet_cap = ['-ts_max_steps', '200000' if Q else '500000']  # ARKIMEX: implicit steps are dear
     problems = []
     # --- resonant oscillators, eps = 1e-3
     for T in (0.8, 4.0):
@@ -432,9 +483,9 @@ def ode_sweeps(b, quick):
             ('rk-stable', 'RK4 largest stable', '4', 2.8e-6),
             ('rk-fixed', 'RK4 fixed', '4', [4e-7] if Q else [1e-6, 4e-7, 2e-7] if L else [1e-6, 4e-7, 2e-7, 1e-7, 7e-8, 5e-8, 3.5e-8]),
             ('rk-adapt', 'RK 5dp adaptive', '5dp', [1e-2] if Q else [1e-2, 1e-4] if L else [1e-1, 1e-2, 1e-3, 1e-4]),
-            ('imex', 'ARKIMEX (fast implicit)', ['-problem', 'oscillators'] + pet_cap, [1e-3] if Q else [1e-4, 1e-8] if L else [1e-2, 1e-4, 1e-6, 1e-8]),
-            ('sundials', 'CVODE Adams', ['-problem', 'oscillators', '-method', 'cvode-adams'] + sun_cap,
-             tl([1e-4] if Q else [1e-5, 1e-7] if L else [1e-3, 1e-4, 1e-5, 1e-6, 1e-7])),
+            ('imex', 'ARKIMEX (fast implicit)', ['-problem', 'oscillators'] + pet_cap, [1e-3] if Q else [1e-2, 1e-4] if L else [1e-2, 1e-3, 1e-4, 1e-5]),
+            ('sundials', 'CVODE Adams', ['-problem', 'oscillators', '-method', 'cvode-adams'] + sun_cap + ([] if Q else ['-max_steps', '25000000']),
+             tl([1e-4] if Q else [1e-6, 1e-8] if L else [1e-4, 1e-6, 1e-7, 1e-8, 1e-9])),
             ('sundials', 'CVODE BDF', ['-problem', 'oscillators', '-method', 'cvode-bdf'] + sun_cap,
              tl([1e-4] if Q else [1e-4, 1e-8] if L else [1e-3, 1e-5, 1e-7, 1e-9])),
             ('sundials', 'ARKODE ERK adaptive', ['-problem', 'oscillators', '-method', 'erk'] + sun_cap,
@@ -541,7 +592,7 @@ def chain_reference(self):
         vals.append({t: q for t, q in self.parse_example(out, ['x0']) if t > 0})
     ref = vals[1]
     diff = max(abs(vals[0][t][0] - ref[t][0]) for t in ref)
-    self.refnotes.append('chain: x0(0.5, 1, 1.5, 2) = %s (2-scale DNS, RK4 dt = 5e-5; dt = 1e-4 differs by %.1e; '
+    self.refnotes.append('chain (every number of scales): x0(0.5, 1, 1.5, 2) = %s (2-scale DNS, RK4 dt = 5e-5; dt = 1e-4 differs by %.1e; '
                          'x0(t) of the exact solution is the same for every number of scales, docs/stress.md)' %
                          (', '.join('%.8f' % ref[t][0] for t in sorted(ref)), diff))
     return ref
@@ -691,15 +742,16 @@ def update_docs(b, parts, figures):
     if os.path.exists(doc):
         text = open(doc).read()
         for k, v in parts.items():
-            text = re.sub(r'(<!-- bench:%s -->\n).*?(\n<!-- /bench -->)' % re.escape(k),
-                          lambda m: m.group(1) + v + m.group(2), text, flags=re.S)
+            text = re.sub(r'(<!-- bench:%s -->\n)(?:.*?\n)?(<!-- /bench -->)' % re.escape(k),
+                          lambda m: m.group(1) + v + '\n' + m.group(2), text, flags=re.S)
         open(doc, 'w').write(text)
+    # only the PNGs the page shows (all figures, PNG and SVG, stay in the output directory)
     figdir = os.path.join(ROOT, 'docs', 'figures')
+    shown = open(doc).read() if os.path.exists(doc) else ''
     for name in figures:
-        for ext in ('png', 'svg'):
-            src = os.path.join(b.out, name + '.' + ext)
-            if os.path.exists(src):
-                shutil.copy(src, figdir)
+        src = os.path.join(b.out, name + '.png')
+        if os.path.exists(src) and 'figures/%s.png' % name in shown:
+            shutil.copy(src, figdir)
 
 
 def main():
@@ -709,22 +761,27 @@ def main():
     ap.add_argument('--out', help='output directory')
     ap.add_argument('--docs', action='store_true', help='update docs/performance.md and docs/figures/')
     ap.add_argument('--timeout', type=float, help='seconds per run (default 30 quick, 150 full)')
+    ap.add_argument('--report', action='store_true', help='run nothing: tables and figures (and with --docs the page) from the results in the output directory')
+    ap.add_argument('--keep', action='store_true', help='keep the previous results (in the output directory) of the problems not run now')
     ap.add_argument('--only', help='regular expression: run only the problems whose name matches (and "overhead", "spectral")')
     args = ap.parse_args()
     b = Bench(args)
+    if args.keep or args.report:
+        b.load_previous()
     t0 = time.time()
     print('benchmark (%s) into %s' % ('quick' if b.quick else 'full', b.out))
-    if not b.sundials:
+    if not b.sundials and not args.report:
         b.note('SUNDIALS not found at build time: CVODE Adams/BDF and ARKODE ERKStep/MRIStep skipped (install libsundials-dev and rebuild)')
         print('NOTE: bench_sundials not built (no SUNDIALS): CVODE and ARKODE are skipped')
-    b.note('TSMPRK: the oscillators cannot be expressed (every component has a term of every scale: a component '
-           'partition makes every component fast, i.e. single-rate); the chain names its splits s0..sK, not the '
-           'slow/medium/fast splits TSMPRK looks for, and TSMPRK has at most 3 rates with a fixed ratio of 2 or 3; '
-           'it runs on the dissipative example (component splits slow, medium, fast)')
-    sel = re.compile(args.only) if args.only else None
+    if not args.report:
+        b.note('TSMPRK: the oscillators cannot be expressed (every component has a term of every scale: a component '
+               'partition makes every component fast, i.e. single-rate); the chain names its splits s0..sK, not the '
+               'slow/medium/fast splits TSMPRK looks for, and TSMPRK has at most 3 rates with a fixed ratio of 2 or 3; '
+               'it runs on the dissipative example (component splits slow, medium, fast)')
+    sel = re.compile('^$' if args.report else args.only) if (args.report or args.only) else None  # report: nothing runs
     if not sel or sel.search('overhead'):
         b.overhead()
-    for prob in ode_sweeps(b, b.quick):
+    for prob in ([] if args.report else ode_sweeps(b, b.quick)):
         if sel and not sel.search(prob[0]):
             continue
         try:
@@ -739,6 +796,8 @@ def main():
         except Exception as exc:
             b.note('spectral %s: the sweep stopped with %r' % (name, exc))
     b.flush()
+    b.rows, b.notes, b.refnotes, b.overheads = b.merged()
+    b.prev = None
     parts = write_tables(b)
     figures = write_figures(b)
     if args.docs:
