@@ -742,7 +742,7 @@ def update_docs(b, parts, figures):
     if os.path.exists(doc):
         text = open(doc).read()
         for k, v in parts.items():
-            text = re.sub(r'(<!-- bench:%s -->\n)(?:.*?\n)?(<!-- /bench -->)' % re.escape(k),
+            text = re.sub(r'(<!-- bench:%s -->\n)(?:(?!<!-- /bench -->)[^\n]*\n)*(<!-- /bench -->)' % re.escape(k),
                           lambda m: m.group(1) + v + '\n' + m.group(2), text, flags=re.S)
         open(doc, 'w').write(text)
     # only the PNGs the page shows (all figures, PNG and SVG, stay in the output directory)
