@@ -4,6 +4,11 @@
 #   make build       configure and build in $(BUILD_DIR)
 #   make install PREFIX=/some/prefix
 #   make figures     build, then regenerate docs/figures/*.png, *.svg (gnuplot; a few minutes)
+#   make bench       install the benchmark's packages too (SUNDIALS, python3), build, run the full
+#                    work-precision benchmark (bench/run_bench.py; about half an hour) and regenerate
+#                    the tables and figures of docs/performance.md
+#   make bench-quick the same with a reduced sweep of every problem and method (a few minutes),
+#                    into $(BUILD_DIR)/bench-quick/ only (docs untouched)
 #   make mutants     mutation check of the tests (tools/mutants.sh, tools/mutants.txt; long:
 #                    one rebuild and test run per mutant, in a copy of the tree under /tmp)
 #   make check-nofftw  build and test as if FFTW were absent (-DVSHMM_WITH_FFTW=OFF: the time
@@ -23,8 +28,11 @@ CTEST_FLAGS ?=
 
 DEB_PACKAGES := petsc-dev libfftw3-dev libgtest-dev cmake pkg-config make g++ \
                 libpetsc3.18-dev-examples gnuplot-nox valgrind
+# only for make bench, bench-quick: SUNDIALS for the peer integrators (optional: without it the
+# benchmark skips CVODE and ARKODE), Python 3 for the driver script
+BENCH_PACKAGES := libsundials-dev python3
 
-.PHONY: all deps configure build check check-nofftw format-check demo figures install clean mutants
+.PHONY: all deps configure build check check-nofftw format-check demo figures install clean mutants bench bench-quick bench-build
 .NOTPARALLEL:
 MAKEFLAGS += --no-print-directory
 
@@ -80,6 +88,19 @@ demo: build
 figures: build
 	sh docs/figures/make_figures.sh $(BUILD_DIR)
 	sh docs/figures/spectral_figures.sh $(BUILD_DIR)
+
+# The benchmark: its packages, a fresh configure (so that a SUNDIALS installed just now is found),
+# the build, then the driver script.
+bench-build:
+	@$(MAKE) deps DEB_PACKAGES="$(DEB_PACKAGES) $(BENCH_PACKAGES)"
+	cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) $(CMAKE_FLAGS)
+	cmake --build $(BUILD_DIR) -j $(JOBS)
+
+bench: bench-build
+	python3 bench/run_bench.py --build $(BUILD_DIR) --docs
+
+bench-quick: bench-build
+	python3 bench/run_bench.py --build $(BUILD_DIR) --quick
 
 mutants: deps
 	JOBS=$(JOBS) sh tools/mutants.sh
