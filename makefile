@@ -14,7 +14,7 @@
 #   make check-nofftw  build and test as if FFTW were absent (-DVSHMM_WITH_FFTW=OFF: the time
 #                    stepper without the spectral component) in $(BUILD_DIR)-nofftw
 #   make format-check  list the C/C++ files that clang-format (.clang-format at the root) would
-#                    change, and fail if there are any (not part of check yet)
+#                    change, and fail if there are any (part of make check)
 #   make clean       remove $(BUILD_DIR)
 # Variables: BUILD_DIR (build), BUILD_TYPE (Release), JOBS (2), PREFIX (/usr/local),
 #            CMAKE_FLAGS (extra configure options), CTEST_FLAGS (extra ctest options).
@@ -27,7 +27,7 @@ CMAKE_FLAGS ?=
 CTEST_FLAGS ?=
 
 DEB_PACKAGES := petsc-dev libfftw3-dev libgtest-dev cmake pkg-config make g++ \
-                libpetsc3.18-dev-examples gnuplot-nox valgrind
+                libpetsc3.18-dev-examples gnuplot-nox valgrind clang-format
 # only for make bench, bench-quick: SUNDIALS for the peer integrators (optional: without it the
 # benchmark skips CVODE and ARKODE), Python 3 for the driver script
 BENCH_PACKAGES := libsundials-dev python3
@@ -65,7 +65,7 @@ configure: deps
 build: deps $(BUILD_DIR)/CMakeCache.txt
 	cmake --build $(BUILD_DIR) -j $(JOBS)
 
-check: build
+check: build format-check
 	ctest --test-dir $(BUILD_DIR) --output-on-failure -j $(JOBS) $(CTEST_FLAGS)
 
 check-nofftw: deps

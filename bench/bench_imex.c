@@ -84,14 +84,14 @@ static PetscErrorCode IJacobian(TS ts, PetscReal t, Vec X, Vec Xdot, PetscReal s
 
 int main(int argc, char **argv)
 {
-  Ctx         c;
-  TS          ts;
-  Vec         X;
-  Mat         J;
-  char        problem[64] = "oscillators";
-  PetscReal   eps = -1, times[64], t0, t1;
-  PetscInt    ntimes = 64, nscales = 4, i, j, steps;
-  PetscBool   flg, notiming = PETSC_FALSE;
+  Ctx          c;
+  TS           ts;
+  Vec          X;
+  Mat          J;
+  char         problem[64] = "oscillators";
+  PetscReal    eps         = -1, times[64], t0, t1;
+  PetscInt     ntimes = 64, nscales = 4, i, j, steps;
+  PetscBool    flg, notiming        = PETSC_FALSE;
   PetscScalar *x;
 
   PetscFunctionBeginUser;

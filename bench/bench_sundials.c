@@ -30,9 +30,9 @@
 
 typedef struct {
   BenchProblem p;
-  int          k0, k1;   /* the terms this function evaluates */
+  int          k0, k1;                  /* the terms this function evaluates */
   long        *allcalls, *terms, *jacs; /* counters shared by the functions of one run */
-  long         maxcalls;                 /* budget of calls (0: none): beyond it the functions fail */
+  long         maxcalls;                /* budget of calls (0: none): beyond it the functions fail */
 } FnCtx;
 
 static int Field(realtype t, N_Vector y, N_Vector ydot, void *ctx)
@@ -49,13 +49,17 @@ static int Field(realtype t, N_Vector y, N_Vector ydot, void *ctx)
 
 static int Jacobian(realtype t, N_Vector y, N_Vector fy, SUNMatrix J, void *ctx, N_Vector t1, N_Vector t2, N_Vector t3)
 {
-  FnCtx       *c = (FnCtx *)ctx;
-  double       Jd[BENCH_MAX_N * BENCH_MAX_N];
-  const int    n = c->p.n;
-  int          i, j, k;
+  FnCtx        *c = (FnCtx *)ctx;
+  double        Jd[BENCH_MAX_N * BENCH_MAX_N];
+  const int     n = c->p.n;
+  int           i, j, k;
   const double *x = N_VGetArrayPointer(y);
 
-  (void)t; (void)fy; (void)t1; (void)t2; (void)t3;
+  (void)t;
+  (void)fy;
+  (void)t1;
+  (void)t2;
+  (void)t3;
   memset(Jd, 0, sizeof(Jd));
   for (k = c->k0; k <= c->k1; k++) BenchTermJacobianAdd(&c->p, k, x, Jd);
   for (i = 0; i < n; i++)
@@ -74,24 +78,25 @@ static double Now(void)
 
 static void Usage(void)
 {
-  fprintf(stderr, "usage: bench_sundials -problem oscillators|dissipative|chain [-eps e] [-scales n] -method cvode-adams|cvode-bdf|erk|erk-fixed|mri [-rtol r] [-atol a] [-h dt] [-H slow_dt] [-mri_slow_terms m] [-max_steps n] [-max_calls n] [-no_timing] -times t1,t2,...\n");
+  fprintf(stderr, "usage: bench_sundials -problem oscillators|dissipative|chain [-eps e] [-scales n] -method cvode-adams|cvode-bdf|erk|erk-fixed|mri [-rtol r] [-atol a] [-h dt] [-H slow_dt] [-mri_slow_terms m] [-max_steps n] [-max_calls n] "
+                  "[-no_timing] -times t1,t2,...\n");
   exit(2);
 }
 
 int main(int argc, char **argv)
 {
-  const char *problem = "oscillators", *method = "cvode-adams";
-  double      eps = -1, rtol = 1e-6, atol = 1e-6, h = 0, H = 0, times[64], t, t0, t1;
-  int         ntimes = 0, nscales = 4, slowterms = -1, timing = 1, i, flag = 0;
-  long        maxsteps = 100000000, maxcalls = 0, allcalls = 0, terms = 0, jacs = 0, steps = 0, extra;
-  FnCtx       full, slow, fast;
-  SUNContext  sunctx;
-  N_Vector    y;
-  void       *mem = NULL, *inner = NULL;
+  const char         *problem = "oscillators", *method = "cvode-adams";
+  double              eps = -1, rtol = 1e-6, atol = 1e-6, h = 0, H = 0, times[64], t, t0, t1;
+  int                 ntimes = 0, nscales = 4, slowterms = -1, timing = 1, i, flag = 0;
+  long                maxsteps = 100000000, maxcalls = 0, allcalls = 0, terms = 0, jacs = 0, steps = 0, extra;
+  FnCtx               full, slow, fast;
+  SUNContext          sunctx;
+  N_Vector            y;
+  void               *mem = NULL, *inner = NULL;
   MRIStepInnerStepper stepper = NULL;
-  SUNMatrix   A  = NULL;
-  SUNLinearSolver LS = NULL;
-  SUNNonlinearSolver NLS = NULL;
+  SUNMatrix           A       = NULL;
+  SUNLinearSolver     LS      = NULL;
+  SUNNonlinearSolver  NLS     = NULL;
 
   for (i = 1; i < argc; i++) {
     if (!strcmp(argv[i], "-no_timing")) {
@@ -115,8 +120,8 @@ int main(int argc, char **argv)
   }
   if (eps <= 0) eps = !strcmp(problem, "oscillators") ? 1e-3 : 1e-2;
   if (ntimes < 1 || BenchProblemSetUp(&full.p, problem, eps, nscales)) Usage();
-  full.k0 = 0;
-  full.k1 = full.p.nterms - 1;
+  full.k0       = 0;
+  full.k1       = full.p.nterms - 1;
   full.allcalls = &allcalls;
   full.terms    = &terms;
   full.jacs     = &jacs;
@@ -133,7 +138,7 @@ int main(int argc, char **argv)
 
   if (!strcmp(method, "cvode-adams") || !strcmp(method, "cvode-bdf")) {
     int bdf = !strcmp(method, "cvode-bdf");
-    mem = CVodeCreate(bdf ? CV_BDF : CV_ADAMS, sunctx);
+    mem     = CVodeCreate(bdf ? CV_BDF : CV_ADAMS, sunctx);
     flag |= CVodeInit(mem, Field, 0.0, y);
     flag |= CVodeSetUserData(mem, &full);
     flag |= CVodeSStolerances(mem, rtol, atol);

@@ -34,9 +34,10 @@ struct Options {
 
 [[noreturn]] void usage(const char *msg)
 {
-  std::fprintf(stderr, "oscillatory_reference: %s\n"
-                       "usage: oscillatory_reference [--dt DT] [--tmax T] [--print P] [--eps E] [--x0 a,b,c,d]\n"
-                       "                             [--csv FILE] [--csv-every C] [--long-double]\n",
+  std::fprintf(stderr,
+               "oscillatory_reference: %s\n"
+               "usage: oscillatory_reference [--dt DT] [--tmax T] [--print P] [--eps E] [--x0 a,b,c,d]\n"
+               "                             [--csv FILE] [--csv-every C] [--long-double]\n",
                msg);
   std::exit(2);
 }
@@ -52,7 +53,7 @@ double number(const char *s)
 // The number of steps of length dt in the interval T; it must be a whole number (to 1e-9).
 long long wholeSteps(double T, double dt, const char *what)
 {
-  double n = T / dt;
+  double    n = T / dt;
   long long k = std::llround(n);
   if (k <= 0 || std::fabs(n - (double)k) > 1e-9 * n) usage((std::string(what) + " is not a whole number of steps dt").c_str());
   return k;
@@ -76,10 +77,10 @@ template <class Real>
 int run(const Options &o)
 {
   const System<Real> sys(o.eps);
-  const long long    nsteps  = wholeSteps(o.tmax, o.dt, "--tmax");
-  const long long    nprint  = wholeSteps(o.print, o.dt, "--print");
-  const long long    ncsv    = o.csv.empty() ? 0 : wholeSteps(o.csvEvery, o.dt, "--csv-every");
-  const Real         h       = Real(o.dt);
+  const long long    nsteps = wholeSteps(o.tmax, o.dt, "--tmax");
+  const long long    nprint = wholeSteps(o.print, o.dt, "--print");
+  const long long    ncsv   = o.csv.empty() ? 0 : wholeSteps(o.csvEvery, o.dt, "--csv-every");
+  const Real         h      = Real(o.dt);
   Real               x[4], c[4] = {0, 0, 0, 0}, k1[4], k2[4], k3[4], k4[4], y[4];
   FILE              *csv = nullptr;
 
@@ -127,8 +128,8 @@ int main(int argc, char **argv)
 {
   Options o;
   for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto              value = [&]() -> const char * {
+    const std::string a     = argv[i];
+    auto              value = [&]() -> const char              *{
       if (i + 1 >= argc) usage(("missing value after " + a).c_str());
       return argv[++i];
     };

@@ -42,7 +42,10 @@ struct Point {
   double eta, zeta; // unwrapped, in periods
 };
 
-double frac(double x) { return x - std::floor(x); }
+double frac(double x)
+{
+  return x - std::floor(x);
+}
 
 // Exact star discrepancy of points in [0,1)^2.
 double starDiscrepancy(const std::vector<Point> &pts)
@@ -131,10 +134,10 @@ int main(int argc, char **argv)
   int               n = 60, order = 1;
   double            beta = std::sqrt(1.01), dt = 0.1 * std::sqrt(2.0);
   bool              table = false;
-  vshmm::KernelType type = vshmm::KernelType::Cosine;
+  vshmm::KernelType type  = vshmm::KernelType::Cosine;
   for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto              value = [&]() -> const char * {
+    const std::string a     = argv[i];
+    auto              value = [&]() -> const char              *{
       if (i + 1 >= argc) usage(("missing value after " + a).c_str());
       return argv[++i];
     };
@@ -191,8 +194,8 @@ int main(int argc, char **argv)
   const double             dc = starDiscrepancy(pc), dv = starDiscrepancy(pv);
   std::printf("# torus_sampling: N = %d cycles in one kernel period, beta = h_2/dt = %.10f, micro step dt = %g periods\n", n, beta, dt);
   std::printf("# star discrepancy constant %.6f variable %.6f (kernel %s)\n", dc, dv, variable->name().c_str());
-  const char *names[2] = {"constant steps", "variable steps"};
-  const std::vector<Point> *sets[2] = {&pc, &pv};
+  const char               *names[2] = {"constant steps", "variable steps"};
+  const std::vector<Point> *sets[2]  = {&pc, &pv};
   for (int s = 0; s < 2; ++s) {
     std::printf("%s# %s: star discrepancy %.6f\n# k eta zeta eta_mod_1 zeta_mod_1\n", s ? "\n\n" : "", names[s], s ? dv : dc);
     for (std::size_t k = 0; k < sets[s]->size(); ++k) {

@@ -408,9 +408,11 @@ static PetscErrorCode OdeExampleReport(OdeExample *ex, TS ts, const PetscReal v[
        which also sees the calls of the stability and separation checks and of the accuracy
        control (their own counters in the statistics). */
     if (nevals + stats.stability_evaluations + stats.adapt_evaluations != ex->nsplit)
-      PetscCall(PetscPrintf(PETSC_COMM_WORLD, "note: statistics count %lld split evaluations (%lld for checks, %lld for accuracy control), the split functions counted %lld\n", (long long)nevals, (long long)stats.stability_evaluations, (long long)stats.adapt_evaluations, (long long)ex->nsplit));
+      PetscCall(PetscPrintf(PETSC_COMM_WORLD, "note: statistics count %lld split evaluations (%lld for checks, %lld for accuracy control), the split functions counted %lld\n", (long long)nevals, (long long)stats.stability_evaluations,
+                            (long long)stats.adapt_evaluations, (long long)ex->nsplit));
     PetscCall(TSVSHMMGetAdapt(ts, &adapt));
-    if (adapt) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "adapt: error_estimate %.3e (sum over the run; 1 = the tolerance) estimation_evaluations %lld rejections %lld\n", (double)stats.error_estimate_total, (long long)stats.adapt_evaluations, (long long)stats.adapt_rejections));
+    if (adapt)
+      PetscCall(PetscPrintf(PETSC_COMM_WORLD, "adapt: error_estimate %.3e (sum over the run; 1 = the tolerance) estimation_evaluations %lld rejections %lld\n", (double)stats.error_estimate_total, (long long)stats.adapt_evaluations, (long long)stats.adapt_rejections));
   } else {
     /* full-field evaluations, plus the split calls of types that use the splits (e.g. mprk) */
     nevals = ex->nrhs + ex->nsplit;

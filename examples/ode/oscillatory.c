@@ -244,7 +244,7 @@ int main(int argc, char **argv)
   PetscReal         x0[4] = {1.0, 0.5, 0.0, 0.5}, tfinal, tmax, q[2];
   PetscInt          k;
   PetscBool         isvshmm, ismprk;
-  PetscInt          split_kind = SPLIT_ADDITIVE;
+  PetscInt          split_kind    = SPLIT_ADDITIVE;
   const char       *splitnames[3] = {"slow", "medium", "fast"};
   const char *const slow[]        = {"I1", "I2"};
 

@@ -20,17 +20,17 @@
 #include <stdio.h>
 
 typedef struct {
-  VSHMMSpectral    sp;
-  PetscReal       *times; /* output times */
-  PetscInt         ntimes;
-  char             grid_prefix[PETSC_MAX_PATH_LEN], compare_prefix[PETSC_MAX_PATH_LEN], spectrum_file[PETSC_MAX_PATH_LEN];
-  PetscReal        compare_tol, spectrum_interval, next_spectrum;
-  PetscBool        timing;
-  FILE            *spectrum_fp;
-  PetscInt         N, nmodes;
-  const PetscInt  *modes;
-  PetscReal       *u, *mags; /* N grid values; one magnitude per retained mode */
-  PetscMPIInt      rank;
+  VSHMMSpectral   sp;
+  PetscReal      *times; /* output times */
+  PetscInt        ntimes;
+  char            grid_prefix[PETSC_MAX_PATH_LEN], compare_prefix[PETSC_MAX_PATH_LEN], spectrum_file[PETSC_MAX_PATH_LEN];
+  PetscReal       compare_tol, spectrum_interval, next_spectrum;
+  PetscBool       timing;
+  FILE           *spectrum_fp;
+  PetscInt        N, nmodes;
+  const PetscInt *modes;
+  PetscReal      *u, *mags; /* N grid values; one magnitude per retained mode */
+  PetscMPIInt     rank;
 } SpectralRun;
 
 /* -output_times: any number of values. PETSc's array reader stops silently at the capacity it is
@@ -38,7 +38,7 @@ typedef struct {
 static PetscErrorCode ReadOutputTimes(PetscOptionItems *PetscOptionsObject, SpectralRun *run)
 {
   PetscInt  capacity = 16, n;
-  PetscBool set = PETSC_FALSE, given;
+  PetscBool set      = PETSC_FALSE, given;
 
   PetscFunctionBeginUser;
   for (;; capacity *= 2) {
@@ -117,10 +117,10 @@ static PetscErrorCode WriteGridSolution(SpectralRun *run, Vec U, PetscReal t, ch
 /* The relative L2 and max errors against PREFIX_<t>.txt. */
 static PetscErrorCode CompareGridSolution(SpectralRun *run, Vec U, PetscReal t)
 {
-  char      name[PETSC_MAX_PATH_LEN], line[256];
-  double    e2 = 0, r2 = 0, emax = 0, rel;
+  char       name[PETSC_MAX_PATH_LEN], line[256];
+  double     e2 = 0, r2 = 0, emax = 0, rel;
   PetscReal *ref;
-  PetscInt  j;
+  PetscInt   j;
 
   PetscFunctionBeginUser;
   PetscCall(VSHMMSpectralGetGridValues(run->sp, U, run->u));
@@ -151,8 +151,8 @@ static PetscErrorCode PrintWork(SpectralRun *run, PetscReal t, double wall, cons
   PetscFunctionBeginUser;
   PetscCall(VSHMMSpectralGetStatistics(run->sp, &st));
   /* C's %g (PetscPrintf would print 1 as "1.") */
-  len = snprintf(line, sizeof(line), "output t %g rhs_evaluations %lld split_evaluations %lld inverse_ffts %lld forward_ffts %lld direct_modes %lld", (double)t, (long long)st.field_evaluations, (long long)st.split_calls, (long long)st.inverse_ffts, (long long)st.forward_ffts,
-                 (long long)st.direct_modes);
+  len = snprintf(line, sizeof(line), "output t %g rhs_evaluations %lld split_evaluations %lld inverse_ffts %lld forward_ffts %lld direct_modes %lld", (double)t, (long long)st.field_evaluations, (long long)st.split_calls, (long long)st.inverse_ffts,
+                 (long long)st.forward_ffts, (long long)st.direct_modes);
   if (run->timing && len > 0 && len < (int)sizeof(line)) len += snprintf(line + len, sizeof(line) - len, " wall_time %.4e", wall);
   if (file && len > 0 && len < (int)sizeof(line)) len += snprintf(line + len, sizeof(line) - len, " file %s", file);
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%s\n", line));
@@ -177,7 +177,8 @@ static PetscErrorCode SolveToOutputTimes(SpectralRun *run, TS ts, Vec U)
     run->ntimes   = 1;
   }
   for (i = 0; i < run->ntimes; i++)
-    PetscCheck(isfinite(run->times[i]) && run->times[i] > t0 && (i == 0 || run->times[i] > run->times[i - 1]), PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "-output_times must be increasing and after the initial time %g; item %d is %g", (double)t0, (int)i + 1, (double)run->times[i]);
+    PetscCheck(isfinite(run->times[i]) && run->times[i] > t0 && (i == 0 || run->times[i] > run->times[i - 1]), PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "-output_times must be increasing and after the initial time %g; item %d is %g", (double)t0, (int)i + 1,
+               (double)run->times[i]);
   if (run->spectrum_file[0]) {
     if (run->rank == 0) {
       run->spectrum_fp = fopen(run->spectrum_file, "w");

@@ -61,8 +61,8 @@ typedef struct {
   PetscReal  ek[CHAIN_MAX_SCALES];       /* e_k, k >= 1 */
   PetscBool  additive[CHAIN_MAX_SCALES]; /* kind of split k */
   Mode       mode;
-  PetscReal  maxabs;                     /* largest |x_k| at the sampled times */
-  OdeExample ex;                         /* state access, output, work counts (common/ode_example.h) */
+  PetscReal  maxabs; /* largest |x_k| at the sampled times */
+  OdeExample ex;     /* state access, output, work counts (common/ode_example.h) */
 } AppCtx;
 
 /* The term of scale k (with its 1/e_k factor) at the state x; it has only component k, so it is

@@ -49,7 +49,10 @@ double productOfRatios(const AdaptParameters &p)
 
 // dt^order / prod r_l: the micro-step term per unit coefficient (the fast scale's error per
 // micro step, dt^(order+1), times the number of cycles, DeltaT / (dt prod r_l)).
-double microUnit(const AdaptParameters &p, int order) { return std::pow(p.microStep, order) / productOfRatios(p); }
+double microUnit(const AdaptParameters &p, int order)
+{
+  return std::pow(p.microStep, order) / productOfRatios(p);
+}
 
 } // namespace
 
@@ -91,7 +94,7 @@ void limitWorkChange(AdaptParameters &next, const AdaptParameters &now, double m
 ErrorModel ErrorModel::fromDifferences(const AdaptParameters &p, const std::vector<AdaptParameters> &coarse, const std::vector<double> &d, int order)
 {
   ErrorModel m;
-  m.order        = order;
+  m.order = order;
   // a parameter coarsened by less than 10% is taken as not measurable (its coefficient 0)
   const double u = microUnit(coarse[0], order) - microUnit(p, order);
   m.cMicro       = coarse[0].microStep > 1.1 * p.microStep ? d[0] / u : 0.0;
@@ -148,7 +151,10 @@ void ErrorModel::scale(double f)
 
 namespace {
 
-double clampTo(double x, double lo, double hi) { return std::min(std::max(x, lo), hi); }
+double clampTo(double x, double lo, double hi)
+{
+  return std::min(std::max(x, lo), hi);
+}
 
 } // namespace
 

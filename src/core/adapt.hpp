@@ -67,12 +67,12 @@ struct ErrorModel {
   // every level pair with r_l > 1 has the term `total` / (n + 1 / (order + 1)), the micro step
   // 1 / (order + 1) of that, for n such pairs. The model before anything is measured.
   static ErrorModel equalShares(const AdaptParameters &p, int order, double total);
-  double term(const AdaptParameters &p, int which) const; // e_dt (which = 0) or e_l (which = 1 + l)
-  double total(const AdaptParameters &p) const;
-  void   scale(double f); // every coefficient times f (a new measurement of the total)
+  double            term(const AdaptParameters &p, int which) const; // e_dt (which = 0) or e_l (which = 1 + l)
+  double            total(const AdaptParameters &p) const;
+  void              scale(double f); // every coefficient times f (a new measurement of the total)
   // Every term at least `fraction` of the total at p (a term measured as about zero could
   // otherwise grow without limit on one noisy measurement); the total is kept.
-  void   floorShares(const AdaptParameters &p, double fraction);
+  void floorShares(const AdaptParameters &p, double fraction);
 };
 
 // What the choice must respect.
@@ -82,8 +82,8 @@ struct AdaptBounds {
   double              maxMicroStep   = 0.0;   // stability (and accuracy) bound on dt (> 0)
   double              maxCycle       = 0.0;   // bound on A_0 (enough cycles per macro step); 0: none
   std::vector<double> maxRatio;               // per level pair, from stability and separation (>= 1)
-  double              maxGrowth      = 2.0;   // largest coarsening factor of dt, r_l or r_l - 1 per choice
-  double              maxRefine      = 8.0;   // largest refining factor
+  double              maxGrowth = 2.0;        // largest coarsening factor of dt, r_l or r_l - 1 per choice
+  double              maxRefine = 8.0;        // largest refining factor
 };
 
 // The parameters that meet the total error `target` with the least work under the model,
@@ -99,4 +99,4 @@ void fitCycle(AdaptParameters &p, double maxCycle, bool fixedRatios, bool fixedM
 // by lowering dt, then r_{K-1}, ..., r_0 (an infinite bound does not limit).
 void limitToStableSteps(AdaptParameters &p, double kernelPeak, const std::vector<double> &maxLevelStep);
 
-}  // namespace vshmm
+} // namespace vshmm

@@ -109,22 +109,21 @@ private:
   double              root(double v) const;
   int                 n_;
   double              yStep_;
-  std::vector<double> s_, slope_;  // s(y_i) and ds/dy(y_i)
+  std::vector<double> s_, slope_; // s(y_i) and ds/dy(y_i)
 };
 
 template <class ThetaAndValue>
-RootTable::RootTable(int n, double c, ThetaAndValue thetaAndValue) :
-  n_(n), yStep_(std::pow(0.5, 1.0 / n) / kCells), s_(kCells + 1), slope_(kCells + 1)
+RootTable::RootTable(int n, double c, ThetaAndValue thetaAndValue) : n_(n), yStep_(std::pow(0.5, 1.0 / n) / kCells), s_(kCells + 1), slope_(kCells + 1)
 {
   s_[0]     = 0;
   slope_[0] = std::pow(c, -1.0 / n);
   for (int i = 1; i <= kCells; ++i) {
     const double y = i * yStep_, v = i == kCells ? 0.5 : std::pow(y, n);
     const auto   residual = [&](double s, double &k) { return thetaAndValue(s, k) - v; };
-    s_[i] = i == kCells ? 0.5 : safeguardedNewton(residual, std::min(s_[i - 1] + slope_[i - 1] * yStep_, 0.5), s_[i - 1], 0.5);
+    s_[i]                 = i == kCells ? 0.5 : safeguardedNewton(residual, std::min(s_[i - 1] + slope_[i - 1] * yStep_, 0.5), s_[i - 1], 0.5);
     double k;
     thetaAndValue(s_[i], k);
-    slope_[i] = n * v / (y * k);  // ds/dy = (dv/dy) / K
+    slope_[i] = n * v / (y * k); // ds/dy = (dv/dy) / K
   }
 }
 
@@ -173,7 +172,7 @@ private:
 
 class CosineKernel final : public RootTabulatedKernel<CosineKernel> {
 public:
-  CosineKernel() : inverse_(3, 2 * kPi * kPi / 3, thetaAndValue) { }
+  CosineKernel() : inverse_(3, 2 * kPi * kPi / 3, thetaAndValue) {}
   std::string name() const override { return "cosine"; }
   int         order() const override { return 1; }
   double      value(double s) const override
@@ -212,13 +211,13 @@ double CosineKernel::thetaAndValue(double s, double &k)
     k = 1 - std::cos(x);
     return s - std::sin(x) / (2 * kPi);
   }
-  const double sine = std::sin(kPi * s);
-  k                 = 2 * sine * sine;
+  const double sine                              = std::sin(kPi * s);
+  k                                              = 2 * sine * sine;
   static constexpr std::array<double, 11> series = sineRemainderSeries();
   const double                            x2     = x * x;
   double                                  sum    = 0;
   for (int i = 10; i >= 0; --i) sum = sum * x2 + series[i];
-  return s * x2 * sum;  // x^3 / (2 pi) = s x^2
+  return s * x2 * sum; // x^3 / (2 pi) = s x^2
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -244,15 +243,15 @@ private:
   static std::vector<double> binomialTail(int n);
 
   int                 n_;
-  std::vector<double> binomials_;    // C(2n-1, n+i), i = 0..n-1
-  double              inverseBeta_;  // 1 / B(n, n) = n C(2n-1, n)
+  std::vector<double> binomials_;   // C(2n-1, n+i), i = 0..n-1
+  double              inverseBeta_; // 1 / B(n, n) = n C(2n-1, n)
   RootTable           inverse_;
 };
 
 std::vector<double> PolynomialKernel::binomialTail(int n)
 {
   std::vector<double> tail;
-  std::uint64_t       binomial = 1;  // C(2n-1, j), exact in 64 bits for n <= 18
+  std::uint64_t       binomial = 1; // C(2n-1, j), exact in 64 bits for n <= 18
   for (int j = 0; j <= 2 * n - 1; ++j) {
     if (j >= n) tail.push_back(static_cast<double>(binomial));
     binomial = binomial * static_cast<std::uint64_t>(2 * n - 1 - j) / static_cast<std::uint64_t>(j + 1);
@@ -260,11 +259,7 @@ std::vector<double> PolynomialKernel::binomialTail(int n)
   return tail;
 }
 
-PolynomialKernel::PolynomialKernel(int order) :
-  n_(order + 2), binomials_(binomialTail(n_)), inverseBeta_(n_ * binomials_[0]),
-  inverse_(n_, binomials_[0], [this](double s, double &k) { return thetaAndValue(s, k); })
-{
-}
+PolynomialKernel::PolynomialKernel(int order) : n_(order + 2), binomials_(binomialTail(n_)), inverseBeta_(n_ * binomials_[0]), inverse_(n_, binomials_[0], [this](double s, double &k) { return thetaAndValue(s, k); }) {}
 
 double PolynomialKernel::thetaAndValue(double s, double &k) const
 {
@@ -316,7 +311,7 @@ private:
   static constexpr double kStep        = 0.25;
   static constexpr double kEnd         = 802;
   static constexpr int    kNodes       = kGradedCells + 1 + static_cast<int>((kEnd - kGradedEnd) / kStep);
-  static constexpr int    kLocalPoints = 4;  // Gauss-Legendre points over at most half a cell
+  static constexpr int    kLocalPoints = 4; // Gauss-Legendre points over at most half a cell
 
   static double node(int i);
   static double fractionalIndex(double w);
@@ -324,8 +319,8 @@ private:
   double        tail(double w) const;
 
   double              inverseZ_, logZ_;
-  int                 last_;  // the first node where Theta is subnormal
-  std::vector<double> w_, g_, theta_, logTheta_, slope_;  // nodes; g, Theta, log Theta and dw / dlog Theta there
+  int                 last_;                             // the first node where Theta is subnormal
+  std::vector<double> w_, g_, theta_, logTheta_, slope_; // nodes; g, Theta, log Theta and dw / dlog Theta there
   std::vector<double> localNodes_, localWeights_;
 };
 
@@ -356,7 +351,7 @@ ExponentialTable::ExponentialTable()
     long double       panel = 0;
     for (std::size_t k = 0; k < rule.nodes.size(); ++k) panel += rule.weights[k] * gl(a + half * (1 + rule.nodes[k]));
     panel *= half;
-    const long double t = sum + panel;  // Neumaier summation
+    const long double t = sum + panel; // Neumaier summation
     compensation += std::fabs(sum) >= std::fabs(panel) ? (sum - t) + panel : (panel - t) + sum;
     sum      = t;
     upper[i] = sum + compensation;
@@ -390,7 +385,7 @@ double ExponentialTable::localIntegral(int k, double w) const
   double       sum = 0;
   for (int i = 0; i < kLocalPoints; ++i) {
     const double offset = half * (1 + localNodes_[i]), x = a + offset;
-    const double inverse = 1 / (x * (x - 1));  // 1/(x-1) = inverse x, 1/x = inverse (x-1)
+    const double inverse = 1 / (x * (x - 1)); // 1/(x-1) = inverse x, 1/x = inverse (x-1)
     const double d = offset * (1 - inverse * x * inverseA), ratio = a * (x - 1) * inverse;
     sum += localWeights_[i] * std::exp(-d) * ratio * ratio;
   }
@@ -413,7 +408,7 @@ double ExponentialTable::upperIntegral(double w) const
 
 double ExponentialTable::solve(double v) const
 {
-  if (v < theta_[last_]) return w_[last_] + std::log(theta_[last_] / v);  // rough, for subnormal v
+  if (v < theta_[last_]) return w_[last_] + std::log(theta_[last_] / v); // rough, for subnormal v
   // theta_ decreases: find the cell [i, i+1] with theta_[i] >= v > theta_[i+1].
   const auto   first = std::partition_point(theta_.begin(), theta_.end(), [v](double t) { return t >= v; });
   const int    cell  = std::min(static_cast<int>(first - theta_.begin()) - 1, last_ - 1);
@@ -436,7 +431,7 @@ const ExponentialTable &exponentialTable()
 
 class ExponentialKernel final : public Kernel {
 public:
-  ExponentialKernel() : table_(exponentialTable()) { }
+  ExponentialKernel() : table_(exponentialTable()) {}
   std::string name() const override { return "exponential"; }
   int         order() const override { return kInfiniteOrder; }
   double      value(double s) const override
@@ -467,7 +462,7 @@ double ExponentialKernel::lowerTheta(double s) const
   return table_.upperIntegral(w) - table_.g(w) * error;
 }
 
-}  // namespace
+} // namespace
 
 // ---------------------------------------------------------------------------------------------
 
@@ -481,8 +476,7 @@ std::unique_ptr<Kernel> Kernel::create(KernelType type, int polynomialOrder)
   case KernelType::Exponential:
     return std::make_unique<ExponentialKernel>();
   case KernelType::Polynomial:
-    if (polynomialOrder < 0 || polynomialOrder > kMaxPolynomialOrder)
-      throw std::invalid_argument("polynomial kernel order " + std::to_string(polynomialOrder) + " is out of range: must be 0.." + std::to_string(kMaxPolynomialOrder));
+    if (polynomialOrder < 0 || polynomialOrder > kMaxPolynomialOrder) throw std::invalid_argument("polynomial kernel order " + std::to_string(polynomialOrder) + " is out of range: must be 0.." + std::to_string(kMaxPolynomialOrder));
     return std::make_unique<PolynomialKernel>(polynomialOrder);
   }
   throw std::invalid_argument("unknown kernel type " + std::to_string(static_cast<int>(type)));
@@ -505,4 +499,4 @@ double Kernel::valueAtThetaInverse(double u, double uc) const
   return value(lowerThetaInverse(std::min(u, uc)));
 }
 
-}  // namespace vshmm
+} // namespace vshmm

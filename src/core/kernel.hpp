@@ -7,23 +7,28 @@
 
 namespace vshmm {
 
-enum class KernelType { Cosine, Constant, Polynomial, Exponential };
+enum class KernelType {
+  Cosine,
+  Constant,
+  Polynomial,
+  Exponential
+};
 
 // A kernel on [0,1]: integral 1, symmetric (K(s) = K(1-s)), positive inside (0,1).
 // Derivatives of order 0..order() vanish at s = 0 and s = 1 (order() = -1: none vanish,
 // kInfiniteOrder: all of them).
 class Kernel {
 public:
-  static constexpr int kInfiniteOrder = 1 << 30;
+  static constexpr int kInfiniteOrder      = 1 << 30;
   static constexpr int kMaxPolynomialOrder = 16;
 
   // The polynomial kernel takes 0 <= order <= kMaxPolynomialOrder; the others have a fixed
   // order and ignore the argument. Throws std::invalid_argument on a bad order.
   static std::unique_ptr<Kernel> create(KernelType type, int polynomialOrder = 1);
 
-  virtual ~Kernel() = default;
-  virtual std::string name() const = 0;  // "cosine", "constant", "polynomial", "exponential"
-  virtual int order() const = 0;         // q as above
+  virtual ~Kernel()                 = default;
+  virtual std::string name() const  = 0; // "cosine", "constant", "polynomial", "exponential"
+  virtual int         order() const = 0; // q as above
 
   // K(s) for s in [0,1] (0 outside).
   virtual double value(double s) const = 0;
@@ -44,4 +49,4 @@ protected:
   virtual double lowerThetaInverse(double v) const = 0;
 };
 
-}  // namespace vshmm
+} // namespace vshmm

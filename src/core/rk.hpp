@@ -13,15 +13,14 @@ namespace vshmm {
 struct Tableau {
   static constexpr int kMaxStages = 32;
 
-  std::string name;
-  int order = 0;
-  int stages = 0;
+  std::string         name;
+  int                 order  = 0;
+  int                 stages = 0;
   std::vector<double> a, b, c;
 
   // Throws std::invalid_argument unless the sizes agree, 1 <= stages <= kMaxStages and a is
   // strictly lower triangular (an explicit method).
-  Tableau(std::string name, int order, int stages, std::vector<double> a, std::vector<double> b, std::vector<double> c)
-    : name(std::move(name)), order(order), stages(stages), a(std::move(a)), b(std::move(b)), c(std::move(c))
+  Tableau(std::string name, int order, int stages, std::vector<double> a, std::vector<double> b, std::vector<double> c) : name(std::move(name)), order(order), stages(stages), a(std::move(a)), b(std::move(b)), c(std::move(c))
   {
     if (stages < 1 || stages > kMaxStages) throw std::invalid_argument("Runge-Kutta tableau " + this->name + ": stage count out of range");
     if ((int)this->a.size() != stages * stages || (int)this->b.size() != stages || (int)this->c.size() != stages) throw std::invalid_argument("Runge-Kutta tableau " + this->name + ": sizes do not match the stage count");
@@ -39,7 +38,7 @@ struct Tableau {
 template <class Ops>
 int explicitRungeKuttaStep(const Tableau &tab, Ops &ops, double t, double h)
 {
-  double w[Tableau::kMaxStages];
+  double    w[Tableau::kMaxStages];
   const int s = tab.stages;
   for (int i = 0; i < s; ++i) {
     for (int j = 0; j < i; ++j) w[j] = h * tab.a[i * s + j];
@@ -49,4 +48,4 @@ int explicitRungeKuttaStep(const Tableau &tab, Ops &ops, double t, double h)
   return ops.update(s, w);
 }
 
-}  // namespace vshmm
+} // namespace vshmm

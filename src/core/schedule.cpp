@@ -37,25 +37,35 @@ void checkSubintervals(const std::vector<int> &subintervals)
   }
 }
 
-}  // namespace
+} // namespace
 
-MesoscopicSchedule::MesoscopicSchedule(const Kernel &kernel, double microStep, std::vector<double> savings, std::vector<int> subintervals) :
-  kernel_(kernel), dt_(microStep), alpha_(std::move(savings)), m_(std::move(subintervals))
+MesoscopicSchedule::MesoscopicSchedule(const Kernel &kernel, double microStep, std::vector<double> savings, std::vector<int> subintervals) : kernel_(kernel), dt_(microStep), alpha_(std::move(savings)), m_(std::move(subintervals))
 {
   checkMicroStep(dt_);
-  if (alpha_.size() != m_.size())
-    throw std::invalid_argument("got " + std::to_string(alpha_.size()) + " savings factors and " + std::to_string(m_.size()) + " subinterval counts: need one of each per scale above scale 0");
+  if (alpha_.size() != m_.size()) throw std::invalid_argument("got " + std::to_string(alpha_.size()) + " savings factors and " + std::to_string(m_.size()) + " subinterval counts: need one of each per scale above scale 0");
   checkSavingsFactors(alpha_);
   checkSubintervals(m_);
 }
 
-int MesoscopicSchedule::numScales() const { return static_cast<int>(alpha_.size()) + 1; }
+int MesoscopicSchedule::numScales() const
+{
+  return static_cast<int>(alpha_.size()) + 1;
+}
 
-double MesoscopicSchedule::microStep() const { return dt_; }
+double MesoscopicSchedule::microStep() const
+{
+  return dt_;
+}
 
-double MesoscopicSchedule::savingsFactor(int j) const { return alpha_.at(j - 1); }
+double MesoscopicSchedule::savingsFactor(int j) const
+{
+  return alpha_.at(j - 1);
+}
 
-int MesoscopicSchedule::subintervals(int j) const { return m_.at(j - 1); }
+int MesoscopicSchedule::subintervals(int j) const
+{
+  return m_.at(j - 1);
+}
 
 double MesoscopicSchedule::mesoscopicStep(int j, double tau, double macroStep) const
 {
@@ -69,4 +79,4 @@ double MesoscopicSchedule::levelStep(int level, double tau, double macroStep) co
   return level == numScales() - 1 ? dt_ : mesoscopicStep(level + 1, tau, macroStep);
 }
 
-}  // namespace vshmm
+} // namespace vshmm

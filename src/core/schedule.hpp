@@ -19,10 +19,10 @@ public:
   // every alpha_j >= 0 and finite (alpha_j = 0: level j-1 takes no steps of its own), every m_j >= 1.
   MesoscopicSchedule(const Kernel &kernel, double microStep, std::vector<double> savings, std::vector<int> subintervals);
 
-  int numScales() const;  // K + 1
+  int    numScales() const; // K + 1
   double microStep() const;
-  double savingsFactor(int j) const;  // alpha_j, j = 1..K
-  int subintervals(int j) const;      // m_j, j = 1..K
+  double savingsFactor(int j) const; // alpha_j, j = 1..K
+  int    subintervals(int j) const;  // m_j, j = 1..K
 
   // The method note's formula, with tau = t - t_n the time since the start of the macro step
   // (equal to (t - t_0) mod P_j because t_n - t_0 is a multiple of DeltaT):
@@ -34,16 +34,16 @@ public:
   double levelStep(int level, double tau, double macroStep) const;
 
 private:
-  const Kernel &kernel_;
-  double dt_;
+  const Kernel       &kernel_;
+  double              dt_;
   std::vector<double> alpha_;
-  std::vector<int> m_;
+  std::vector<int>    m_;
 };
 
 // What one macro step did.
 struct MacroStepCounts {
-  std::int64_t cycles = 0;                // micro cycles started
-  std::vector<std::int64_t> levelSteps;   // steps per level (index = level)
+  std::int64_t              cycles = 0; // micro cycles started
+  std::vector<std::int64_t> levelSteps; // steps per level (index = level)
 };
 
 // The smallest step h from tau with fl(tau + h) >= end: it ends exactly on end whenever some
@@ -92,4 +92,4 @@ int runMacroStep(const MesoscopicSchedule &schedule, double macroStep, Advance &
   return 0;
 }
 
-}  // namespace vshmm
+} // namespace vshmm

@@ -6,7 +6,7 @@
 
 namespace vshmm {
 
-StabilityFunction::StabilityFunction(const Tableau &tableau) : a_(tableau.a), b_(tableau.b), s_(tableau.stages) { }
+StabilityFunction::StabilityFunction(const Tableau &tableau) : a_(tableau.a), b_(tableau.b), s_(tableau.stages) {}
 
 std::complex<double> StabilityFunction::operator()(std::complex<double> z) const
 {
@@ -37,7 +37,7 @@ double StabilityFunction::rayLimit(std::complex<double> direction) const
   if (x >= kMaxRadius) return kMaxRadius;
   double lo = x, hi = x + dx;
   for (int it = 0; it < 60; ++it) {
-    const double mid = 0.5 * (lo + hi);
+    const double mid        = 0.5 * (lo + hi);
     (stable(mid) ? lo : hi) = mid;
   }
   return lo;
@@ -72,10 +72,10 @@ double largestStableSavingsFactor(const StabilityFunction &R, const Kernel &kern
     const double mid = 0.5 * (lo + hi);
     savings[j - 1]   = mid;
     const MesoscopicSchedule schedule(kernel, microStep, savings, subintervals);
-    const LevelAmplification a = levelAmplification(R, schedule, macroStep, j - 1, lambda);
+    const LevelAmplification a                                                                          = levelAmplification(R, schedule, macroStep, j - 1, lambda);
     (a.logAmplification <= std::log(dampingTarget) && a.largestGrowth <= std::log(maxGrowth) ? lo : hi) = mid;
   }
   return lo;
 }
 
-}  // namespace vshmm
+} // namespace vshmm

@@ -56,4 +56,4 @@ LevelAmplification levelAmplification(const StabilityFunction &R, const Mesoscop
 // savings[j-1]; 0 if no positive value passes. Throws std::invalid_argument where the schedule does.
 double largestStableSavingsFactor(const StabilityFunction &R, const Kernel &kernel, double microStep, std::vector<double> savings, const std::vector<int> &subintervals, double macroStep, int j, std::complex<double> lambda, double dampingTarget, double maxGrowth);
 
-}  // namespace vshmm
+} // namespace vshmm

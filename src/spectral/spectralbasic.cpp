@@ -207,7 +207,7 @@ PetscErrorCode VSHMMSpectralSetDefaultScene(VSHMMSpectral sp, const char scene[]
 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
-  s                 = sp->data;
+  s                      = sp->data;
   const std::string name = scene ? scene : "";
   if (name == "diffusion") {
     s->terms = {"diffusion"};

@@ -65,10 +65,10 @@ PETSC_INTERN const char *const VSHMMSpectralNormalizations[];
 
 /* The cluster detection's outcome, for VSHMMSpectralView() (the library prints nothing itself). */
 struct VSHMMSpectralDetection {
-  PetscReal              dt = 0;         /* time step of the detection DNS (0: no DNS) */
-  std::vector<PetscReal> times;          /* its snapshot times */
-  PetscInt               support = 0;    /* wavenumbers above the threshold */
-  PetscInt               merged  = 0;    /* clusters before buffers */
+  PetscReal              dt = 0;      /* time step of the detection DNS (0: no DNS) */
+  std::vector<PetscReal> times;       /* its snapshot times */
+  PetscInt               support = 0; /* wavenumbers above the threshold */
+  PetscInt               merged  = 0; /* clusters before buffers */
 };
 
 struct SplitCtx {
@@ -82,14 +82,14 @@ struct VSHMMSpectral_Data {
   std::string              scene = "diffusion";
   PetscInt                 N     = 2048;
   std::vector<std::string> terms;
-  spc::Field                diff, vel, u0;
+  spc::Field               diff, vel, u0;
   VSHMMSpectralMode        mode = VSHMMSPECTRAL_MODE_DNS;
   std::string              cluster_spec;
   VSHMMSpectralDetect      detect = VSHMMSPECTRAL_DETECT_NONE;
   PetscReal                lambda = 3.1622776601683794e-3; /* 10^-2.5 */
   PetscInt                 gap    = 1;
   std::vector<PetscInt>    buffers;
-  spc::Normalization        norm = spc::Normalization::Unitary;
+  spc::Normalization       norm = spc::Normalization::Unitary;
   std::vector<PetscReal>   detect_times;
   std::string              detect_file;
   PetscReal                detect_dt  = 0;
@@ -99,22 +99,22 @@ struct VSHMMSpectral_Data {
 
   /* set-up */
   spc::ClusterSet                        clusters;
-  VSHMMSpectralDetection                detection;
+  VSHMMSpectralDetection                 detection;
   std::unique_ptr<spc::Layout>           layout;
   std::unique_ptr<spc::SpectralOperator> op;
   std::unique_ptr<spc::DenseOperator>    dense;
-  std::vector<std::vector<PetscInt>>    cluster_modes; /* for VSHMMSpectralGetCluster() */
-  std::vector<PetscInt>                 modes;         /* every retained wavenumber, in the layout */
-  std::vector<SplitCtx>                 split_ctx;
-  VecScatter                            gather = nullptr;
-  Vec                                   Useq   = nullptr;
-  std::vector<double>                   out;
+  std::vector<std::vector<PetscInt>>     cluster_modes; /* for VSHMMSpectralGetCluster() */
+  std::vector<PetscInt>                  modes;         /* every retained wavenumber, in the layout */
+  std::vector<SplitCtx>                  split_ctx;
+  VecScatter                             gather = nullptr;
+  Vec                                    Useq   = nullptr;
+  std::vector<double>                    out;
 
   /* the physical-space field of the last state seen */
   PetscBool        cache_valid = PETSC_FALSE, fft_done = PETSC_FALSE;
-  PetscObjectId    cache_id    = 0;
-  PetscObjectState cache_state = 0;
-  PetscReal        cache_t     = 0;
+  PetscObjectId    cache_id     = 0;
+  PetscObjectState cache_state  = 0;
+  PetscReal        cache_t      = 0;
   double           direct_spent = 0;
 
   VSHMMSpectralStatistics stats = {};

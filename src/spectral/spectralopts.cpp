@@ -50,8 +50,7 @@ static PetscErrorCode CheckValue(VSHMMSpectral sp, const char opt[], bool list)
    (PetscOptionsGetRealArray/IntArray), then read with read (PetscOptionsRealArray/IntArray) for
    -help. v holds the default on entry and the values given on return. */
 template <typename T>
-static PetscErrorCode OptionsList(PetscOptionItems *PetscOptionsObject, VSHMMSpectral sp, const char opt[], const char text[], std::vector<T> &v, PetscBool *set, PetscErrorCode (*get)(PetscOptions, const char[], const char[], T[], PetscInt *, PetscBool *),
-                                  PetscErrorCode (*read)(PetscOptionItems *, const char[], const char[], const char[], T[], PetscInt *, PetscBool *))
+static PetscErrorCode OptionsList(PetscOptionItems *PetscOptionsObject, VSHMMSpectral sp, const char opt[], const char text[], std::vector<T> &v, PetscBool *set, PetscErrorCode (*get)(PetscOptions, const char[], const char[], T[], PetscInt *, PetscBool *), PetscErrorCode (*read)(PetscOptionItems *, const char[], const char[], const char[], T[], PetscInt *, PetscBool *))
 {
   PetscInt       length, n;
   std::vector<T> buf;
@@ -85,7 +84,7 @@ static PetscErrorCode OptionsIntList(PetscOptionItems *PetscOptionsObject, VSHMM
 /* A list of names of any length. */
 static PetscErrorCode OptionsStringList(PetscOptionItems *PetscOptionsObject, VSHMMSpectral sp, const char opt[], const char text[], std::vector<std::string> &v, PetscBool *set)
 {
-  PetscInt           length, n;
+  PetscInt            length, n;
   std::vector<char *> buf;
 
   PetscFunctionBegin;
@@ -237,7 +236,8 @@ static PetscErrorCode CheckOptions(VSHMMSpectral sp)
   PetscCheck(s->gap >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%sspectral_cluster_gap must be nonnegative, got %" PetscInt_FMT, pre, s->gap);
   for (PetscInt b : s->buffers) PetscCheck(b >= 0 && b <= s->N / 2, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%sspectral_cluster_buffers: a buffer width must be in 0..N/2 = %" PetscInt_FMT ", got %" PetscInt_FMT, pre, s->N / 2, b);
   for (size_t i = 0; i < s->detect_times.size(); ++i)
-    PetscCheck(std::isfinite(s->detect_times[i]) && s->detect_times[i] >= 0 && (i == 0 || s->detect_times[i] > s->detect_times[i - 1]), comm, PETSC_ERR_ARG_OUTOFRANGE, "-%sspectral_cluster_detect_times must be finite, nonnegative and increasing; item %d is %g", pre, (int)i + 1, (double)s->detect_times[i]);
+    PetscCheck(std::isfinite(s->detect_times[i]) && s->detect_times[i] >= 0 && (i == 0 || s->detect_times[i] > s->detect_times[i - 1]), comm, PETSC_ERR_ARG_OUTOFRANGE, "-%sspectral_cluster_detect_times must be finite, nonnegative and increasing; item %d is %g", pre, (int)i + 1,
+               (double)s->detect_times[i]);
   PetscCheck(std::isfinite(s->detect_dt) && s->detect_dt >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%sspectral_cluster_detect_dt must be finite and nonnegative (0: estimate), got %g", pre, (double)s->detect_dt);
   PetscFunctionReturn(0);
 }

@@ -174,7 +174,7 @@ PetscErrorCode VSHMMSpectralGetModeMagnitudes(VSHMMSpectral sp, Vec U, PetscReal
   PetscCall(VSHMMSpectralGetCoefficients_Private(sp, U, &c));
   for (int i = 0; i < l->modeCount(); ++i) {
     const int k = l->mode(i), o = l->offset(i);
-    mags[i]     = spc::isRealOnly(l->N(), k) ? std::fabs(c[o]) : std::hypot(c[o], c[o + 1]);
+    mags[i] = spc::isRealOnly(l->N(), k) ? std::fabs(c[o]) : std::hypot(c[o], c[o + 1]);
   }
   PetscCall(VSHMMSpectralRestoreCoefficients_Private(sp, U, &c));
   PetscFunctionReturn(0);

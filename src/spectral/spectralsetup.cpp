@@ -62,7 +62,7 @@ double VSHMMSpectralStableStep_Private(const std::vector<double> &D, const std::
    options prefix <prefix>spectral_cluster_detect_. */
 static PetscErrorCode DetectionDNS(VSHMMSpectral sp, const std::vector<double> &D, const std::vector<double> &A, const std::vector<double> &u0, std::vector<std::vector<double>> &mags)
 {
-  VSHMMSpectral_Data   *s = sp->data;
+  VSHMMSpectral_Data   *s    = sp->data;
   spc::Layout           full = spc::Layout::full((int)s->N);
   spc::SpectralOperator op(full, D, A, spc::Planner::Estimate);
   Vec                   U;
@@ -99,7 +99,7 @@ static PetscErrorCode DetectionDNS(VSHMMSpectral sp, const std::vector<double> &
     PetscCall(VecGetArrayRead(U, &c));
     for (int i = 0; i < full.modeCount(); ++i) {
       const int k = full.mode(i), o = full.offset(i);
-      m[k]        = spc::isRealOnly((int)s->N, k) ? std::fabs(c[o]) : std::hypot(c[o], c[o + 1]);
+      m[k] = spc::isRealOnly((int)s->N, k) ? std::fabs(c[o]) : std::hypot(c[o], c[o + 1]);
     }
     PetscCall(VecRestoreArrayRead(U, &c));
     mags.push_back(m);
@@ -112,7 +112,7 @@ static PetscErrorCode DetectionDNS(VSHMMSpectral sp, const std::vector<double> &
 /* Snapshots |c_k| (k = 0..N/2) for the cluster detection. */
 static PetscErrorCode DetectionSnapshots(VSHMMSpectral sp, const std::vector<double> &D, const std::vector<double> &A, std::vector<std::vector<double>> &mags)
 {
-  VSHMMSpectral_Data *s = sp->data;
+  VSHMMSpectral_Data *s    = sp->data;
   MPI_Comm            comm = PetscObjectComm((PetscObject)sp);
   std::vector<double> u;
 
@@ -133,17 +133,16 @@ static PetscErrorCode DetectionSnapshots(VSHMMSpectral sp, const std::vector<dou
 
 static PetscErrorCode FindClusters(VSHMMSpectral sp, const std::vector<double> &D, const std::vector<double> &A)
 {
-  VSHMMSpectral_Data *s    = sp->data;
-  MPI_Comm            comm = PetscObjectComm((PetscObject)sp);
-  const char         *pre  = VSHMMSpectralPrefix(sp);
+  VSHMMSpectral_Data *s                 = sp->data;
+  MPI_Comm            comm              = PetscObjectComm((PetscObject)sp);
+  const char         *pre               = VSHMMSpectralPrefix(sp);
   const bool          explicit_clusters = !s->cluster_spec.empty();
   std::vector<int>    buffers(s->buffers.begin(), s->buffers.end());
 
   PetscFunctionBegin;
   s->detection = VSHMMSpectralDetection();
   PetscCheck(!(explicit_clusters && s->detect != VSHMMSPECTRAL_DETECT_NONE), comm, PETSC_ERR_ARG_INCOMP, "Give either -%sspectral_clusters (explicit) or -%sspectral_cluster_detect %s, not both", pre, pre, VSHMMSpectralDetects[s->detect]);
-  PetscCheck(explicit_clusters || s->detect != VSHMMSPECTRAL_DETECT_NONE, comm, PETSC_ERR_ARG_WRONGSTATE,
-             "-%sspectral_mode sparse needs clusters: give -%sspectral_clusters lo:hi,lo:hi,... (e.g. 0:3,62:66,192:193,255:257) or -%sspectral_cluster_detect initial|dns|file", pre, pre, pre);
+  PetscCheck(explicit_clusters || s->detect != VSHMMSPECTRAL_DETECT_NONE, comm, PETSC_ERR_ARG_WRONGSTATE, "-%sspectral_mode sparse needs clusters: give -%sspectral_clusters lo:hi,lo:hi,... (e.g. 0:3,62:66,192:193,255:257) or -%sspectral_cluster_detect initial|dns|file", pre, pre, pre);
   if (explicit_clusters) {
     try {
       s->clusters = spc::ClusterSet::parse(s->cluster_spec, (int)s->N);
@@ -162,7 +161,7 @@ static PetscErrorCode FindClusters(VSHMMSpectral sp, const std::vector<double> &
       SETERRQ(comm, PETSC_ERR_ARG_WRONG, "cluster detection: %s", e.what());
     }
     if (support.empty()) {
-      double big = 0;
+      double big  = 0;
       int    kbig = 0;
       for (const auto &m : mags)
         for (size_t k = 0; k < m.size(); ++k)
@@ -171,7 +170,7 @@ static PetscErrorCode FindClusters(VSHMMSpectral sp, const std::vector<double> &
               big * spc::normalizationFactor(s->norm, (int)s->N), kbig, pre);
     }
     try {
-      s->clusters = spc::mergeIntoClusters(support, (int)s->N, (int)s->gap);
+      s->clusters          = spc::mergeIntoClusters(support, (int)s->N, (int)s->gap);
       s->detection.support = (PetscInt)support.size();
       s->detection.merged  = (PetscInt)s->clusters.size();
       s->clusters          = spc::addBuffers(s->clusters, buffers);
@@ -193,7 +192,7 @@ static PetscErrorCode CalibrateProjection(VSHMMSpectral sp)
   PetscFunctionBegin;
   if (s->mode != VSHMMSPECTRAL_MODE_SPARSE || s->dense || s->projection != VSHMMSPECTRAL_PROJECTION_AUTO) PetscFunctionReturn(0);
   std::vector<double> zero(s->layout->size(), 0.0), out(s->layout->size());
-  const int           R = 16;
+  const int           R      = 16;
   double              best_f = PETSC_MAX_REAL, best_d = PETSC_MAX_REAL;
   PetscLogDouble      t0, t1;
 

@@ -76,8 +76,7 @@ static PetscErrorCode OrderSplits(TS ts, std::vector<TS_RHSSplitLink> &links, st
   PetscFunctionBegin;
   links.clear();
   scale_end.clear();
-  PetscCheck(ts->num_rhs_splits >= 2, comm, PETSC_ERR_ARG_WRONGSTATE,
-             "TSVSHMM needs at least two RHS splits, one per time scale, but the TS has %" PetscInt_FMT ": declare each scale with TSRHSSplitSetIS() and TSRHSSplitSetRHSFunction()", ts->num_rhs_splits);
+  PetscCheck(ts->num_rhs_splits >= 2, comm, PETSC_ERR_ARG_WRONGSTATE, "TSVSHMM needs at least two RHS splits, one per time scale, but the TS has %" PetscInt_FMT ": declare each scale with TSRHSSplitSetIS() and TSRHSSplitSetRHSFunction()", ts->num_rhs_splits);
   if (vs->split_order.empty()) {
     for (TS_RHSSplitLink l = ts->tsrhssplit; l; l = l->next) {
       links.push_back(l);
@@ -99,8 +98,8 @@ static PetscErrorCode OrderSplits(TS ts, std::vector<TS_RHSSplitLink> &links, st
       PetscCheck(!scale.empty() && scale.back() != '+', comm, PETSC_ERR_ARG_WRONG, "-ts_vshmm_splits (TSVSHMMSetSplitOrder()): scale '%s' has an empty split name", scale.c_str());
       scale_end.push_back((PetscInt)links.size());
     }
-    PetscCheck((PetscInt)links.size() == ts->num_rhs_splits, comm, PETSC_ERR_ARG_SIZ,
-               "-ts_vshmm_splits (TSVSHMMSetSplitOrder()) names %d splits but the TS has %" PetscInt_FMT " (%s): list every split once, slowest scale first (a+b puts two splits in one scale)", (int)links.size(), ts->num_rhs_splits, SplitNames(ts).c_str());
+    PetscCheck((PetscInt)links.size() == ts->num_rhs_splits, comm, PETSC_ERR_ARG_SIZ, "-ts_vshmm_splits (TSVSHMMSetSplitOrder()) names %d splits but the TS has %" PetscInt_FMT " (%s): list every split once, slowest scale first (a+b puts two splits in one scale)",
+               (int)links.size(), ts->num_rhs_splits, SplitNames(ts).c_str());
     PetscCheck(scale_end.size() >= 2, comm, PETSC_ERR_ARG_WRONG, "-ts_vshmm_splits (TSVSHMMSetSplitOrder()) puts every split in one scale: TSVSHMM needs at least two scales");
   }
   for (TS_RHSSplitLink l : links) {
@@ -132,8 +131,8 @@ static PetscErrorCode SetUpSplit(TS ts, TS_RHSSplitLink link, VSHMMSplit &split)
   PetscCall(ISGetIndices(split.is, &idx));
   bool contiguous = true;
   for (PetscInt i = 1; i < nis && contiguous; ++i) contiguous = idx[i] == idx[0] + i;
-  bool owned = nis == 0 || (idx[0] >= rstart && idx[0] + nis <= rend);
-  split.offset  = nis ? idx[0] - rstart : 0;
+  bool owned   = nis == 0 || (idx[0] >= rstart && idx[0] + nis <= rend);
+  split.offset = nis ? idx[0] - rstart : 0;
   PetscCall(ISRestoreIndices(split.is, &idx));
   flags[0] = contiguous && owned;
   flags[1] = flags[0] && nis == rend - rstart;
@@ -200,8 +199,7 @@ static PetscErrorCode TSVSHMMCheckSupported_Private(TS ts)
 
   PetscFunctionBegin;
   if (ts->adapt && ((PetscObject)ts->adapt)->type_name) PetscCall(PetscObjectTypeCompare((PetscObject)ts->adapt, TSADAPTNONE, &none));
-  PetscCheck(none, comm, PETSC_ERR_SUP,
-             "TSVSHMM does not support the time step adaptivity TSAdapt '%s' (-ts_adapt_type): its macro step is the sampling interval DeltaT, the TS time step, and stays fixed. Use -ts_adapt_type none (the default of TSVSHMM); for accuracy control use -ts_vshmm_adapt with -ts_rtol/-ts_atol (TSVSHMMSetAdapt())",
+  PetscCheck(none, comm, PETSC_ERR_SUP, "TSVSHMM does not support the time step adaptivity TSAdapt '%s' (-ts_adapt_type): its macro step is the sampling interval DeltaT, the TS time step, and stays fixed. Use -ts_adapt_type none (the default of TSVSHMM); for accuracy control use -ts_vshmm_adapt with -ts_rtol/-ts_atol (TSVSHMMSetAdapt())",
              ((PetscObject)ts->adapt)->type_name);
   PetscCheck(!ts->event, comm, PETSC_ERR_SUP, "TSVSHMM does not support events (TSSetEventHandler()): only the sampled states are accurate for the slow variables, so an event cannot be located within a macro step. Detect it in a TSMonitor or post-step function on the sampled states instead");
   PetscCheck(!ts->trajectory, comm, PETSC_ERR_SUP, "TSVSHMM does not support TSTrajectory (TSSetSaveTrajectory(), -ts_save_trajectory) or the adjoint solve (TSAdjointSolve()), which needs it: VSHMM does not form the derivative of its macro step. Use a TSRK type for adjoint sensitivities");
@@ -228,27 +226,26 @@ static PetscErrorCode TSSetUp_VSHMM(TS ts)
   /* Method parameters */
   if (vs->savings.empty()) vs->savings_used.assign(K, 1.0);
   else {
-    PetscCheck((PetscInt)vs->savings.size() == K, comm, PETSC_ERR_ARG_SIZ,
-               "-ts_vshmm_savings_factors (TSVSHMMSetSavingsFactors()) has %d values but there are %" PetscInt_FMT " scales (RHS splits), so it needs %" PetscInt_FMT ": one savings factor alpha_j per scale except the fastest, slowest first", (int)vs->savings.size(), nscales, K);
+    PetscCheck((PetscInt)vs->savings.size() == K, comm, PETSC_ERR_ARG_SIZ, "-ts_vshmm_savings_factors (TSVSHMMSetSavingsFactors()) has %d values but there are %" PetscInt_FMT " scales (RHS splits), so it needs %" PetscInt_FMT ": one savings factor alpha_j per scale except the fastest, slowest first",
+               (int)vs->savings.size(), nscales, K);
     vs->savings_used = vs->savings;
   }
   if (vs->subintervals.empty()) vs->subintervals_used.assign(K, 1);
   else {
-    PetscCheck((PetscInt)vs->subintervals.size() == K, comm, PETSC_ERR_ARG_SIZ,
-               "-ts_vshmm_subintervals (TSVSHMMSetSubintervals()) has %d values but there are %" PetscInt_FMT " scales (RHS splits), so it needs %" PetscInt_FMT ": one subinterval count m_j >= 1 per scale except the fastest, slowest first", (int)vs->subintervals.size(), nscales, K);
+    PetscCheck((PetscInt)vs->subintervals.size() == K, comm, PETSC_ERR_ARG_SIZ, "-ts_vshmm_subintervals (TSVSHMMSetSubintervals()) has %d values but there are %" PetscInt_FMT " scales (RHS splits), so it needs %" PetscInt_FMT ": one subinterval count m_j >= 1 per scale except the fastest, slowest first",
+               (int)vs->subintervals.size(), nscales, K);
     vs->subintervals_used = vs->subintervals;
   }
   PetscCheck(std::isfinite(ts->time_step) && ts->time_step > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "TSVSHMM: the TS time step (the sampling interval DeltaT) is %g: set a positive one with TSSetTimeStep() or -ts_dt", (double)ts->time_step);
-  PetscCheck(vs->micro_dt == 0.0 || vs->micro_dt > kMinMicroStepFraction * ts->time_step, comm, PETSC_ERR_ARG_OUTOFRANGE,
-             "-ts_vshmm_micro_dt (TSVSHMMSetMicroStep()) is %g, below the time resolution of the sampling interval DeltaT = %g: the micro step must exceed %g DeltaT", (double)vs->micro_dt, (double)ts->time_step, (double)kMinMicroStepFraction);
-  PetscCheck(vs->micro_dt == 0.0 || vs->micro_dt < ts->time_step, comm, PETSC_ERR_ARG_OUTOFRANGE,
-             "-ts_vshmm_micro_dt (TSVSHMMSetMicroStep()) is %g, not smaller than the sampling interval DeltaT = %g (the TS time step, -ts_dt): the micro step must be a small fraction of DeltaT", (double)vs->micro_dt, (double)ts->time_step);
+  PetscCheck(vs->micro_dt == 0.0 || vs->micro_dt > kMinMicroStepFraction * ts->time_step, comm, PETSC_ERR_ARG_OUTOFRANGE, "-ts_vshmm_micro_dt (TSVSHMMSetMicroStep()) is %g, below the time resolution of the sampling interval DeltaT = %g: the micro step must exceed %g DeltaT",
+             (double)vs->micro_dt, (double)ts->time_step, (double)kMinMicroStepFraction);
+  PetscCheck(vs->micro_dt == 0.0 || vs->micro_dt < ts->time_step, comm, PETSC_ERR_ARG_OUTOFRANGE, "-ts_vshmm_micro_dt (TSVSHMMSetMicroStep()) is %g, not smaller than the sampling interval DeltaT = %g (the TS time step, -ts_dt): the micro step must be a small fraction of DeltaT",
+             (double)vs->micro_dt, (double)ts->time_step);
 
   /* Kernel */
   if (vs->kernel_order != PETSC_DEFAULT && vs->kernel_type != TSVSHMM_KERNEL_POLYNOMIAL) {
     std::unique_ptr<vshmm::Kernel> probe = vshmm::Kernel::create(CoreKernelType(vs->kernel_type));
-    PetscCheck(probe->order() == vs->kernel_order, comm, PETSC_ERR_ARG_INCOMP,
-               "-ts_vshmm_kernel_order %" PetscInt_FMT " does not apply to the %s kernel, whose order is fixed; only the polynomial kernel takes an order (0..%d)", vs->kernel_order, TSVSHMMKernelTypes[vs->kernel_type], vshmm::Kernel::kMaxPolynomialOrder);
+    PetscCheck(probe->order() == vs->kernel_order, comm, PETSC_ERR_ARG_INCOMP, "-ts_vshmm_kernel_order %" PetscInt_FMT " does not apply to the %s kernel, whose order is fixed; only the polynomial kernel takes an order (0..%d)", vs->kernel_order, TSVSHMMKernelTypes[vs->kernel_type], vshmm::Kernel::kMaxPolynomialOrder);
   }
   try {
     vs->kernel = vshmm::Kernel::create(CoreKernelType(vs->kernel_type), vs->kernel_order == PETSC_DEFAULT ? 1 : (int)vs->kernel_order);
@@ -340,8 +337,7 @@ static PetscErrorCode TSStep_VSHMM(TS ts)
     last   = PETSC_TRUE;
   }
   const PetscReal dt = vs->micro_dt > 0 ? vs->micro_dt : ts->time_step / kDefaultMicroStepsPerMacroStep;
-  PetscCheck(dt > kMinMicroStepFraction * DeltaT || last, comm, PETSC_ERR_ARG_OUTOFRANGE,
-             "-ts_vshmm_micro_dt %g is below the time resolution of the macro step DeltaT = %g: the micro step must exceed %g DeltaT", (double)dt, (double)DeltaT, (double)kMinMicroStepFraction);
+  PetscCheck(dt > kMinMicroStepFraction * DeltaT || last, comm, PETSC_ERR_ARG_OUTOFRANGE, "-ts_vshmm_micro_dt %g is below the time resolution of the macro step DeltaT = %g: the micro step must exceed %g DeltaT", (double)dt, (double)DeltaT, (double)kMinMicroStepFraction);
   if (vs->stability_interval > 0 && ts->steps > 0 && ts->steps % vs->stability_interval == 0) {
     PetscCall(TSVSHMMCheckStability_Private(ts));
     if (vs->adapt) PetscCall(TSVSHMMCheckSeparation_Private(ts));
@@ -364,14 +360,14 @@ static PetscErrorCode TSStep_VSHMM(TS ts)
      in the next level's evaluation). */
   const int nsplits = (int)vs->splits.size();
   struct {
-    double when; /* the field evaluation's number, exact in a double */
+    double when;  /* the field evaluation's number, exact in a double */
     int    where; /* level * nsplits + split, or -1 */
   } fault = {(double)vs->nonfinite_evaluation, vs->nonfinite_split < 0 ? -1 : (int)(vs->nonfinite_level * nsplits + vs->nonfinite_split)};
   if (fault.where < 0) fault.when = PETSC_MAX_REAL; /* ranks without a fault lose the MINLOC */
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &fault, 1, MPI_DOUBLE_INT, MPI_MINLOC, comm));
   if (fault.where >= 0 && fault.when < PETSC_MAX_REAL) {
-    const int   split = fault.where % nsplits, level = fault.where / nsplits;
-    PetscReal   t_fault = vs->nonfinite_split >= 0 && (double)vs->nonfinite_evaluation == fault.when ? vs->nonfinite_time : PETSC_MAX_REAL;
+    const int split = fault.where % nsplits, level = fault.where / nsplits;
+    PetscReal t_fault = vs->nonfinite_split >= 0 && (double)vs->nonfinite_evaluation == fault.when ? vs->nonfinite_time : PETSC_MAX_REAL;
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &t_fault, 1, MPIU_REAL, MPIU_MIN, comm)); /* the time of that evaluation */
     const char *name  = vs->splits[split].name.c_str();
     int         scale = 0; /* the scale the split belongs to */
@@ -379,8 +375,7 @@ static PetscErrorCode TSStep_VSHMM(TS ts)
 
     PetscCall(VecCopy(vs->X0, ts->vec_sol)); /* keep the last good sampled state */
     ts->reason = TS_DIVERGED_STEP_REJECTED;
-    PetscCheck(!ts->errorifstepfailed, comm, PETSC_ERR_FP,
-               "TSVSHMM: split '%s' (scale %d) produced Inf or NaN at t = %.17g, evaluated for level %d, in the macro step from t = %g to %g; the solution was left at t = %g (use -ts_error_if_step_fails false to stop with TS_DIVERGED_STEP_REJECTED instead)", name, scale, (double)t_fault, level, (double)t0, (double)(t0 + DeltaT), (double)t0);
+    PetscCheck(!ts->errorifstepfailed, comm, PETSC_ERR_FP, "TSVSHMM: split '%s' (scale %d) produced Inf or NaN at t = %.17g, evaluated for level %d, in the macro step from t = %g to %g; the solution was left at t = %g (use -ts_error_if_step_fails false to stop with TS_DIVERGED_STEP_REJECTED instead)", name, scale, (double)t_fault, level, (double)t0, (double)(t0 + DeltaT), (double)t0);
     PetscCall(PetscInfo(ts, "Split '%s' (scale %d) produced Inf or NaN at t = %.17g, evaluated for level %d; stopping with TS_DIVERGED_STEP_REJECTED at t = %g\n", name, scale, (double)t_fault, level, (double)t0));
     PetscCall(PetscFPrintf(comm, PETSC_STDERR, "TSVSHMM: split '%s' (scale %d) produced Inf or NaN at t = %.17g, evaluated for level %d; the solve stops with TS_DIVERGED_STEP_REJECTED at t = %g\n", name, scale, (double)t_fault, level, (double)t0));
     PetscFunctionReturn(0);
@@ -559,7 +554,8 @@ static PetscErrorCode TSView_VSHMM(TS ts, PetscViewer viewer)
   const int      q       = vs->kernel->order();
   if (q == vshmm::Kernel::kInfiniteOrder) PetscCall(PetscViewerASCIIPrintf(viewer, "  VSHMM: %" PetscInt_FMT " scales (RHS splits, slowest first), kernel %s (infinitely smooth)\n", nscales, vs->kernel->name().c_str()));
   else PetscCall(PetscViewerASCIIPrintf(viewer, "  VSHMM: %" PetscInt_FMT " scales (RHS splits, slowest first), kernel %s (order q = %d)\n", nscales, vs->kernel->name().c_str(), q));
-  if (vs->adapt && vs->macro_steps > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "  micro step dt = %g (%s), sampling interval DeltaT = %g\n", (double)vs->adapt_used.microStep, vs->micro_dt > 0 ? "set" : "chosen by -ts_vshmm_adapt for the last macro step", (double)ts->time_step));
+  if (vs->adapt && vs->macro_steps > 0)
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  micro step dt = %g (%s), sampling interval DeltaT = %g\n", (double)vs->adapt_used.microStep, vs->micro_dt > 0 ? "set" : "chosen by -ts_vshmm_adapt for the last macro step", (double)ts->time_step));
   else if (vs->micro_dt > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "  micro step dt = %g, sampling interval DeltaT = %g\n", (double)vs->micro_dt, (double)ts->time_step));
   else PetscCall(PetscViewerASCIIPrintf(viewer, "  micro step dt = DeltaT/%d = %g (default), sampling interval DeltaT = %g\n", (int)kDefaultMicroStepsPerMacroStep, (double)(ts->time_step / kDefaultMicroStepsPerMacroStep), (double)ts->time_step));
   {
@@ -580,8 +576,10 @@ static PetscErrorCode TSView_VSHMM(TS ts, PetscViewer viewer)
   for (PetscInt64 n : vs->rhs_evaluations) evals += n;
   PetscCall(PetscViewerASCIIPrintf(viewer, "  work: %" PetscInt64_FMT " macro steps, %" PetscInt64_FMT " micro cycles, %" PetscInt64_FMT " Runge-Kutta steps, %" PetscInt64_FMT " split RHS evaluations\n", vs->macro_steps, vs->micro_cycles, steps, evals));
   if (vs->adapt) {
-    PetscCall(PetscViewerASCIIPrintf(viewer, "  accuracy control (-ts_vshmm_adapt): rtol %g, atol %g on %s; savings factors %s\n", (double)ts->rtol, (double)ts->atol, vs->observables ? "the observables" : "the whole state (weighted norm)", vs->savings.empty() ? (vs->no_separation ? "none (scales not separated)" : "chosen") : "set"));
-    PetscCall(PetscViewerASCIIPrintf(viewer, "    error estimate: last macro step %g, sum over the run %g (1 = the tolerance); %" PetscInt64_FMT " calibrations, %" PetscInt64_FMT " rejected macro steps, %" PetscInt64_FMT " split RHS evaluations for estimates and rejected steps\n", (double)vs->error_estimate, (double)vs->error_estimate_total, vs->adapt_calibrations, vs->adapt_rejections, vs->adapt_evaluations));
+    PetscCall(
+      PetscViewerASCIIPrintf(viewer, "  accuracy control (-ts_vshmm_adapt): rtol %g, atol %g on %s; savings factors %s\n", (double)ts->rtol, (double)ts->atol, vs->observables ? "the observables" : "the whole state (weighted norm)", vs->savings.empty() ? (vs->no_separation ? "none (scales not separated)" : "chosen") : "set"));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "    error estimate: last macro step %g, sum over the run %g (1 = the tolerance); %" PetscInt64_FMT " calibrations, %" PetscInt64_FMT " rejected macro steps, %" PetscInt64_FMT " split RHS evaluations for estimates and rejected steps\n",
+                                     (double)vs->error_estimate, (double)vs->error_estimate_total, vs->adapt_calibrations, vs->adapt_rejections, vs->adapt_evaluations));
   }
   if (!vs->level_radius.empty() && vs->level_radius.size() == vs->level_end.size()) {
     PetscCall(PetscViewerASCIIPrintf(viewer, "  spectral radius of each level's Jacobian (t = %g):", (double)vs->spectra_time));
@@ -589,8 +587,10 @@ static PetscErrorCode TSView_VSHMM(TS ts, PetscViewer viewer)
     PetscCall(PetscViewerASCIIPrintf(viewer, "\n"));
   }
   if (!vs->check_stability && vs->stability_interval == 0) PetscCall(PetscViewerASCIIPrintf(viewer, "  stability check: off\n"));
-  else if (vs->stability_interval > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "  stability check: %s set-up and every %" PetscInt_FMT " macro steps; %" PetscInt64_FMT " checks, %" PetscInt64_FMT " split RHS evaluations, %" PetscInt64_FMT " warnings\n", vs->check_stability ? "at" : "not at", vs->stability_interval, vs->stability_checks, vs->stability_evaluations, vs->stability_warnings));
-  else PetscCall(PetscViewerASCIIPrintf(viewer, "  stability check: at set-up; %" PetscInt64_FMT " checks, %" PetscInt64_FMT " split RHS evaluations, %" PetscInt64_FMT " warnings\n", vs->stability_checks, vs->stability_evaluations, vs->stability_warnings));
+  else if (vs->stability_interval > 0)
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  stability check: %s set-up and every %" PetscInt_FMT " macro steps; %" PetscInt64_FMT " checks, %" PetscInt64_FMT " split RHS evaluations, %" PetscInt64_FMT " warnings\n", vs->check_stability ? "at" : "not at", vs->stability_interval, vs->stability_checks, vs->stability_evaluations, vs->stability_warnings));
+  else
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  stability check: at set-up; %" PetscInt64_FMT " checks, %" PetscInt64_FMT " split RHS evaluations, %" PetscInt64_FMT " warnings\n", vs->stability_checks, vs->stability_evaluations, vs->stability_warnings));
   PetscFunctionReturn(0);
 }
 
@@ -797,13 +797,13 @@ static PetscErrorCode TSVSHMMGetStatistics_VSHMM(TS ts, TSVSHMMStatistics *stats
   TS_VSHMM *vs = (TS_VSHMM *)ts->data;
 
   PetscFunctionBegin;
-  stats->macro_steps       = vs->macro_steps;
-  stats->micro_cycles      = vs->micro_cycles;
-  stats->nsplits           = (PetscInt)vs->rhs_evaluations.size();
-  stats->nscales           = (PetscInt)vs->level_steps.size();
-  stats->rhs_evaluations   = vs->rhs_evaluations.empty() ? nullptr : vs->rhs_evaluations.data();
-  stats->level_steps       = vs->level_steps.empty() ? nullptr : vs->level_steps.data();
-  stats->level_evaluations = vs->level_evaluations.empty() ? nullptr : vs->level_evaluations.data();
+  stats->macro_steps           = vs->macro_steps;
+  stats->micro_cycles          = vs->micro_cycles;
+  stats->nsplits               = (PetscInt)vs->rhs_evaluations.size();
+  stats->nscales               = (PetscInt)vs->level_steps.size();
+  stats->rhs_evaluations       = vs->rhs_evaluations.empty() ? nullptr : vs->rhs_evaluations.data();
+  stats->level_steps           = vs->level_steps.empty() ? nullptr : vs->level_steps.data();
+  stats->level_evaluations     = vs->level_evaluations.empty() ? nullptr : vs->level_evaluations.data();
   stats->stability_checks      = vs->stability_checks;
   stats->stability_evaluations = vs->stability_evaluations;
   stats->stability_warnings    = vs->stability_warnings;

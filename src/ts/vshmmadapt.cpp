@@ -26,22 +26,22 @@
 #include <algorithm>
 #include <cmath>
 
-static constexpr PetscReal kMinSeparation     = 10;   /* a pair of levels this far apart in spectral radius is separated */
-static constexpr PetscReal kInitialSeparation = 10;   /* effective separation sigma_l of the first parameters */
-static constexpr PetscReal kSafety            = 0.8;  /* the parameters aim at this fraction of a step's share */
-static constexpr PetscInt  kRecalibrate       = 10;   /* macro steps between full measurements of the model */
-static constexpr PetscInt  kMaxAttempts       = 12;   /* tries of one macro step */
-static constexpr PetscInt  kMinCycles         = 20;   /* micro cycles per macro step at least */
-static constexpr PetscReal kStableFraction    = 0.9;  /* of the largest stable step */
-static constexpr PetscReal kFloorFactor       = 0.7;  /* a refinement that lowers the estimate by less than this has hit its floor */
-static constexpr PetscReal kMinShare          = 1e-3; /* no error term is taken as less than this share of the estimate */
-static constexpr PetscReal kRatioCoarsening   = 4;    /* a calibration's coarser r_l - 1 */
-static constexpr PetscInt  kComparisons       = 1;    /* comparison runs per estimate, */
+static constexpr PetscReal kMinSeparation       = 10;     /* a pair of levels this far apart in spectral radius is separated */
+static constexpr PetscReal kInitialSeparation   = 10;     /* effective separation sigma_l of the first parameters */
+static constexpr PetscReal kSafety              = 0.8;    /* the parameters aim at this fraction of a step's share */
+static constexpr PetscInt  kRecalibrate         = 10;     /* macro steps between full measurements of the model */
+static constexpr PetscInt  kMaxAttempts         = 12;     /* tries of one macro step */
+static constexpr PetscInt  kMinCycles           = 20;     /* micro cycles per macro step at least */
+static constexpr PetscReal kStableFraction      = 0.9;    /* of the largest stable step */
+static constexpr PetscReal kFloorFactor         = 0.7;    /* a refinement that lowers the estimate by less than this has hit its floor */
+static constexpr PetscReal kMinShare            = 1e-3;   /* no error term is taken as less than this share of the estimate */
+static constexpr PetscReal kRatioCoarsening     = 4;      /* a calibration's coarser r_l - 1 */
+static constexpr PetscInt  kComparisons         = 1;      /* comparison runs per estimate, */
 static constexpr PetscReal kComparisonFactor[2] = {2, 3}; /* each with every error term this many times that of the step */
-static constexpr PetscReal kMaxCheaper        = 8;    /* after an accepted step the work may fall by this factor at most */
-static constexpr PetscReal kWarn              = 2;    /* a step accepted with an estimate above this many shares is reported on stderr */
-static constexpr PetscReal kFloorAccept       = 4;    /* an estimate above this many shares is never taken as a noise floor */
-static constexpr PetscReal kMaxDearer         = 4;    /* and rise by this factor at most per try (the estimate is noisy: refining in steps wastes less) */
+static constexpr PetscReal kMaxCheaper          = 8;      /* after an accepted step the work may fall by this factor at most */
+static constexpr PetscReal kWarn                = 2;      /* a step accepted with an estimate above this many shares is reported on stderr */
+static constexpr PetscReal kFloorAccept         = 4;      /* an estimate above this many shares is never taken as a noise floor */
+static constexpr PetscReal kMaxDearer           = 4;      /* and rise by this factor at most per try (the estimate is noisy: refining in steps wastes less) */
 
 const char *const TSVSHMMSeparationChecks[] = {"off", "warn", "error", "TSVSHMMSeparationCheck", "TSVSHMM_SEPARATION_", nullptr};
 
@@ -108,7 +108,6 @@ static PetscErrorCode TrialStep(TS ts, const vshmm::AdaptParameters &p, PetscRea
   PetscFunctionReturn(0);
 }
 
-
 /* The bounds of the choice: user-set parameters, stability, enough cycles per macro step. */
 static vshmm::AdaptBounds Bounds(TS ts, PetscReal DeltaT)
 {
@@ -158,11 +157,9 @@ PetscErrorCode TSVSHMMCheckSeparation_Private(TS ts)
   vs->no_separation = best < kMinSeparation ? PETSC_TRUE : PETSC_FALSE;
   PetscCall(PetscInfo(ts, "Separation check at t = %g: %s\n", (double)ts->ptime, figures.c_str()));
   if (!vs->no_separation || vs->check_separation == TSVSHMM_SEPARATION_OFF) PetscFunctionReturn(0);
-  PetscCheck(vs->check_separation != TSVSHMM_SEPARATION_ERROR, comm, PETSC_ERR_ARG_INCOMP,
-             "TSVSHMM separation check at t = %g: the time scales of the RHS splits are not separated (ratio of the spectral radii of consecutive levels, at least %g needed: %s). VSHMM samples the faster scales statistically and would change the answer here; use a single-rate TS type (-ts_type rk) or a multirate one (-ts_type mprk), or -ts_vshmm_check_separation warn to run anyway",
+  PetscCheck(vs->check_separation != TSVSHMM_SEPARATION_ERROR, comm, PETSC_ERR_ARG_INCOMP, "TSVSHMM separation check at t = %g: the time scales of the RHS splits are not separated (ratio of the spectral radii of consecutive levels, at least %g needed: %s). VSHMM samples the faster scales statistically and would change the answer here; use a single-rate TS type (-ts_type rk) or a multirate one (-ts_type mprk), or -ts_vshmm_check_separation warn to run anyway",
              (double)ts->ptime, (double)kMinSeparation, figures.c_str());
-  PetscCall(PetscFPrintf(comm, PETSC_STDERR,
-                         "TSVSHMM warning: separation check at t = %g: the time scales of the RHS splits are not separated (ratio of the spectral radii of consecutive levels, at least %g needed: %s). VSHMM samples the faster scales statistically and %s; a single-rate TS type (-ts_type rk) or a multirate one (-ts_type mprk) is the right tool. (-ts_vshmm_check_separation error makes this an error, off silences it.)\n",
+  PetscCall(PetscFPrintf(comm, PETSC_STDERR, "TSVSHMM warning: separation check at t = %g: the time scales of the RHS splits are not separated (ratio of the spectral radii of consecutive levels, at least %g needed: %s). VSHMM samples the faster scales statistically and %s; a single-rate TS type (-ts_type rk) or a multirate one (-ts_type mprk) is the right tool. (-ts_vshmm_check_separation error makes this an error, off silences it.)\n",
                          (double)ts->ptime, (double)kMinSeparation, figures.c_str(), vs->adapt ? "-ts_vshmm_adapt therefore takes no savings (every level steps with the micro step)" : "its answer will be wrong by an amount it cannot estimate"));
   PetscFunctionReturn(0);
 }
@@ -216,10 +213,10 @@ PetscErrorCode TSVSHMMAdaptSetUp_Private(TS ts)
   LimitToStableSteps(ts, p);
   const vshmm::AdaptBounds b = Bounds(ts, DeltaT);
   vshmm::fitCycle(p, b.maxCycle, b.fixedRatios, true); /* enough cycles per macro step */
-  vs->savings_used  = vshmm::savingsFromTimeRatios(p.ratios);
-  vs->adapt_model   = vshmm::ErrorModel();
-  vs->adapt_tstart  = ts->ptime;
-  vs->adapt_ready   = PETSC_TRUE;
+  vs->savings_used   = vshmm::savingsFromTimeRatios(p.ratios);
+  vs->adapt_model    = vshmm::ErrorModel();
+  vs->adapt_tstart   = ts->ptime;
+  vs->adapt_ready    = PETSC_TRUE;
   vs->error_estimate = vs->error_estimate_total = 0;
   PetscCall(PetscInfo(ts, "Adapt: first parameters dt = %g, cycle %g (DeltaT %g), tolerance %g\n", (double)p.microStep, (double)vshmm::cycleLength(p), (double)DeltaT, (double)tol));
   PetscFunctionReturn(0);
@@ -271,12 +268,12 @@ struct Comparisons {
 
 static PetscErrorCode Compare(TS ts, const vshmm::AdaptParameters &p, PetscReal t0, PetscReal DeltaT, Comparisons &c)
 {
-  TS_VSHMM              *vs = (TS_VSHMM *)ts->data;
+  TS_VSHMM *vs = (TS_VSHMM *)ts->data;
   PetscFunctionBegin;
   c.q.clear();
   c.d.clear();
   for (PetscInt k = 0; k < kComparisons; ++k) {
-    PetscReal d;
+    PetscReal              d;
     vshmm::AdaptParameters q = Comparison(ts, p, vshmm::termsScaled(p, kComparisonFactor[k], vs->tableau->order));
     PetscCall(TrialStep(ts, q, t0, DeltaT, vs->Xtrial));
     PetscCall(ObservableDifference(ts, t0 + DeltaT, vs->Xbase, vs->Xtrial, &d));
@@ -300,7 +297,7 @@ static PetscReal Estimate(const vshmm::ErrorModel &model, const vshmm::AdaptPara
   PetscReal E = c.d.empty() ? PETSC_INFINITY : 0;
   for (size_t k = 0; k < c.d.size(); ++k) {
     const PetscReal before = model.total(p), predicted = model.total(c.q[k]) - before;
-    E                      = PetscMax(E, predicted > 0 ? c.d[k] * before / predicted : c.d[k]);
+    E = PetscMax(E, predicted > 0 ? c.d[k] * before / predicted : c.d[k]);
   }
   return E;
 }
@@ -350,22 +347,22 @@ static PetscErrorCode Calibrate(TS ts, const vshmm::AdaptParameters &p, PetscRea
 /* One macro step with accuracy control; the accepted result is left in ts->vec_sol. */
 PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
 {
-  TS_VSHMM       *vs = (TS_VSHMM *)ts->data;
-  const PetscInt  K  = (PetscInt)vs->level_end.size() - 1;
+  TS_VSHMM       *vs     = (TS_VSHMM *)ts->data;
+  const PetscInt  K      = (PetscInt)vs->level_end.size() - 1;
   const PetscReal budget = StepBudget(ts, DeltaT), t1 = t0 + DeltaT;
-  const int       order  = vs->tableau->order;
+  const int       order = vs->tableau->order;
 
   PetscFunctionBegin;
   if (!vs->adapt_ready) PetscCall(TSVSHMMAdaptSetUp_Private(ts));
   vshmm::AdaptBounds bounds = Bounds(ts, DeltaT);
-  const PetscBool later     = (ts->max_time - t1 > 0.5 * DeltaT) ? PETSC_TRUE : PETSC_FALSE;
+  const PetscBool    later  = (ts->max_time - t1 > 0.5 * DeltaT) ? PETSC_TRUE : PETSC_FALSE;
   /* the split between the terms is measured when a later macro step can use it: at the first, then
      after 1, 2, 4, 8 macro steps (a first measurement may fall in an initial transient), then every
      kRecalibrate */
-  const PetscInt  interval  = vs->adapt_calibrated_times >= 5 ? kRecalibrate : PetscMin(kRecalibrate, (PetscInt)1 << PetscMax(vs->adapt_calibrated_times - 1, 0));
-  PetscBool       calibrate = (later && (!vs->adapt_calibrated || vs->adapt_since_calibration >= interval)) ? PETSC_TRUE : PETSC_FALSE;
-  PetscReal       Eprev     = PETSC_MAX_REAL;
-  PetscInt        stalled   = 0;
+  const PetscInt interval  = vs->adapt_calibrated_times >= 5 ? kRecalibrate : PetscMin(kRecalibrate, (PetscInt)1 << PetscMax(vs->adapt_calibrated_times - 1, 0));
+  PetscBool      calibrate = (later && (!vs->adapt_calibrated || vs->adapt_since_calibration >= interval)) ? PETSC_TRUE : PETSC_FALSE;
+  PetscReal      Eprev     = PETSC_MAX_REAL;
+  PetscInt       stalled   = 0;
   for (PetscInt attempt = 0;; ++attempt) {
     vshmm::AdaptParameters &p = vs->adapt_params;
     vs->nonfinite_split       = -1;
@@ -416,7 +413,7 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
       vshmm::limitWorkChange(next, same, PetscMin(kMaxCheaper, PetscMax(1.0, PetscSqrtReal(target / PetscMax(E, PETSC_SMALL)))), kMaxDearer);
     }
     PetscBool refinable = vs->adapt_model.total(next) < 0.9 * vs->adapt_model.total(p) ? PETSC_TRUE : PETSC_FALSE; /* the model expects a clearly lower error */
-    if (!std::isfinite(E) || (E > kFloorAccept * budget && !refinable)) { /* no estimate, or far off and the model is stuck: every parameter finer */
+    if (!std::isfinite(E) || (E > kFloorAccept * budget && !refinable)) {                                          /* no estimate, or far off and the model is stuck: every parameter finer */
       next = p;
       if (!bounds.fixedMicroStep) next.microStep *= 0.5;
       if (!bounds.fixedRatios)
@@ -428,8 +425,8 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
     /* a floor: twice, finer parameters did not lower an estimate that is near the share (or the
        savings cannot be taken back any further); far above it, the savings go on falling (their
        limit, no savings, is a single-rate Runge-Kutta method with the micro step) */
-    stalled               = (attempt > 0 && E > kFloorFactor * Eprev) ? stalled + 1 : 0;
-    PetscBool       savings = PETSC_FALSE; /* savings the choice may still take back */
+    stalled           = (attempt > 0 && E > kFloorFactor * Eprev) ? stalled + 1 : 0;
+    PetscBool savings = PETSC_FALSE; /* savings the choice may still take back */
     for (double r : p.ratios) savings = (r > 1.0 + 1e-6 && !bounds.fixedRatios) ? PETSC_TRUE : savings;
     const PetscBool floor = (stalled >= 2 && (E <= kFloorAccept * budget || !savings)) ? PETSC_TRUE : PETSC_FALSE;
     Eprev                 = E;
@@ -440,14 +437,14 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
     }
     if (E > budget) {
       const PetscBool noise = (floor && savings) ? PETSC_TRUE : PETSC_FALSE;
-      const char     *why   = noise ? "finer parameters do not lower the estimate" : floor ? "finer micro steps do not lower the estimate, and the savings factors are set or none are left" : !refinable ? "no finer parameters allowed (user-set parameters or stability bounds)" : "too many tries";
+      const char     *why   = noise        ? "finer parameters do not lower the estimate"
+                              : floor      ? "finer micro steps do not lower the estimate, and the savings factors are set or none are left"
+                              : !refinable ? "no finer parameters allowed (user-set parameters or stability bounds)"
+                                           : "too many tries";
       PetscCall(PetscInfo(ts, "Adapt: macro step [%g, %g] accepted with estimate %g above its share %g: %s\n", (double)t0, (double)t1, (double)E, (double)budget, why));
       if (!vs->floor_warned && E > kWarn * budget) {
         vs->floor_warned = PETSC_TRUE;
-        PetscCall(PetscFPrintf(PetscObjectComm((PetscObject)ts), PETSC_STDERR,
-                               "TSVSHMM warning (-ts_vshmm_adapt): the macro step [%g, %g] is accepted with an error estimate of %g times its share of the tolerance (%s). %s The run goes on; the estimates are in the statistics (TSVSHMMGetStatistics(), -ts_view). This warning is given once per solve.\n",
-                               (double)t0, (double)t1, (double)(E / budget), why,
-                               noise ? "The sampled values carry a part VSHMM does not resolve (typically fast fluctuations): a tolerance this far below -ts_rtol/-ts_atol is out of reach for VSHMM here." : "Loosen the tolerance, or leave the micro step and savings factors to -ts_vshmm_adapt, or use a single-rate TS type."));
+        PetscCall(PetscFPrintf(PetscObjectComm((PetscObject)ts), PETSC_STDERR, "TSVSHMM warning (-ts_vshmm_adapt): the macro step [%g, %g] is accepted with an error estimate of %g times its share of the tolerance (%s). %s The run goes on; the estimates are in the statistics (TSVSHMMGetStatistics(), -ts_view). This warning is given once per solve.\n", (double)t0, (double)t1, (double)(E / budget), why, noise ? "The sampled values carry a part VSHMM does not resolve (typically fast fluctuations): a tolerance this far below -ts_rtol/-ts_atol is out of reach for VSHMM here." : "Loosen the tolerance, or leave the micro step and savings factors to -ts_vshmm_adapt, or use a single-rate TS type."));
       }
     }
     PetscCall(VecCopy(vs->Xbase, ts->vec_sol));

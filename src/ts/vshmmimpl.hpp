@@ -23,9 +23,9 @@
 // or a group of them (-ts_vshmm_splits a+b,c).
 struct VSHMMSplit {
   std::string name;
-  TS          subts = nullptr;   // the split's sub-TS (owned by the TS's split list)
-  IS          is    = nullptr;   // its components (owned by the split list)
-  Vec         F     = nullptr;   // split-sized output of the split function
+  TS          subts    = nullptr;     // the split's sub-TS (owned by the TS's split list)
+  IS          is       = nullptr;     // its components (owned by the split list)
+  Vec         F        = nullptr;     // split-sized output of the split function
   PetscBool   additive = PETSC_FALSE; // IS = every locally owned component, in order, on every rank
   PetscBool   local    = PETSC_FALSE; // IS = a contiguous run of locally owned components on every rank
   PetscInt    offset   = 0;           // start of that run in the local array (local only)
@@ -34,73 +34,77 @@ struct VSHMMSplit {
 
 struct TS_VSHMM {
   // Parameters (settable at any time; checked at set-up)
-  PetscReal                micro_dt = 0.0; // 0: DeltaT / kDefaultMicroStepsPerMacroStep
-  std::vector<PetscReal>   savings;        // empty: all 1
-  std::vector<PetscInt>    subintervals;   // empty: all 1
-  TSVSHMMKernelType        kernel_type  = TSVSHMM_KERNEL_COSINE;
-  PetscInt                 kernel_order = PETSC_DEFAULT; // PETSC_DEFAULT: the kernel's own
-  std::string              rk_type      = TSRK4;
-  std::vector<std::string> split_order;                  // one entry per scale, "a" or "a+b"; empty: creation order
-  std::vector<std::string> split_order_out;              // for TSVSHMMGetSplitOrder()
-  PetscBool                check_stability    = PETSC_TRUE; // at set-up
-  PetscInt                 stability_interval = 0;          // also every that many macro steps (0: never)
-  std::vector<const char *> split_order_c;               // for TSVSHMMGetSplitOrder()
-  PetscBool                adapt = PETSC_FALSE;         // choose the parameters not set from the TS tolerances
-  TSVSHMMSeparationCheck   check_separation = TSVSHMM_SEPARATION_WARN;
-  PetscInt                 nobservables = 0;            // 0: the whole state in the TS's weighted norm
+  PetscReal                 micro_dt = 0.0; // 0: DeltaT / kDefaultMicroStepsPerMacroStep
+  std::vector<PetscReal>    savings;        // empty: all 1
+  std::vector<PetscInt>     subintervals;   // empty: all 1
+  TSVSHMMKernelType         kernel_type  = TSVSHMM_KERNEL_COSINE;
+  PetscInt                  kernel_order = PETSC_DEFAULT; // PETSC_DEFAULT: the kernel's own
+  std::string               rk_type      = TSRK4;
+  std::vector<std::string>  split_order;                                                // one entry per scale, "a" or "a+b"; empty: creation order
+  std::vector<std::string>  split_order_out;                                            // for TSVSHMMGetSplitOrder()
+  PetscBool                 check_stability    = PETSC_TRUE;                            // at set-up
+  PetscInt                  stability_interval = 0;                                     // also every that many macro steps (0: never)
+  std::vector<const char *> split_order_c;                                              // for TSVSHMMGetSplitOrder()
+  PetscBool                 adapt                                        = PETSC_FALSE; // choose the parameters not set from the TS tolerances
+  TSVSHMMSeparationCheck    check_separation                             = TSVSHMM_SEPARATION_WARN;
+  PetscInt                  nobservables                                 = 0; // 0: the whole state in the TS's weighted norm
   PetscErrorCode (*observables)(TS, PetscReal, Vec, PetscReal[], void *) = nullptr;
-  void *observables_ctx = nullptr;
+  void *observables_ctx                                                  = nullptr;
 
   // Set-up state
-  std::vector<VSHMMSplit>                   splits;    // in scale order
-  std::vector<PetscInt>                     level_end; // level l evaluates splits [0, level_end[l])
-  std::unique_ptr<vshmm::Tableau>           tableau;
-  std::unique_ptr<vshmm::Kernel>            kernel;
-  std::unique_ptr<vshmm::MesoscopicSchedule> schedule; // for the current micro step; made at the first step
-  std::vector<PetscReal>                    savings_used; // savings with defaults filled in
-  std::vector<PetscInt>                     subintervals_used;
-  Vec                                       Y  = nullptr; // stage state
-  std::vector<Vec>                          K;            // stage derivatives
-  Vec                                       X0 = nullptr; // previous sampled state (interpolation, rejection)
-  std::vector<PetscLogEvent>                level_events;
+  std::vector<VSHMMSplit>                    splits;    // in scale order
+  std::vector<PetscInt>                      level_end; // level l evaluates splits [0, level_end[l])
+  std::unique_ptr<vshmm::Tableau>            tableau;
+  std::unique_ptr<vshmm::Kernel>             kernel;
+  std::unique_ptr<vshmm::MesoscopicSchedule> schedule;     // for the current micro step; made at the first step
+  std::vector<PetscReal>                     savings_used; // savings with defaults filled in
+  std::vector<PetscInt>                      subintervals_used;
+  Vec                                        Y = nullptr;  // stage state
+  std::vector<Vec>                           K;            // stage derivatives
+  Vec                                        X0 = nullptr; // previous sampled state (interpolation, rejection)
+  std::vector<PetscLogEvent>                 level_events;
 
   // What each level's field looks like near the state (stability and separation checks, adapt)
-  std::vector<PetscReal>    level_radius;   // spectral radius estimate of the Jacobian of G_l
-  std::vector<PetscReal>    level_max_step; // largest stable step of the inner RK for its limiting modes (inf: none)
-  std::vector<std::complex<double>>              level_worst;    // the mode that sets it
-  std::vector<std::vector<std::complex<double>>> level_limiting; // decaying or oscillating Ritz values
-  PetscReal                 spectra_time = PETSC_MIN_REAL;       // when they were estimated
+  std::vector<PetscReal>                         level_radius;                  // spectral radius estimate of the Jacobian of G_l
+  std::vector<PetscReal>                         level_max_step;                // largest stable step of the inner RK for its limiting modes (inf: none)
+  std::vector<std::complex<double>>              level_worst;                   // the mode that sets it
+  std::vector<std::vector<std::complex<double>>> level_limiting;                // decaying or oscillating Ritz values
+  PetscReal                                      spectra_time = PETSC_MIN_REAL; // when they were estimated
 
   // Accuracy control (-ts_vshmm_adapt)
-  vshmm::AdaptParameters    adapt_params;       // micro step and time ratios for the next macro step
-  vshmm::AdaptParameters    adapt_used;         // those of the last accepted macro step
-  vshmm::ErrorModel         adapt_model;
-  PetscBool                 adapt_ready = PETSC_FALSE; // initial parameters chosen
-  PetscInt                  adapt_since_calibration = 0;
-  PetscBool                 adapt_calibrated = PETSC_FALSE; // the model's split between the terms was measured
-  PetscInt                  adapt_calibrated_times = 0;     // calibrations in this solve
-  PetscReal                 adapt_tstart = 0.0; // the time the solve started (the error budget runs from it)
-  PetscBool                 no_separation = PETSC_FALSE; // no pair of levels is separated
-  PetscBool                 floor_warned  = PETSC_FALSE; // told that the estimate does not fall
-  Vec                       Xtrial = nullptr, Xbase = nullptr;
-  std::vector<PetscReal>    obs_a, obs_b;
-  PetscReal                 error_estimate = 0, error_estimate_total = 0;
-  PetscInt64                adapt_evaluations = 0, adapt_rejections = 0, adapt_calibrations = 0;
+  vshmm::AdaptParameters adapt_params; // micro step and time ratios for the next macro step
+  vshmm::AdaptParameters adapt_used;   // those of the last accepted macro step
+  vshmm::ErrorModel      adapt_model;
+  PetscBool              adapt_ready             = PETSC_FALSE; // initial parameters chosen
+  PetscInt               adapt_since_calibration = 0;
+  PetscBool              adapt_calibrated        = PETSC_FALSE; // the model's split between the terms was measured
+  PetscInt               adapt_calibrated_times  = 0;           // calibrations in this solve
+  PetscReal              adapt_tstart            = 0.0;         // the time the solve started (the error budget runs from it)
+  PetscBool              no_separation           = PETSC_FALSE; // no pair of levels is separated
+  PetscBool              floor_warned            = PETSC_FALSE; // told that the estimate does not fall
+  Vec                    Xtrial = nullptr, Xbase = nullptr;
+  std::vector<PetscReal> obs_a, obs_b;
+  PetscReal              error_estimate = 0, error_estimate_total = 0;
+  PetscInt64             adapt_evaluations = 0, adapt_rejections = 0, adapt_calibrations = 0;
 
   // Statistics since set-up
-  enum Counter { COUNT_STEPS, COUNT_STABILITY, COUNT_ADAPT };
-  Counter                   counting     = COUNT_STEPS; // where split evaluations are counted
-  PetscInt64                macro_steps  = 0;
-  PetscInt64                micro_cycles = 0;
-  PetscInt64                stability_checks = 0, stability_evaluations = 0, stability_warnings = 0;
-  std::vector<PetscReal>    warned_ratio; // per level: largest step / stable step when last warned
-  std::vector<PetscInt64>   rhs_evaluations;                  // per split
-  std::vector<PetscInt64>   level_steps, level_evaluations;   // per level (scale)
+  enum Counter {
+    COUNT_STEPS,
+    COUNT_STABILITY,
+    COUNT_ADAPT
+  };
+  Counter                 counting         = COUNT_STEPS; // where split evaluations are counted
+  PetscInt64              macro_steps      = 0;
+  PetscInt64              micro_cycles     = 0;
+  PetscInt64              stability_checks = 0, stability_evaluations = 0, stability_warnings = 0;
+  std::vector<PetscReal>  warned_ratio;                   // per level: largest step / stable step when last warned
+  std::vector<PetscInt64> rhs_evaluations;                // per split
+  std::vector<PetscInt64> level_steps, level_evaluations; // per level (scale)
 
   // First non-finite split output seen on this rank in the current macro step
   PetscReal  nonfinite_time  = PETSC_MAX_REAL;
   PetscInt   nonfinite_split = -1, nonfinite_level = -1;
-  PetscInt   current_level   = 0; // the level whose field is being evaluated
+  PetscInt   current_level     = 0;                            // the level whose field is being evaluated
   PetscInt64 field_evaluations = 0, nonfinite_evaluation = -1; // level-field evaluations so far (the same on every rank); the faulty one
 };
 

@@ -44,9 +44,9 @@ PetscErrorCode TSVSHMMResetLevelEvents_Private(void)
 static inline void NoteNonFinite(TS_VSHMM *vs, PetscInt k, PetscReal t)
 {
   if (vs->nonfinite_split < 0) {
-    vs->nonfinite_split = k;
-    vs->nonfinite_level = vs->current_level;
-    vs->nonfinite_time  = t;
+    vs->nonfinite_split      = k;
+    vs->nonfinite_level      = vs->current_level;
+    vs->nonfinite_time       = t;
     vs->nonfinite_evaluation = vs->field_evaluations;
   }
 }

@@ -23,18 +23,18 @@
 #include <complex>
 #include <string>
 
-static constexpr PetscInt  kArnoldiSteps  = 16;
-static constexpr PetscReal kDampingTarget = 0.5; /* what a suggested savings factor achieves over a macro step */
-static constexpr PetscReal kGrowingMode   = 0.1;  /* Re lambda > this |lambda|: a growing mode, not checked */
+static constexpr PetscInt  kArnoldiSteps       = 16;
+static constexpr PetscReal kDampingTarget      = 0.5; /* what a suggested savings factor achieves over a macro step */
+static constexpr PetscReal kGrowingMode        = 0.1; /* Re lambda > this |lambda|: a growing mode, not checked */
 static constexpr PetscReal kMaxTransientGrowth = 100; /* largest growth of a mode within a macro step that only warns */
 
 /* Ritz values of the Jacobian of level l's field at (t, X). */
 static PetscErrorCode LevelRitzValues(TS ts, PetscInt level, PetscReal t, Vec X, std::vector<std::complex<double>> &ritz, PetscBool *finite)
 {
-  TS_VSHMM   *vs = (TS_VSHMM *)ts->data;
-  PetscInt    N, rstart, rend;
-  Vec        *V, G0, Xp, W;
-  PetscReal   xnorm;
+  TS_VSHMM    *vs = (TS_VSHMM *)ts->data;
+  PetscInt     N, rstart, rend;
+  Vec         *V, G0, Xp, W;
+  PetscReal    xnorm;
   PetscScalar *v;
 
   PetscFunctionBegin;
@@ -84,7 +84,7 @@ static PetscErrorCode LevelRitzValues(TS ts, PetscInt level, PetscReal t, Vec X,
     }
     H[j + 1 + j * (m + 1)] = hnext;
     k                      = j + 1;
-    PetscReal hnorm = 0;
+    PetscReal hnorm        = 0;
     for (PetscInt i = 0; i <= j + 1; ++i) hnorm = PetscMax(hnorm, PetscAbsScalar(H[i + j * (m + 1)]));
     if (hnext <= 1e-12 * hnorm || j + 1 == m) break; /* invariant subspace, or done */
     PetscCall(VecCopy(W, V[j + 1]));
@@ -167,12 +167,12 @@ PetscErrorCode TSVSHMMLevelSpectra_Private(TS ts)
 
 PetscErrorCode TSVSHMMCheckStability_Private(TS ts)
 {
-  TS_VSHMM       *vs      = (TS_VSHMM *)ts->data;
-  MPI_Comm        comm    = PetscObjectComm((PetscObject)ts);
-  const PetscInt  nscales = (PetscInt)vs->level_end.size(), top = nscales - 1;
-  const PetscReal t = ts->ptime, DeltaT = ts->time_step;
-  const char     *rk = vs->tableau->name.c_str();
-  vshmm::StabilityFunction R(*vs->tableau);
+  TS_VSHMM                                  *vs      = (TS_VSHMM *)ts->data;
+  MPI_Comm                                   comm    = PetscObjectComm((PetscObject)ts);
+  const PetscInt                             nscales = (PetscInt)vs->level_end.size(), top = nscales - 1;
+  const PetscReal                            t = ts->ptime, DeltaT = ts->time_step;
+  const char                                *rk = vs->tableau->name.c_str();
+  vshmm::StabilityFunction                   R(*vs->tableau);
   std::unique_ptr<vshmm::MesoscopicSchedule> schedule;
 
   PetscFunctionBegin;
@@ -183,13 +183,12 @@ PetscErrorCode TSVSHMMCheckStability_Private(TS ts)
   PetscCall(TSVSHMMCreateSchedule_Private(ts, dt, schedule));
   for (PetscInt level = 0; level <= top; ++level) {
     const std::vector<std::complex<double>> &limiting = vs->level_limiting[level];
-    const double                             radius   = vs->level_radius[level], hmax = vs->level_max_step[level];
-    const std::complex<double>               worst    = vs->level_worst[level];
+    const double                             radius = vs->level_radius[level], hmax = vs->level_max_step[level];
+    const std::complex<double>               worst = vs->level_worst[level];
     if (limiting.empty()) continue;
     if (level == top) {
-      PetscCheck(dt <= hmax * (1 + 1e-10), comm, PETSC_ERR_ARG_OUTOFRANGE,
-                 "TSVSHMM stability check at t = %g: level %" PetscInt_FMT " (all splits: %s) is unstable with the micro step dt = %g: the estimated eigenvalue %g%+gi (spectral radius %g) needs dt <= %g for TSRK %s. Use a smaller -ts_vshmm_micro_dt, or -ts_vshmm_check_stability false to skip the check",
-                 (double)t, level, LevelSplits(vs, level).c_str(), (double)dt, worst.real(), worst.imag(), radius, hmax, rk);
+      PetscCheck(dt <= hmax * (1 + 1e-10), comm, PETSC_ERR_ARG_OUTOFRANGE, "TSVSHMM stability check at t = %g: level %" PetscInt_FMT " (all splits: %s) is unstable with the micro step dt = %g: the estimated eigenvalue %g%+gi (spectral radius %g) needs dt <= %g for TSRK %s. Use a smaller -ts_vshmm_micro_dt, or -ts_vshmm_check_stability false to skip the check", (double)t, level,
+                 LevelSplits(vs, level).c_str(), (double)dt, worst.real(), worst.imag(), radius, hmax, rk);
       PetscCall(PetscInfo(ts, "Stability check at t = %g: level %" PetscInt_FMT " (micro step %g): spectral radius %g, largest stable step %g\n", (double)t, level, (double)dt, radius, hmax));
       continue;
     }
@@ -219,25 +218,24 @@ PetscErrorCode TSVSHMMCheckStability_Private(TS ts)
       const double    peak_growth = std::abs(R(hpeak * worst));
       const PetscReal alpha_safe  = vs->savings_used[j - 1] * hmax / hpeak;
       vs->stability_warnings++;
-      PetscCall(PetscInfo(ts, "Stability check at t = %g: level %" PetscInt_FMT ": the largest step h_%" PetscInt_FMT " = %g exceeds the stable step %g for the eigenvalue %g%+gi (growth %g per step there); within a macro step the mode grows by up to %g, over a macro step it changes by %g\n", (double)t, level, j, hpeak, hmax, worst.real(), worst.imag(), peak_growth, std::exp(growth), std::exp(logA)));
+      PetscCall(PetscInfo(ts, "Stability check at t = %g: level %" PetscInt_FMT ": the largest step h_%" PetscInt_FMT " = %g exceeds the stable step %g for the eigenvalue %g%+gi (growth %g per step there); within a macro step the mode grows by up to %g, over a macro step it changes by %g\n", (double)t, level, j, hpeak, hmax,
+                          worst.real(), worst.imag(), peak_growth, std::exp(growth), std::exp(logA)));
       if (hpeak / hmax > 1.1 * vs->warned_ratio[level]) { /* first time, or clearly worse than last warned */
         vs->warned_ratio[level] = hpeak / hmax;
-        PetscCall(PetscFPrintf(comm, PETSC_STDERR,
-                               "TSVSHMM warning: stability check at t = %g: level %" PetscInt_FMT " (splits %s): its largest step h_%" PetscInt_FMT " = %g exceeds the stable step %g of TSRK %s for the estimated eigenvalue %g%+gi (spectral radius %g), which grows by %g per step near the kernel's peak (by up to %g within a macro step); over a macro step the mode changes by a factor %g. Such transient growth can bias the slow variables. A savings factor alpha_%" PetscInt_FMT " <= %g (now %g) keeps every step stable. (Shown again only if it gets worse; -info shows every check.)\n",
-                               (double)t, level, LevelSplits(vs, level).c_str(), j, hpeak, hmax, rk, worst.real(), worst.imag(), radius, peak_growth, std::exp(growth), std::exp(logA), j, (double)alpha_safe, (double)vs->savings_used[j - 1]));
+        PetscCall(PetscFPrintf(comm, PETSC_STDERR, "TSVSHMM warning: stability check at t = %g: level %" PetscInt_FMT " (splits %s): its largest step h_%" PetscInt_FMT " = %g exceeds the stable step %g of TSRK %s for the estimated eigenvalue %g%+gi (spectral radius %g), which grows by %g per step near the kernel's peak (by up to %g within a macro step); over a macro step the mode changes by a factor %g. Such transient growth can bias the slow variables. A savings factor alpha_%" PetscInt_FMT " <= %g (now %g) keeps every step stable. (Shown again only if it gets worse; -info shows every check.)\n", (double)t, level,
+                               LevelSplits(vs, level).c_str(), j, hpeak, hmax, rk, worst.real(), worst.imag(), radius, peak_growth, std::exp(growth), std::exp(logA), j, (double)alpha_safe, (double)vs->savings_used[j - 1]));
       }
       continue;
     }
     if (logA <= 1e-8) grows = peaks; /* damped in the end, but too much growth on the way */
-    PetscReal alpha_max = 0; /* the largest alpha_j that damps it, found by the core without touching the TS */
+    PetscReal alpha_max = 0;         /* the largest alpha_j that damps it, found by the core without touching the TS */
     try {
       alpha_max = vshmm::largestStableSavingsFactor(R, *vs->kernel, dt, std::vector<double>(vs->savings_used.begin(), vs->savings_used.end()), std::vector<int>(vs->subintervals_used.begin(), vs->subintervals_used.end()), DeltaT, (int)j, grows, kDampingTarget, kMaxTransientGrowth);
     } catch (const std::exception &e) {
       SETERRQ(comm, PETSC_ERR_ARG_OUTOFRANGE, "TSVSHMM: %s", e.what());
     }
-    SETERRQ(comm, PETSC_ERR_ARG_OUTOFRANGE,
-            "TSVSHMM stability check at t = %g: level %" PetscInt_FMT " (splits %s) is unstable with its mesoscopic step h_%" PetscInt_FMT ": its largest step %g times the estimated eigenvalue %g%+gi (spectral radius %g) lies outside the stability region of TSRK %s, whose largest stable step for it is %g; within a macro step the level's steps amplify that mode by up to %g (at most %g is tolerated) and over the macro step by %g. Use a savings factor alpha_%" PetscInt_FMT " <= %g (now %g) in -ts_vshmm_savings_factors, -ts_vshmm_adapt, or -ts_vshmm_check_stability false to skip the check",
-            (double)t, level, LevelSplits(vs, level).c_str(), j, hpeak, grows.real(), grows.imag(), radius, rk, R.largestStableStep(grows), std::exp(growth), (double)kMaxTransientGrowth, std::exp(logA), j, (double)alpha_max, (double)vs->savings_used[j - 1]);
+    SETERRQ(comm, PETSC_ERR_ARG_OUTOFRANGE, "TSVSHMM stability check at t = %g: level %" PetscInt_FMT " (splits %s) is unstable with its mesoscopic step h_%" PetscInt_FMT ": its largest step %g times the estimated eigenvalue %g%+gi (spectral radius %g) lies outside the stability region of TSRK %s, whose largest stable step for it is %g; within a macro step the level's steps amplify that mode by up to %g (at most %g is tolerated) and over the macro step by %g. Use a savings factor alpha_%" PetscInt_FMT " <= %g (now %g) in -ts_vshmm_savings_factors, -ts_vshmm_adapt, or -ts_vshmm_check_stability false to skip the check", (double)t, level,
+            LevelSplits(vs, level).c_str(), j, hpeak, grows.real(), grows.imag(), radius, rk, R.largestStableStep(grows), std::exp(growth), (double)kMaxTransientGrowth, std::exp(logA), j, (double)alpha_max, (double)vs->savings_used[j - 1]);
   }
   PetscFunctionReturn(0);
 }

@@ -30,9 +30,9 @@ TEST(Adapt, TimeRatiosAndSavingsFactorsAreInverse)
 // the shares the least-work rule gives, and refines the term that dominates.
 TEST(Adapt, ChoiceMeetsTheTargetWithEqualShares)
 {
-  const AdaptParameters now{1e-6, {50, 20}};
-  const double          cdt = 1e23, c0 = 1e-3, c1 = 1e-4; // e_dt = 1e-4, e_0 = 4.9e-2, e_1 = 1.9e-3
-  auto                  error = [&](const AdaptParameters &p, int i) { return i == 0 ? cdt * std::pow(p.microStep, 4) / (p.ratios[0] * p.ratios[1]) : (i == 1 ? c0 : c1) * (p.ratios[i - 1] - 1); };
+  const AdaptParameters        now{1e-6, {50, 20}};
+  const double                 cdt = 1e23, c0 = 1e-3, c1 = 1e-4; // e_dt = 1e-4, e_0 = 4.9e-2, e_1 = 1.9e-3
+  auto                         error = [&](const AdaptParameters &p, int i) { return i == 0 ? cdt * std::pow(p.microStep, 4) / (p.ratios[0] * p.ratios[1]) : (i == 1 ? c0 : c1) * (p.ratios[i - 1] - 1); };
   std::vector<AdaptParameters> coarse;
   std::vector<double>          d;
   for (int i = 0; i < 3; ++i) {
@@ -50,8 +50,8 @@ TEST(Adapt, ChoiceMeetsTheTargetWithEqualShares)
   AdaptBounds bounds;
   bounds.maxMicroStep = 1e-5;
   bounds.maxRefine = bounds.maxGrowth = 100;
-  const double          target = 1e-2;
-  const AdaptParameters next   = chooseParameters(now, model, target, bounds);
+  const double          target        = 1e-2;
+  const AdaptParameters next          = chooseParameters(now, model, target, bounds);
   EXPECT_NEAR(model.total(next), target, 1e-9);
   // the two ratios get equal shares w, the micro step w / (order + 1)
   const double w = target / (2 + 0.2);
@@ -84,8 +84,8 @@ TEST(Adapt, ScaledTermsAndEqualShares)
   EXPECT_NEAR(e.term(p, 3), 0.6 / (2 + 0.2), 1e-12);
   EXPECT_EQ(e.term(p, 2), 0.0);
   EXPECT_NEAR(e.term(p, 0), 0.6 / (2 + 0.2) / 5, 1e-12);
-  ErrorModel f = m;
-  f.c[2]       = 0.0; // measured as nothing
+  ErrorModel f        = m;
+  f.c[2]              = 0.0; // measured as nothing
   const double before = f.total(p);
   f.floorShares(p, 0.05);
   EXPECT_NEAR(f.total(p), before, 1e-12 * before);
@@ -100,9 +100,9 @@ TEST(Adapt, WorkChangeIsLimitedByTheParametersThatCauseIt)
   AdaptParameters       next{8e-6, {5, 80}}; // 8 * 0.5 * 8 = 32x cheaper
   limitWorkChange(next, now, 4.0, 4.0);
   EXPECT_NEAR(cycleLength(next) / cycleLength(now), 4.0, 1e-9);
-  EXPECT_DOUBLE_EQ(next.ratios[0], 5.0); // the refining change is kept
+  EXPECT_DOUBLE_EQ(next.ratios[0], 5.0);                                             // the refining change is kept
   EXPECT_NEAR(next.microStep / now.microStep, next.ratios[1] / now.ratios[1], 1e-9); // coarsening ones moved back alike
-  AdaptParameters dear{1e-7, {2, 20}}; // 10 * 5 / 2 = 25x dearer
+  AdaptParameters dear{1e-7, {2, 20}};                                               // 10 * 5 / 2 = 25x dearer
   limitWorkChange(dear, now, 4.0, 4.0);
   EXPECT_NEAR(cycleLength(now) / cycleLength(dear), 4.0, 1e-9);
   EXPECT_DOUBLE_EQ(dear.ratios[1], 20.0);
@@ -119,15 +119,15 @@ TEST(Adapt, ChoiceKeepsFixedParametersAndBounds)
   model.cMicro = 1e20;
   model.c      = {1e-3, 1e-4};
   AdaptBounds bounds;
-  bounds.fixedMicroStep = true;
-  bounds.maxRatio       = {1e9, 25};
-  bounds.maxCycle       = 1e-3;
+  bounds.fixedMicroStep      = true;
+  bounds.maxRatio            = {1e9, 25};
+  bounds.maxCycle            = 1e-3;
   const AdaptParameters next = chooseParameters(now, model, 1.0, bounds); // a loose target: coarsen
   EXPECT_EQ(next.microStep, now.microStep);
   EXPECT_LE(next.ratios[1], 25.0);
   EXPECT_LE(next.ratios[0], now.ratios[0] * bounds.maxGrowth * (1 + 1e-12));
   EXPECT_LE(cycleLength(next), 1e-3 * (1 + 1e-12));
-  bounds.fixedRatios = true;
+  bounds.fixedRatios         = true;
   const AdaptParameters same = chooseParameters(now, model, 1e-6, bounds);
   EXPECT_EQ(same.ratios, now.ratios);
 }
@@ -149,7 +149,7 @@ TEST(Adapt, StableStepsLimitMicroStepAndPeakSteps)
 // shows a largest running growth far above its net change.
 TEST(Adapt, LevelAmplificationReportsGrowthWithinTheMacroStep)
 {
-  const Tableau rk4("4", 4, 4, {0, 0, 0, 0, 0.5, 0, 0, 0, 0, 0.5, 0, 0, 0, 0, 1, 0}, {1.0 / 6, 1.0 / 3, 1.0 / 3, 1.0 / 6}, {0, 0.5, 0.5, 1});
+  const Tableau            rk4("4", 4, 4, {0, 0, 0, 0, 0.5, 0, 0, 0, 0, 0.5, 0, 0, 0, 0, 1, 0}, {1.0 / 6, 1.0 / 3, 1.0 / 3, 1.0 / 6}, {0, 0.5, 0.5, 1});
   const StabilityFunction  R(rk4);
   const auto               kernel = Kernel::create(KernelType::Cosine);
   const MesoscopicSchedule schedule(*kernel, 1e-3, {4}, {1});

@@ -21,12 +21,10 @@ const long double kPiL = 3.141592653589793238462643383279502884L;
 // 5-point Gauss-Legendre on [a, b] (nodes and weights from tables, not from the library).
 long double gaussLegendre5(const std::function<long double(long double)> &f, long double a, long double b)
 {
-  static const long double x[5] = {0.0L, -0.538469310105683091036314420700208805L, 0.538469310105683091036314420700208805L, -0.906179845938663992797626878299392965L,
-                                   0.906179845938663992797626878299392965L};
-  static const long double w[5] = {0.568888888888888888888888888888888889L, 0.478628670499366468041291514835638192L, 0.478628670499366468041291514835638192L,
-                                   0.236926885056189087514264040719917363L, 0.236926885056189087514264040719917363L};
-  const long double middle = 0.5L * (a + b), half = 0.5L * (b - a);
-  long double       sum = 0;
+  static const long double x[5]   = {0.0L, -0.538469310105683091036314420700208805L, 0.538469310105683091036314420700208805L, -0.906179845938663992797626878299392965L, 0.906179845938663992797626878299392965L};
+  static const long double w[5]   = {0.568888888888888888888888888888888889L, 0.478628670499366468041291514835638192L, 0.478628670499366468041291514835638192L, 0.236926885056189087514264040719917363L, 0.236926885056189087514264040719917363L};
+  const long double        middle = 0.5L * (a + b), half = 0.5L * (b - a);
+  long double              sum = 0;
   for (int i = 0; i < 5; ++i) sum += w[i] * f(middle + half * x[i]);
   return half * sum;
 }
@@ -42,8 +40,8 @@ long double compositeGaussLegendre(const std::function<long double(long double)>
 // the integrand there), down to where it is below 1e-26 of its value at s.
 long double exponentialIntegral(long double s)
 {
-  const auto  f    = [](long double r) { return std::exp(-1 / (r * (1 - r))); };
-  long double sum  = 0, b = s;
+  const auto        f   = [](long double r) { return std::exp(-1 / (r * (1 - r))); };
+  long double       sum = 0, b = s;
   const long double stop = s / (1 + 60 * s);
   while (b > stop) {
     const long double a = std::max(b - 2e-3L * b * b, stop);
@@ -93,7 +91,7 @@ struct Reference {
 
 struct KernelCase {
   KernelType type;
-  int        order;  // polynomial order q (ignored by the other kernels)
+  int        order; // polynomial order q (ignored by the other kernels)
 };
 
 std::string caseName(const testing::TestParamInfo<KernelCase> &info)
@@ -106,8 +104,8 @@ class KernelTest : public testing::TestWithParam<KernelCase> {
 protected:
   void SetUp() override { kernel = Kernel::create(GetParam().type, GetParam().order); }
 
-  bool isExponential() const { return GetParam().type == KernelType::Exponential; }
-  bool isConstant() const { return GetParam().type == KernelType::Constant; }
+  bool      isExponential() const { return GetParam().type == KernelType::Exponential; }
+  bool      isConstant() const { return GetParam().type == KernelType::Constant; }
   Reference reference() const { return Reference{GetParam().type, GetParam().order}; }
 
   std::unique_ptr<Kernel> kernel;
@@ -121,7 +119,7 @@ double logSlope(const std::function<double(double)> &k, double h1, double h2)
 
 TEST_P(KernelTest, IntegralOverUnitIntervalIsOne)
 {
-  const auto  k        = [this](long double s) { return (long double)kernel->value((double)s); };
+  const auto        k        = [this](long double s) { return (long double)kernel->value((double)s); };
   const long double integral = compositeGaussLegendre(k, 0, 1, 2000);
   EXPECT_NEAR((double)integral, 1.0, 1e-13);
 }
@@ -138,11 +136,11 @@ TEST_P(KernelTest, ValueMatchesIndependentFormula)
 TEST_P(KernelTest, IsSymmetric)
 {
   for (int i = 0; i <= 1024; ++i) {
-    const double s = i / 1024.0;  // 1 - s is exact
+    const double s = i / 1024.0; // 1 - s is exact
     EXPECT_EQ(kernel->value(s), kernel->value(1 - s)) << "s = " << s;
   }
   for (int i = 1; i < 1000; ++i) {
-    const double t = 1 - (0.0005 * i + 1e-7);  // then 1 - t is exact
+    const double t = 1 - (0.0005 * i + 1e-7); // then 1 - t is exact
     EXPECT_EQ(kernel->value(t), kernel->value(1 - t)) << "t = " << t;
   }
 }
@@ -159,7 +157,7 @@ TEST_P(KernelTest, VanishesAtBothEndsExceptConstant)
 // K(h) ~ c h^{q+1} at both ends: derivatives 0..q vanish there and derivative q+1 does not.
 // The kernels of finite order (the exponential one is flatter than any power: see
 // ExponentialKernelIsFlatterThanAnyPower).
-class FiniteOrderKernelTest : public KernelTest { };
+class FiniteOrderKernelTest : public KernelTest {};
 
 TEST_P(FiniteOrderKernelTest, DerivativesUpToOrderVanishAtEnds)
 {
@@ -176,8 +174,8 @@ TEST(ExponentialKernel, IsFlatterThanAnyPower)
   EXPECT_EQ(kernel->order(), Kernel::kInfiniteOrder);
   const auto   k      = [&](double h) { return kernel->value(h); };
   const double coarse = logSlope(k, 0.02, 0.01), fine = logSlope(k, 0.01, 0.005);
-  EXPECT_GT(coarse, 50);  // K(h) = o(h^50)
-  EXPECT_GT(fine, 1.5 * coarse);  // and the apparent power keeps growing
+  EXPECT_GT(coarse, 50);         // K(h) = o(h^50)
+  EXPECT_GT(fine, 1.5 * coarse); // and the apparent power keeps growing
   const auto k1 = [&](double h) { return kernel->value(1 - h); };
   EXPECT_GT(logSlope(k1, 0.02, 0.01), 50);
 }
@@ -193,15 +191,13 @@ TEST_P(KernelTest, ThetaAtEndsAndMiddle)
 
 TEST_P(KernelTest, ThetaIsMonotone)
 {
-  const int N     = 100000;
+  const int N        = 100000;
   double    previous = kernel->theta(0.0);
   for (int i = 1; i <= N; ++i) {
     const double s = double(i) / N, theta = kernel->theta(s);
     ASSERT_GE(theta, previous) << "s = " << s;
     // Strictly increasing where Theta is a normal number below 1/2 (above, steps can be below an ulp of 1).
-    if (s <= 0.5 && previous >= DBL_MIN) {
-      ASSERT_GT(theta, previous) << "s = " << s;
-    }
+    if (s <= 0.5 && previous >= DBL_MIN) { ASSERT_GT(theta, previous) << "s = " << s; }
     previous = theta;
   }
 }
@@ -222,9 +218,9 @@ TEST_P(KernelTest, ThetaDerivativeIsKernel)
 // Theta for s <= 1/2 is accurate relative to its own (possibly tiny) size.
 TEST_P(KernelTest, LowerThetaMatchesIndependentQuadratureRelatively)
 {
-  const Reference ref = reference();
-  const double    smallest[] = {1e-8, 1e-6, 1e-4, 1e-2, 0.1, 0.25, 0.4, 0.5};
-  const double    exponentialPoints[] = {0.0015, 0.002, 0.005, 0.01, 0.05, 0.1, 0.3, 0.5};  // Theta normal for s > 1/690
+  const Reference ref                 = reference();
+  const double    smallest[]          = {1e-8, 1e-6, 1e-4, 1e-2, 0.1, 0.25, 0.4, 0.5};
+  const double    exponentialPoints[] = {0.0015, 0.002, 0.005, 0.01, 0.05, 0.1, 0.3, 0.5}; // Theta normal for s > 1/690
   for (double s : isExponential() ? exponentialPoints : smallest) {
     const long double expected = ref.lowerTheta(s);
     EXPECT_NEAR(kernel->theta(s) / (double)expected, 1.0, 2e-15) << "s = " << s;
@@ -237,7 +233,7 @@ TEST_P(KernelTest, LowerThetaMatchesIndependentQuadratureRelatively)
 // carries less than 53 bits and the inverse is only approximate.
 TEST_P(KernelTest, ThetaInverseRoundTrip)
 {
-  const int N = 100000;
+  const int N       = 100000;
   int       checked = 0;
   for (int i = 0; i <= N; ++i) {
     const double s = double(i) / N, u = kernel->theta(s), uc = kernel->theta(1 - s);
@@ -254,9 +250,9 @@ TEST_P(KernelTest, ThetaInverseRoundTrip)
   EXPECT_GT(checked, 99000);
   for (double s = 0.1; s > 1e-16; s /= 10) {
     const double u = kernel->theta(s), uc = kernel->theta(1 - s);
-    if (std::min(u, uc) < DBL_MIN) continue;  // exponential kernel below s = 1/690
+    if (std::min(u, uc) < DBL_MIN) continue; // exponential kernel below s = 1/690
     EXPECT_NEAR(kernel->thetaInverse(u, uc), s, 1e-13 * s);
-    EXPECT_NEAR(1 - kernel->thetaInverse(uc, u), s, 1e-15);  // mirrored: s' = 1 - s
+    EXPECT_NEAR(1 - kernel->thetaInverse(uc, u), s, 1e-15); // mirrored: s' = 1 - s
   }
 }
 
@@ -280,15 +276,8 @@ TEST_P(KernelTest, ValueAtThetaInverseIsValueOfInverse)
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(AllKernels, KernelTest,
-                         testing::Values(KernelCase{KernelType::Cosine, 1}, KernelCase{KernelType::Constant, 1}, KernelCase{KernelType::Polynomial, 0}, KernelCase{KernelType::Polynomial, 1},
-                                         KernelCase{KernelType::Polynomial, 2}, KernelCase{KernelType::Polynomial, 5}, KernelCase{KernelType::Polynomial, 16},
-                                         KernelCase{KernelType::Exponential, 1}),
-                         caseName);
-INSTANTIATE_TEST_SUITE_P(FiniteOrderKernels, FiniteOrderKernelTest,
-                         testing::Values(KernelCase{KernelType::Cosine, 1}, KernelCase{KernelType::Constant, 1}, KernelCase{KernelType::Polynomial, 0}, KernelCase{KernelType::Polynomial, 1},
-                                         KernelCase{KernelType::Polynomial, 2}, KernelCase{KernelType::Polynomial, 5}, KernelCase{KernelType::Polynomial, 16}),
-                         caseName);
+INSTANTIATE_TEST_SUITE_P(AllKernels, KernelTest, testing::Values(KernelCase{KernelType::Cosine, 1}, KernelCase{KernelType::Constant, 1}, KernelCase{KernelType::Polynomial, 0}, KernelCase{KernelType::Polynomial, 1}, KernelCase{KernelType::Polynomial, 2}, KernelCase{KernelType::Polynomial, 5}, KernelCase{KernelType::Polynomial, 16}, KernelCase{KernelType::Exponential, 1}), caseName);
+INSTANTIATE_TEST_SUITE_P(FiniteOrderKernels, FiniteOrderKernelTest, testing::Values(KernelCase{KernelType::Cosine, 1}, KernelCase{KernelType::Constant, 1}, KernelCase{KernelType::Polynomial, 0}, KernelCase{KernelType::Polynomial, 1}, KernelCase{KernelType::Polynomial, 2}, KernelCase{KernelType::Polynomial, 5}, KernelCase{KernelType::Polynomial, 16}), caseName);
 
 TEST(KernelCreate, NamesAndOrders)
 {
@@ -316,4 +305,4 @@ TEST(KernelCreate, PolynomialOrderOutOfRangeThrows)
   }
 }
 
-}  // namespace
+} // namespace

@@ -31,25 +31,28 @@ std::vector<Step> record(const MesoscopicSchedule &schedule, double macroStep, M
 {
   std::vector<Step> steps;
   const int         error = runMacroStep(
-    schedule, macroStep,
-    [&](int level, double tau, double h) {
+            schedule, macroStep,
+            [&](int level, double tau, double h) {
       steps.push_back({level, tau, h});
       return 0;
     },
-    counts);
+            counts);
   EXPECT_EQ(error, 0);
   return steps;
 }
 
 // The method note's formula h_j = alpha_j dt K(Theta^{-1}(u)) for the cosine kernel, written
 // independently of the library: K(s) = 1 - cos(2 pi s), Theta^{-1} by bisection, in long double.
-long double cosineTheta(long double s) { return s - std::sin(2 * kPiL * s) / (2 * kPiL); }
+long double cosineTheta(long double s)
+{
+  return s - std::sin(2 * kPiL * s) / (2 * kPiL);
+}
 
 long double cosineThetaInverse(long double u)
 {
   long double lo = 0, hi = 1;
   for (int i = 0; i < 100; ++i) {
-    const long double middle = 0.5L * (lo + hi);
+    const long double middle            = 0.5L * (lo + hi);
     (cosineTheta(middle) < u ? lo : hi) = middle;
   }
   return 0.5L * (lo + hi);
@@ -125,7 +128,7 @@ TEST(MesoscopicSchedule, ConstructorRejectsBadParameters)
   EXPECT_EQ(constructionError(1e-4, {NAN}, {1}), "savings factor 1 is nan: must be non-negative and finite");
   EXPECT_EQ(constructionError(1e-4, {100, 10}, {1, 0}), "subinterval count 2 is 0: must be at least 1");
   EXPECT_EQ(constructionError(1e-4, {100, 10}, {1}), "got 2 savings factors and 1 subinterval counts: need one of each per scale above scale 0");
-  EXPECT_EQ(constructionError(1e-4, {}, {}), "no exception");  // a single scale: micro steps only
+  EXPECT_EQ(constructionError(1e-4, {}, {}), "no exception"); // a single scale: micro steps only
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -145,7 +148,7 @@ TEST(MesoscopicSchedule, StepsFollowTheMethodFormula)
       const Step  &step     = steps[i];
       const double expected = referenceCosineStep(dt, alpha, m, step.level, step.tau, macroStep);
       ASSERT_NEAR(step.h, expected, 1e-12 * expected) << "step " << i << " level " << step.level << " tau " << step.tau;
-      EXPECT_EQ(steps[i + 1].tau, step.tau + step.h);  // steps follow each other without gaps
+      EXPECT_EQ(steps[i + 1].tau, step.tau + step.h); // steps follow each other without gaps
     }
     const Step &last = steps.back();
     EXPECT_LE(last.h, referenceCosineStep(dt, alpha, m, last.level, last.tau, macroStep) * (1 + 1e-12));
@@ -211,9 +214,7 @@ TEST(MesoscopicSchedule, SubintervalsMakeStepsPeriodic)
     ASSERT_GT(count, 5) << "period " << k;
     EXPECT_LT(smallest, 0.5 * alpha[0] * dt) << "period " << k;
     EXPECT_GT(largest, 1.9 * alpha[0] * dt) << "period " << k;
-    if (k == 1) {
-      EXPECT_GT(singleSmallest, 0.5 * alpha[0] * dt);
-    }
+    if (k == 1) { EXPECT_GT(singleSmallest, 0.5 * alpha[0] * dt); }
   }
 }
 
@@ -225,16 +226,16 @@ TEST(MesoscopicSchedule, MeanStepsReproduceMeasuredRatios)
   const auto kernel = Kernel::create(KernelType::Cosine);
   {
     const MesoscopicSchedule schedule(*kernel, 1e-4, {100, 10}, {1, 1});
-    const double             ratio = meanStepRatio(record(schedule, 0.1), 0, 100 * 1e-4);  // note: 1.002
+    const double             ratio = meanStepRatio(record(schedule, 0.1), 0, 100 * 1e-4); // note: 1.002
     EXPECT_GE(ratio, 1.0);
     EXPECT_LE(ratio, 1.01);
-    const std::vector<Step> steps = record(schedule, 1.0);  // note: 1.07
+    const std::vector<Step> steps = record(schedule, 1.0); // note: 1.07
     EXPECT_NEAR(meanStepRatio(steps, 0, 100 * 1e-4), 1.07, 0.01);
     EXPECT_NEAR(meanStepRatio(steps, 1, 10 * 1e-4), 1.07, 0.01);
   }
   {
     const MesoscopicSchedule schedule(*kernel, 1e-5, {1000}, {1});
-    EXPECT_NEAR(meanStepRatio(record(schedule, 1.0), 0, 1000 * 1e-5), 1.03, 0.005);  // note: 1.03
+    EXPECT_NEAR(meanStepRatio(record(schedule, 1.0), 0, 1000 * 1e-5), 1.03, 0.005); // note: 1.03
   }
 }
 
@@ -243,7 +244,7 @@ TEST(MesoscopicSchedule, MeanStepsReproduceMeasuredRatios)
 //   int K^2 / (1 + alpha K) ds / int K / (1 + alpha K) ds  ->  1  as alpha grows.
 double continuumMeanRatio(double alpha)
 {
-  const int N = 100000;
+  const int N        = 100000;
   double    weighted = 0, weight = 0;
   for (int i = 0; i < N; ++i) {
     const double k = (double)(1 - std::cos(2 * kPiL * (i + 0.5L) / N)), w = k / (1 + alpha * k);
@@ -255,18 +256,18 @@ double continuumMeanRatio(double alpha)
 
 TEST(MesoscopicSchedule, MeanStepApproachesAlphaDtAsAlphaGrows)
 {
-  const auto   kernel = Kernel::create(KernelType::Cosine);
-  const double dt     = 1e-5;
+  const auto   kernel   = Kernel::create(KernelType::Cosine);
+  const double dt       = 1e-5;
   double       previous = 2;
   for (double alpha : {10.0, 100.0, 1000.0, 10000.0}) {
     const MesoscopicSchedule schedule(*kernel, dt, {alpha}, {1});
-    const double             ratio = meanStepRatio(record(schedule, 2000 * alpha * dt), 0, alpha * dt);  // about 2000 cycles
+    const double             ratio = meanStepRatio(record(schedule, 2000 * alpha * dt), 0, alpha * dt); // about 2000 cycles
     EXPECT_NEAR(ratio, continuumMeanRatio(alpha), 2e-3) << "alpha " << alpha;
     EXPECT_GT(ratio, 1.0) << "alpha " << alpha;
     EXPECT_LT(ratio, previous) << "alpha " << alpha;
     previous = ratio;
   }
-  EXPECT_LT(previous, 1.01);  // alpha = 10^4
+  EXPECT_LT(previous, 1.01); // alpha = 10^4
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -291,20 +292,20 @@ TEST(RunMacroStep, StepToEndLandsExactlyWhenPossible)
   for (int trial = 0; trial < 100000; ++trial) {
     const double end = std::ldexp(1 + random(), -10 + trial % 12), tau = end * random(), h = stepToEnd(tau, end);
     if (tau >= end / 2) {
-      ASSERT_EQ(tau + h, end) << "tau " << tau << " end " << end;  // Sterbenz: end - tau is exact
+      ASSERT_EQ(tau + h, end) << "tau " << tau << " end " << end; // Sterbenz: end - tau is exact
     }
     ASSERT_TRUE(landsOnEndIfPossible(tau, h, end));
-    ASSERT_LE(tau + std::nextafter(h, 0.0), end);  // the smallest such step
+    ASSERT_LE(tau + std::nextafter(h, 0.0), end); // the smallest such step
     if (tau + h != end) ++impossible;
   }
-  EXPECT_LT(impossible, 1000);  // rare: a tie that rounds away from end on both sides
+  EXPECT_LT(impossible, 1000); // rare: a tie that rounds away from end on both sides
 }
 
 TEST(RunMacroStep, LastStepLandsExactlyOnMacroStep)
 {
   const auto kernel = Kernel::create(KernelType::Cosine);
   unsigned   seed   = 12345;
-  const auto random = [&seed]() {  // deterministic, in [0, 1)
+  const auto random = [&seed]() { // deterministic, in [0, 1)
     seed = seed * 1664525u + 1013904223u;
     return (seed >> 8) / 16777216.0;
   };
@@ -338,7 +339,7 @@ TEST(RunMacroStep, StepsPerMicroCycleEqualNumberOfScales)
   const auto kernel = Kernel::create(KernelType::Cosine);
   for (int scales = 2; scales <= 6; ++scales) {
     std::vector<double> alpha;
-    for (int j = 1; j < scales; ++j) alpha.push_back(std::pow(4.0, scales - j));  // slowest level: largest savings
+    for (int j = 1; j < scales; ++j) alpha.push_back(std::pow(4.0, scales - j)); // slowest level: largest savings
     const MesoscopicSchedule schedule(*kernel, 1e-6, alpha, std::vector<int>(scales - 1, 1));
     MacroStepCounts          counts;
     const std::vector<Step>  steps = record(schedule, 0.1, &counts);
@@ -390,11 +391,12 @@ TEST(RunMacroStep, AdvanceErrorStopsMacroStepAndIsReturned)
   const MesoscopicSchedule schedule(*kernel, 1e-4, {100, 10}, {1, 1});
   int                      calls = 0;
   MacroStepCounts          counts;
-  const int                error = runMacroStep(schedule, 0.1, [&](int, double, double) { return ++calls == 5 ? 7 : 0; }, &counts);
+  const int                error = runMacroStep(
+                   schedule, 0.1, [&](int, double, double) { return ++calls == 5 ? 7 : 0; }, &counts);
   EXPECT_EQ(error, 7);
   EXPECT_EQ(calls, 5);
   EXPECT_EQ(counts.cycles, 2);
-  EXPECT_EQ(counts.levelSteps[0] + counts.levelSteps[1] + counts.levelSteps[2], 4);  // the failed step is not counted
+  EXPECT_EQ(counts.levelSteps[0] + counts.levelSteps[1] + counts.levelSteps[2], 4); // the failed step is not counted
 }
 
 TEST(RunMacroStep, CountsDescribeOneMacroStep)
@@ -403,12 +405,12 @@ TEST(RunMacroStep, CountsDescribeOneMacroStep)
   const MesoscopicSchedule schedule(*kernel, 1e-4, {100, 10}, {1, 1});
   MacroStepCounts          first, second;
   record(schedule, 0.1, &first);
-  second.cycles = 1000;  // stale values are overwritten
+  second.cycles = 1000; // stale values are overwritten
   second.levelSteps.assign(7, 99);
   record(schedule, 0.1, &second);
   EXPECT_EQ(second.cycles, first.cycles);
   EXPECT_EQ(second.levelSteps, first.levelSteps);
-  EXPECT_EQ(first.cycles, 9);  // the method note: about 9 micro cycles per DeltaT = 0.1 here
+  EXPECT_EQ(first.cycles, 9); // the method note: about 9 micro cycles per DeltaT = 0.1 here
 }
 
-}  // namespace
+} // namespace

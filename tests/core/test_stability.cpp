@@ -11,10 +11,22 @@ namespace {
 using vshmm::Tableau;
 using cd = std::complex<double>;
 
-Tableau Euler() { return Tableau("1fe", 1, 1, {0}, {1}, {0}); }
-Tableau Heun() { return Tableau("2a", 2, 2, {0, 0, 1, 0}, {0.5, 0.5}, {0, 1}); }
-Tableau Kutta3() { return Tableau("3", 3, 3, {0, 0, 0, 0.5, 0, 0, -1, 2, 0}, {1.0 / 6, 2.0 / 3, 1.0 / 6}, {0, 0.5, 1}); }
-Tableau RK4() { return Tableau("4", 4, 4, {0, 0, 0, 0, 0.5, 0, 0, 0, 0, 0.5, 0, 0, 0, 0, 1, 0}, {1.0 / 6, 1.0 / 3, 1.0 / 3, 1.0 / 6}, {0, 0.5, 0.5, 1}); }
+Tableau Euler()
+{
+  return Tableau("1fe", 1, 1, {0}, {1}, {0});
+}
+Tableau Heun()
+{
+  return Tableau("2a", 2, 2, {0, 0, 1, 0}, {0.5, 0.5}, {0, 1});
+}
+Tableau Kutta3()
+{
+  return Tableau("3", 3, 3, {0, 0, 0, 0.5, 0, 0, -1, 2, 0}, {1.0 / 6, 2.0 / 3, 1.0 / 6}, {0, 0.5, 1});
+}
+Tableau RK4()
+{
+  return Tableau("4", 4, 4, {0, 0, 0, 0, 0.5, 0, 0, 0, 0, 0.5, 0, 0, 0, 0, 1, 0}, {1.0 / 6, 1.0 / 3, 1.0 / 3, 1.0 / 6}, {0, 0.5, 0.5, 1});
+}
 
 TEST(StabilityFunction, IsTheTruncatedExponentialForMethodsWithOrderEqualToStages)
 {
@@ -113,9 +125,9 @@ TEST(LevelAmplification, VariableStepsBeyondThePeakLimitCanStillDampOverAPeriod)
   // The paper's dissipative parameters: level 1 (alpha_2 = 10, dt = 1e-4, cosine kernel) peaks at
   // h_2 = 2e-3. For lambda = -1500 the peak step is outside RK4's interval (z = -3 < -2.785),
   // yet the period as a whole damps; for lambda = -3000 it does not.
-  auto                      kernel = vshmm::Kernel::create(vshmm::KernelType::Cosine);
-  vshmm::MesoscopicSchedule schedule(*kernel, 1e-4, {100, 10}, {1, 1});
-  vshmm::StabilityFunction  R(RK4());
+  auto                            kernel = vshmm::Kernel::create(vshmm::KernelType::Cosine);
+  vshmm::MesoscopicSchedule       schedule(*kernel, 1e-4, {100, 10}, {1, 1});
+  vshmm::StabilityFunction        R(RK4());
   const vshmm::LevelAmplification mild = vshmm::levelAmplification(R, schedule, 0.1, 1, -1500.0);
   EXPECT_GT(mild.largestStep * 1500.0, R.realLimit());
   EXPECT_LT(mild.logAmplification, 0.0);
@@ -134,7 +146,7 @@ TEST(LargestStableSavingsFactor, IsTheEdgeOfTheCriterion)
   // larger one fails, and the parameters passed in are left as they were.
   auto                      kernel = vshmm::Kernel::create(vshmm::KernelType::Cosine);
   vshmm::StabilityFunction  R(RK4());
-  const std::vector<double> savings = {100, 10};
+  const std::vector<double> savings      = {100, 10};
   const std::vector<int>    subintervals = {1, 1};
   const double              target = 0.5, growth = 100, lambda = -3000;
   const double              alpha = vshmm::largestStableSavingsFactor(R, *kernel, 1e-4, savings, subintervals, 0.1, 2, lambda, target, growth);
@@ -142,7 +154,7 @@ TEST(LargestStableSavingsFactor, IsTheEdgeOfTheCriterion)
   ASSERT_GT(alpha, 1.0);
   ASSERT_LT(alpha, 10.0);
   auto passes = [&](double a) {
-    const vshmm::MesoscopicSchedule          schedule(*kernel, 1e-4, {100, a}, subintervals);
+    const vshmm::MesoscopicSchedule schedule(*kernel, 1e-4, {100, a}, subintervals);
     const vshmm::LevelAmplification amp = vshmm::levelAmplification(R, schedule, 0.1, 1, lambda);
     return amp.logAmplification <= std::log(target) && amp.largestGrowth <= std::log(growth);
   };

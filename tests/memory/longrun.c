@@ -66,12 +66,12 @@ int main(int argc, char **argv)
   TS                ts;
   Vec               x;
   IS                all, is1, is2;
-  PetscInt          steps = 100000;
+  PetscInt          steps   = 100000;
   const PetscReal   alpha[] = {5, 2};
   Memory            m       = {0};
   PetscLogDouble    rss_end;
   TSVSHMMStatistics stats;
-  PetscScalar       x0[3] = {1, 0, 0};
+  PetscScalar       x0[3]  = {1, 0, 0};
   PetscInt          idx[3] = {0, 1, 2};
   PetscReal         xend;
 

@@ -112,10 +112,10 @@ TEST(Transforms, AgainstDirectSums)
 
 TEST(Transforms, SynthesizeAnalyzeRoundTrip)
 {
-  const int            N = 32;
-  Layout               full = Layout::full(N);
-  SpectralOperator     op(full, std::vector<double>(N, 1.0), {}, Planner::Estimate);
-  std::vector<double>  c = randomVector(full.size(), 3), u(N), back(full.size());
+  const int           N    = 32;
+  Layout              full = Layout::full(N);
+  SpectralOperator    op(full, std::vector<double>(N, 1.0), {}, Planner::Estimate);
+  std::vector<double> c = randomVector(full.size(), 3), u(N), back(full.size());
   op.synthesize(c.data(), u.data());
   // u(x_j) = sum_k c_k e^{ikx_j} over k = -N/2+1..N/2
   std::vector<cplx> cc = toComplex(full, c);
@@ -133,7 +133,7 @@ TEST(Operator, FullAgainstDirectSums)
 {
   for (int N : {32, 31}) {
     Layout              full = Layout::full(N);
-    std::vector<double> D    = randomVector(N, 11), A = randomVector(N, 12);
+    std::vector<double> D = randomVector(N, 11), A = randomVector(N, 12);
     for (double &d : D) d += 2.0;
     for (int terms = 0; terms < 3; ++terms) {
       std::vector<double> Dt = terms == 1 ? std::vector<double>() : D, At = terms == 0 ? std::vector<double>() : A;
@@ -152,7 +152,7 @@ TEST(Operator, FullAgainstDirectSums)
 TEST(Operator, ConstantCoefficients)
 {
   // d = 2: F_k = -2 k^2 c_k; a = 3 (A = -3): F_k = -3 i k c_k (Nyquist: derivative zero)
-  const int           N = 16;
+  const int           N    = 16;
   Layout              full = Layout::full(N);
   std::vector<double> c    = randomVector(full.size(), 9), F(full.size());
   SpectralOperator    dif(full, std::vector<double>(N, 2.0), {}, Planner::Estimate);
@@ -281,8 +281,8 @@ TEST(Clusters, BadInput)
   EXPECT_NE(parseError("5:3", 64).find("lo > hi"), std::string::npos);
   EXPECT_NE(parseError("-1:3", 64).find("nonnegative"), std::string::npos);
   EXPECT_NE(parseError("1+1", 64).find("twice"), std::string::npos);
-  EXPECT_NE(parseError("0:3,", 64).find("empty cluster"), std::string::npos);     // trailing ','
-  EXPECT_NE(parseError("0:3,5+", 64).find("empty range"), std::string::npos);     // trailing '+'
+  EXPECT_NE(parseError("0:3,", 64).find("empty cluster"), std::string::npos); // trailing ','
+  EXPECT_NE(parseError("0:3,5+", 64).find("empty range"), std::string::npos); // trailing '+'
   EXPECT_NE(parseError("0:3,+5", 64).find("empty range"), std::string::npos);
   EXPECT_NE(parseError("0:999999999", 64).find("outside 0..32"), std::string::npos); // before expanding
 }
@@ -312,7 +312,7 @@ TEST(Detect, SoftThresholdAndMerge)
   EXPECT_EQ(support, (std::vector<int>{0, 1, 2, 3, 62, 63, 65, 66, 200, 201}));
   ClusterSet cs = mergeIntoClusters(support, N, 1);
   EXPECT_EQ(cs.format(), "K0 = {0..3}, K1 = {62,63,65,66}, K2 = {200,201}");
-  EXPECT_EQ(mergeIntoClusters(support, N, 0).size(), 4u); // the hole at 64 splits K1
+  EXPECT_EQ(mergeIntoClusters(support, N, 0).size(), 4u);  // the hole at 64 splits K1
   EXPECT_EQ(mergeIntoClusters(support, N, 60).size(), 2u); // 3 -> 62 is 58 missing: merged
   // series normalisation: 1e-2 > lambda still, dft: noise N * 1e-6 = 5e-4 < lambda
   EXPECT_EQ(thresholdSupport({m}, N, lambda, Normalization::Series).size(), 10u);
@@ -346,21 +346,21 @@ TEST(Fields, Forms)
 {
   const int N = 64;
   Field     d;
-  d.form        = Field::Form::ExpSin;
-  d.weights     = {0.25, 0.25};
-  d.wavenumbers = {4, 16};
+  d.form                = Field::Form::ExpSin;
+  d.weights             = {0.25, 0.25};
+  d.wavenumbers         = {4, 16};
   std::vector<double> v = d.sample(N);
   for (int j = 0; j < N; ++j) {
     const double x = gridPoint(N, j);
     EXPECT_NEAR(v[j], 0.25 * (std::exp(std::sin(4 * x)) + std::exp(std::sin(16 * x))), 1e-14);
   }
   Field a;
-  a.form                  = Field::Form::ExpRatio;
-  a.scale                 = 0.25;
-  a.numerator.offset      = 0.6;
-  a.numerator.wavenumbers = {3};
-  a.numerator.cosines     = {0.2};
-  a.denominator.offset    = 1.0;
+  a.form                    = Field::Form::ExpRatio;
+  a.scale                   = 0.25;
+  a.numerator.offset        = 0.6;
+  a.numerator.wavenumbers   = {3};
+  a.numerator.cosines       = {0.2};
+  a.denominator.offset      = 1.0;
   a.denominator.wavenumbers = {8, 32};
   a.denominator.sines       = {0.35, 0.35};
   v                         = a.sample(N);
@@ -386,9 +386,9 @@ TEST(Fields, Forms)
   f.numerator.wavenumbers = {2};
   f.numerator.sines       = {0.5, 0.1};
   EXPECT_THROW(f.sample(N), std::invalid_argument); // two sines for one wavenumber
-  Field r = Field::ofForm(Field::Form::ExpRatio); // exp(0 / 1) = 1
+  Field r = Field::ofForm(Field::Form::ExpRatio);   // exp(0 / 1) = 1
   EXPECT_EQ(r.sample(N)[3], 1.0);
-  Field q = Field::ofForm(Field::Form::Fourier); // cos left out: 0
+  Field q                 = Field::ofForm(Field::Form::Fourier); // cos left out: 0
   q.numerator.wavenumbers = {24};
   q.numerator.sines       = {0.6};
   EXPECT_NEAR(q.sample(N)[1], 0.6 * std::sin(24 * gridPoint(N, 1)), 1e-15);

@@ -50,10 +50,10 @@ PetscErrorCode FollowCall(SplitProblem *p, int split, PetscReal t, bool *inject)
 
 PetscErrorCode SplitFunction(TS, PetscReal t, Vec X, Vec F, void *vctx)
 {
-  SplitCtx          *ctx = (SplitCtx *)vctx;
-  SplitProblem      *p   = ctx->problem;
-  const PetscScalar *xa;
-  PetscScalar       *fa;
+  SplitCtx                *ctx = (SplitCtx *)vctx;
+  SplitProblem            *p   = ctx->problem;
+  const PetscScalar       *xa;
+  PetscScalar             *fa;
   std::vector<PetscScalar> full(p->n);
 
   PetscFunctionBeginUser;
@@ -80,11 +80,11 @@ PetscErrorCode SplitFunction(TS, PetscReal t, Vec X, Vec F, void *vctx)
 
 PetscErrorCode FullFunction(TS, PetscReal t, Vec X, Vec F, void *vctx)
 {
-  SplitProblem      *p = (SplitProblem *)vctx;
-  const PetscScalar *xa;
-  PetscScalar       *fa;
+  SplitProblem            *p = (SplitProblem *)vctx;
+  const PetscScalar       *xa;
+  PetscScalar             *fa;
   std::vector<PetscScalar> full(p->n), sum(p->n, 0.0);
-  PetscInt           rstart, rend;
+  PetscInt                 rstart, rend;
 
   PetscFunctionBeginUser;
   PetscCall(VecScatterBegin(p->gather, X, p->xall, INSERT_VALUES, SCATTER_FORWARD));
@@ -106,7 +106,7 @@ PetscErrorCode FullFunction(TS, PetscReal t, Vec X, Vec F, void *vctx)
 
 PetscErrorCode CreateSplitTS(MPI_Comm comm, SplitProblem *p, SplitKind kind, const std::vector<PetscReal> &x0, const std::vector<std::string> &names, TS *ts, Vec *x, const std::vector<int> &creation)
 {
-  PetscInt rstart, rend;
+  PetscInt       rstart, rend;
   const PetscInt nscales = (PetscInt)p->terms.size();
 
   PetscFunctionBeginUser;
@@ -129,7 +129,7 @@ PetscErrorCode CreateSplitTS(MPI_Comm comm, SplitProblem *p, SplitKind kind, con
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCallMPI(MPI_Comm_size(comm, &size));
   for (PetscInt c = 0; c < nscales; ++c) {
-    const PetscInt         k = creation.empty() ? c : creation[c];
+    const PetscInt         k     = creation.empty() ? c : creation[c];
     std::vector<PetscInt> &comps = ctxs[k].components;
     IS                     is;
     ctxs[k].scale = k;

@@ -11,27 +11,32 @@
 // Mixed: even scales additive, odd scales component splits. Scattered: the same, but every IS lists
 // its components in decreasing order, all on the last rank (unsorted, and on several ranks naming
 // components that other ranks own): TSVSHMM adds such splits with a VecScatter.
-enum class SplitKind { Additive, Component, Mixed, Scattered };
+enum class SplitKind {
+  Additive,
+  Component,
+  Mixed,
+  Scattered
+};
 
 // One call of a split function, as seen by the test hooks below.
 struct SplitCall {
-  int       split;      // the term (scale index of the problem)
-  long      call;       // 1, 2, ...: the how-many-th call of this split
-  int       level;      // the TSVSHMM level whose field is being evaluated (-1: the stability check)
-  PetscReal t;          // the time the split is evaluated at
-  PetscReal macro_t0;   // the start of the macro step (TSGetTime() of the TS during the step)
+  int       split;    // the term (scale index of the problem)
+  long      call;     // 1, 2, ...: the how-many-th call of this split
+  int       level;    // the TSVSHMM level whose field is being evaluated (-1: the stability check)
+  PetscReal t;        // the time the split is evaluated at
+  PetscReal macro_t0; // the start of the macro step (TSGetTime() of the TS during the step)
 };
 
 // A small ODE dx/dt = sum_k f_k(x) whose split k writes the terms of scale k. The state lives on
 // `comm` (spread over its ranks); split functions gather it to every rank.
 struct SplitProblem {
-  using Term = void (*)(const void *params, PetscReal t, const PetscScalar *x, PetscScalar *f); // f_k for all components
+  using Term          = void (*)(const void *params, PetscReal t, const PetscScalar *x, PetscScalar *f); // f_k for all components
   PetscInt          n = 0;
   std::vector<Term> terms; // scale k's term, written for every component
-  const void       *params = nullptr;
-  long              nan_after_calls = -1; // test hook: the fastest split returns NaN after this many calls
+  const void       *params          = nullptr;
+  long              nan_after_calls = -1;             // test hook: the fastest split returns NaN after this many calls
   PetscReal         nan_after_time  = PETSC_MAX_REAL; // test hook: ... or at times past this one
-  long              calls = 0;
+  long              calls           = 0;
   // Test hooks that follow every split call (only when set): `trace` records each call; split
   // nan_split returns NaN in all its entries on its nan_call-th call. The level is found from the
   // TSVSHMM statistics of `ts` (set by CreateSplitTS): the level whose evaluation count moved.

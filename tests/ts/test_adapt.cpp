@@ -109,8 +109,8 @@ TEST(VSHMMAdapt, DissipativeExampleMeetsTheTolerance)
 {
   // whole state (PETSc's weighted norm) at 1e-1, the observable xi at 1e-2
   for (double tol : {1e-1, 1e-2}) {
-    AdaptRun  run;
-    char      options[128];
+    AdaptRun run;
+    char     options[128];
     PetscSNPrintf(options, sizeof(options), "-ts_vshmm_adapt -ts_rtol %g -ts_atol %g", tol, tol);
     ASSERT_EQ(SolveDissipativeAdapt(options, 1.0, &run, tol < 0.1), 0);
     EXPECT_LE(std::abs(run.x[0] - kXiAt1), 2 * tol * (1 + kXiAt1)) << "tol " << tol;
@@ -166,8 +166,8 @@ TEST(VSHMMSeparation, AdaptTakesNoSavingsWithoutSeparation)
   EXPECT_EQ(savings[0], 0.0);
   // exact: eigenvalues (-3 +- sqrt 5)/2
   const double l1 = (-3 + std::sqrt(5.0)) / 2, l2 = (-3 - std::sqrt(5.0)) / 2;
-  const double v1 = 1 + l1, v2 = 1 + l2; // y/x of each eigenvector: x' = -x + y -> y = (l + 1) x
-  const double c1 = -v2 / (v1 - v2), c2 = v1 / (v1 - v2);   // c1 + c2 = 1, c1 v1 + c2 v2 = 0
+  const double v1 = 1 + l1, v2 = 1 + l2;                  // y/x of each eigenvector: x' = -x + y -> y = (l + 1) x
+  const double c1 = -v2 / (v1 - v2), c2 = v1 / (v1 - v2); // c1 + c2 = 1, c1 v1 + c2 v2 = 0
   const double exact = c1 * std::exp(l1) + c2 * std::exp(l2);
   EXPECT_NEAR(x[0], exact, 2e-4 * (1 + std::abs(exact)));
 }

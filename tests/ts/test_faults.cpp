@@ -21,13 +21,13 @@ namespace {
 constexpr PetscReal kDeltaT = 0.1, kTFinal = 0.5;
 
 struct FaultRun {
-  PetscErrorCode                          code   = 0;
-  std::string                             error;  // the PETSc error message (error mode)
-  std::string                             stderr_text; // what TSVSHMM printed (rank 0; no-error mode)
-  TSConvergedReason                       reason = TS_CONVERGED_ITERATING;
-  PetscReal                               time   = 0;
-  std::vector<PetscReal>                  x;
-  std::vector<SplitCall>                  trace;
+  PetscErrorCode                           code = 0;
+  std::string                              error;       // the PETSc error message (error mode)
+  std::string                              stderr_text; // what TSVSHMM printed (rank 0; no-error mode)
+  TSConvergedReason                        reason = TS_CONVERGED_ITERATING;
+  PetscReal                                time   = 0;
+  std::vector<PetscReal>                   x;
+  std::vector<SplitCall>                   trace;
   std::map<double, std::vector<PetscReal>> samples; // the sampled states the monitor saw
 };
 
@@ -58,8 +58,8 @@ void SolveWithFault(MPI_Comm comm, SplitKind kind, bool grouped, bool error_if_f
   if (grouped) DissipativeProblemWithSlowHalves(&p, &params);
   else DissipativeProblem(&p, &params);
   if (nan_split < 0) p.trace = &run->trace;
-  p.nan_split = nan_split;
-  p.nan_call  = nan_call;
+  p.nan_split                          = nan_split;
+  p.nan_call                           = nan_call;
   const std::vector<std::string> names = grouped ? std::vector<std::string>{"slowA", "slowB", "medium", "fast"} : std::vector<std::string>{"slow", "medium", "fast"};
   ASSERT_EQ(CreateSplitTS(comm, &p, kind, {5, -10, 5}, names, &ts, &x), 0);
   ASSERT_EQ(TSSetTimeStep(ts, kDeltaT), 0);
@@ -75,9 +75,9 @@ void SolveWithFault(MPI_Comm comm, SplitKind kind, bool grouped, bool error_if_f
   // TSVSHMM prints the fault to PETSC_STDERR (rank 0) when it does not raise an error: keep it.
   FILE *saved = PETSC_STDERR, *capture = tmpfile();
   ASSERT_NE(capture, nullptr);
-  PETSC_STDERR            = capture;
-  const CapturedError e   = CaptureError([&]() { return TSSolve(ts, x); });
-  PETSC_STDERR            = saved;
+  PETSC_STDERR          = capture;
+  const CapturedError e = CaptureError([&]() { return TSSolve(ts, x); });
+  PETSC_STDERR          = saved;
   rewind(capture);
   char buffer[1024];
   while (fgets(buffer, sizeof(buffer), capture)) run->stderr_text += buffer;
@@ -112,8 +112,8 @@ std::string Format(const char *fmt, double v)
 
 void CheckAllFaults(MPI_Comm comm, SplitKind kind, bool grouped)
 {
-  const std::vector<std::string> names  = grouped ? std::vector<std::string>{"slowA", "slowB", "medium", "fast"} : std::vector<std::string>{"slow", "medium", "fast"};
-  const std::vector<int>         scale  = grouped ? std::vector<int>{0, 0, 1, 2} : std::vector<int>{0, 1, 2};
+  const std::vector<std::string> names = grouped ? std::vector<std::string>{"slowA", "slowB", "medium", "fast"} : std::vector<std::string>{"slow", "medium", "fast"};
+  const std::vector<int>         scale = grouped ? std::vector<int>{0, 0, 1, 2} : std::vector<int>{0, 1, 2};
   FaultRun                       clean;
   SolveWithFault(comm, kind, grouped, true, -1, -1, &clean);
   ASSERT_EQ(clean.code, 0);
@@ -169,17 +169,32 @@ void CheckAllFaults(MPI_Comm comm, SplitKind kind, bool grouped)
 
 // Under mpiexec -n 2 the additive and scattered runs spread the state over both ranks. Component
 // splits run on each rank alone here; on both ranks in EarliestFaultOnAnotherRankAtTheSameTime.
-TEST(VSHMMFaults, EverySplitAtEveryLevelAdditiveSplits) { CheckAllFaults(PETSC_COMM_WORLD, SplitKind::Additive, false); }
-TEST(VSHMMFaults, EverySplitAtEveryLevelComponentSplits) { CheckAllFaults(PETSC_COMM_SELF, SplitKind::Component, false); }
-TEST(VSHMMFaults, EverySplitAtEveryLevelScatteredSplits) { CheckAllFaults(PETSC_COMM_WORLD, SplitKind::Scattered, false); }
-TEST(VSHMMFaults, EverySplitOfAGroupedScale) { CheckAllFaults(PETSC_COMM_WORLD, SplitKind::Additive, true); }
+TEST(VSHMMFaults, EverySplitAtEveryLevelAdditiveSplits)
+{
+  CheckAllFaults(PETSC_COMM_WORLD, SplitKind::Additive, false);
+}
+TEST(VSHMMFaults, EverySplitAtEveryLevelComponentSplits)
+{
+  CheckAllFaults(PETSC_COMM_SELF, SplitKind::Component, false);
+}
+TEST(VSHMMFaults, EverySplitAtEveryLevelScatteredSplits)
+{
+  CheckAllFaults(PETSC_COMM_WORLD, SplitKind::Scattered, false);
+}
+TEST(VSHMMFaults, EverySplitOfAGroupedScale)
+{
+  CheckAllFaults(PETSC_COMM_WORLD, SplitKind::Additive, true);
+}
 
 // Under mpiexec -n 2, component splits on both ranks: NaN from 'fast' (rank 1) on its last call,
 // at level 2 and time T, reaches the state, and the next level's first evaluation, at the same
 // time T, makes 'slow' (rank 0) non-finite too. The fault must name 'fast' at level 2: faults are
 // ranked across ranks by the order of evaluation, not by time (on this tie, ranking by
 // (time, level * nsplits + split) named 'slow' at level 1, which came later).
-TEST(VSHMMFaults, EarliestFaultOnAnotherRankAtTheSameTime) { CheckAllFaults(PETSC_COMM_WORLD, SplitKind::Component, false); }
+TEST(VSHMMFaults, EarliestFaultOnAnotherRankAtTheSameTime)
+{
+  CheckAllFaults(PETSC_COMM_WORLD, SplitKind::Component, false);
+}
 
 TEST(VSHMMFaults, TheTraceFollowsTheLevels)
 {

@@ -45,10 +45,10 @@ void ForcedFast(const void *vp, PetscReal t, const PetscScalar *u, PetscScalar *
   f[2]        = (u[1] - u[2] + std::sin(5 * t)) / ((const ForcedParams *)vp)->e2;
 }
 
-const std::vector<PetscReal> kX0      = {1.0, 0.5, -0.5};
-constexpr PetscReal          kDeltaT  = 0.5;
-constexpr PetscReal          kTFinal  = 1.0;
-const std::vector<double>    kSavings = {2.0, 2.5}; // mean h_1 = 2 dt, h_2 = 2.5 dt
+const std::vector<PetscReal> kX0               = {1.0, 0.5, -0.5};
+constexpr PetscReal          kDeltaT           = 0.5;
+constexpr PetscReal          kTFinal           = 1.0;
+const std::vector<double>    kSavings          = {2.0, 2.5}; // mean h_1 = 2 dt, h_2 = 2.5 dt
 constexpr double             kReferenceSubstep = 2.5e-5;
 
 // G_l = f_0 + ... + f_l at (t, u).
@@ -71,7 +71,7 @@ std::vector<double> ExactSplitting(double dt, double hmax = kReferenceSubstep)
   auto                      kernel = vshmm::Kernel::create(vshmm::KernelType::Cosine);
   vshmm::MesoscopicSchedule schedule(*kernel, dt, kSavings, {1, 1});
   std::vector<double>       u(kX0.begin(), kX0.end());
-  double                    t0 = 0;
+  double                    t0      = 0;
   auto                      advance = [&](int level, double tau, double h) -> int {
     const int    ns = (int)std::ceil(h / hmax);
     const double s  = h / ns;

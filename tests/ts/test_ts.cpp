@@ -19,7 +19,7 @@ constexpr double kDnsEvaluations = 8e6;
 
 struct SolveResult {
   std::vector<PetscReal> x;
-  PetscReal              time = 0;
+  PetscReal              time              = 0;
   PetscInt64             split_evaluations = 0;
   PetscInt64             stability_checks = 0, stability_warnings = 0, stability_evaluations = 0;
   TSConvergedReason      reason = TS_CONVERGED_ITERATING;
@@ -170,11 +170,11 @@ TEST(VSHMMSolver, FourScalesFollowTheAveragedEquation)
 {
   // Converged references at t = 2: the averaged equation and a DNS of the chain (RK4; halving the
   // step changes them by < 1e-12).
-  using V = std::vector<double>;
-  const double X = RK4([](const V &y) { return V{std::sin(y[0]) - y[0] / 2}; }, V{1.0}, 2.0, 2000)[0];
+  using V             = std::vector<double>;
+  const double      X = RK4([](const V &y) { return V{std::sin(y[0]) - y[0] / 2}; }, V{1.0}, 2.0, 2000)[0];
   const ChainParams c;
-  auto chain = [&](const V &x) { return V{std::sin(x[1]) - x[0] / 2, (x[0] - x[1]) / c.e1, (x[1] + x[0] - x[2]) / c.e2, (x[2] - x[3]) / c.e3}; };
-  const double dns = RK4(chain, V{1, 0, 0, 0}, 2.0, 100000)[0];
+  auto              chain = [&](const V &x) { return V{std::sin(x[1]) - x[0] / 2, (x[0] - x[1]) / c.e1, (x[1] + x[0] - x[2]) / c.e2, (x[2] - x[3]) / c.e3}; };
+  const double      dns   = RK4(chain, V{1, 0, 0, 0}, 2.0, 100000)[0];
   EXPECT_NEAR(dns, RK4(chain, V{1, 0, 0, 0}, 2.0, 200000)[0], 1e-12);
   EXPECT_NEAR(dns, X, 1e-2); // the averaged equation holds to O(e1)
   // Measured x0(2) errors against the DNS: 4.8e-2 for alpha = (1000, 100, 10), 1.4e-2 for
@@ -244,7 +244,7 @@ PetscErrorCode SolveGrouped(const char *order, std::vector<PetscReal> &out, Grou
 
 TEST(VSHMMSolver, ScalesCanBeGroupsOfSplits)
 {
-  SolveResult            reference;
+  SolveResult              reference;
   std::vector<PetscReal>   grouped;
   GroupedStatistics        stats;
   std::vector<std::string> scales;
@@ -253,7 +253,7 @@ TEST(VSHMMSolver, ScalesCanBeGroupsOfSplits)
   for (int i = 0; i < 3; ++i) EXPECT_NEAR(grouped[i], reference.x[i], 1e-13 * std::abs(reference.x[i])) << i;
   EXPECT_EQ(stats.nsplits, 4);
   EXPECT_EQ(stats.nscales, 3);
-  EXPECT_EQ(stats.rhs_evaluations[0], stats.rhs_evaluations[1]); // both halves belong to scale 0
+  EXPECT_EQ(stats.rhs_evaluations[0], stats.rhs_evaluations[1]);                                                          // both halves belong to scale 0
   EXPECT_EQ(stats.rhs_evaluations[0] + stats.rhs_evaluations[2] + stats.rhs_evaluations[3], reference.split_evaluations); // the same steps as ungrouped
   EXPECT_EQ(scales, (std::vector<std::string>{"slowA+slowB", "medium", "fast"}));
 }
@@ -436,9 +436,9 @@ TEST(VSHMMSolver, ViewPrintsScalesKernelAndWork)
   ASSERT_EQ(TSSolve(ts, x), 0);
   TSVSHMMStatistics stats;
   ASSERT_EQ(TSVSHMMGetStatistics(ts, &stats), 0);
-  const PetscInt64 steps = stats.level_steps[0] + stats.level_steps[1] + stats.level_steps[2];
+  const PetscInt64  steps   = stats.level_steps[0] + stats.level_steps[1] + stats.level_steps[2];
   const std::string evals[] = {std::to_string(3 * steps), std::to_string(3 * (steps - stats.level_steps[0])), std::to_string(3 * stats.level_steps[2])};
-  PetscViewer viewer;
+  PetscViewer       viewer;
   ASSERT_EQ(PetscViewerASCIIOpen(PETSC_COMM_WORLD, path, &viewer), 0);
   ASSERT_EQ(TSView(ts, viewer), 0);
   ASSERT_EQ(PetscViewerDestroy(&viewer), 0);
@@ -495,11 +495,11 @@ void Nothing(const void *, PetscReal, const PetscScalar *, PetscScalar *f)
 
 PetscErrorCode DecayError(const char *rk, PetscReal dt, PetscReal *error)
 {
-  Decay        params;
-  SplitProblem p;
-  TS           ts;
-  Vec          x;
-  PetscReal    alpha = 1;
+  Decay                  params;
+  SplitProblem           p;
+  TS                     ts;
+  Vec                    x;
+  PetscReal              alpha = 1;
   std::vector<PetscReal> out;
 
   PetscFunctionBeginUser;
@@ -616,24 +616,24 @@ TEST(VSHMMSolver, GettersReturnWhatWasSet)
 // Bad input: each yields a PETSc error whose message names the option and the allowed values.
 
 struct BadInput {
-  const char *options;    // inserted before TSSetFromOptions(); nullptr: none
-  int         nsplits;    // splits declared (3 = the dissipative example's)
-  const char *expected;   // a part of the error message
+  const char *options;  // inserted before TSSetFromOptions(); nullptr: none
+  int         nsplits;  // splits declared (3 = the dissipative example's)
+  const char *expected; // a part of the error message
 };
 
 CapturedError SetUpWith(const BadInput &bad)
 {
   DissipativeParams params;
   SplitProblem      p;
-  TS                ts = nullptr;
-  Vec               x  = nullptr;
+  TS                ts      = nullptr;
+  Vec               x       = nullptr;
   const PetscReal   alpha[] = {100, 10};
 
   DissipativeProblem(&p, &params);
   std::vector<std::string> names = {"slow", "medium", "fast"};
   if (bad.nsplits == 1) { // one split: the whole field
     p.terms = {[](const void *vp, PetscReal t, const PetscScalar *x, PetscScalar *f) {
-      PetscScalar a[3], b[3];
+      PetscScalar       a[3], b[3];
       DissipativeParams q = *(const DissipativeParams *)vp;
       (void)t;
       const PetscReal s = x[0] + x[1] + x[2];
@@ -641,7 +641,7 @@ CapturedError SetUpWith(const BadInput &bad)
       (void)b;
       for (int i = 0; i < 3; ++i) f[i] = a[i];
     }};
-    names = {"all"};
+    names   = {"all"};
   }
   EXPECT_EQ(CreateSplitTS(PETSC_COMM_WORLD, &p, SplitKind::Additive, {5, -10, 5}, names, &ts, &x), 0);
   TSSetTimeStep(ts, 0.1);
@@ -737,7 +737,7 @@ TEST(VSHMMBadInput, NonFiniteSplitOutputStopsTheSolveNamingSplitAndTime)
   {
     SplitProblem p;
     p.nan_after_time = 0.35;
-    SolveResult           run;
+    SolveResult   run;
     CapturedError e = CaptureError([&]() { return SolveDissipative(PETSC_COMM_WORLD, SplitKind::Component, 1.0, 0.1, &run, nullptr, &p); });
     EXPECT_NE(e.code, 0);
     const std::string head = "split 'fast' (scale 2) produced Inf or NaN at t = ";
@@ -773,13 +773,7 @@ TEST(VSHMMBadInput, GroupedScalesAreChecked)
   // Without the grouping each half would be a scale of its own: four scales need three factors.
   CapturedError e = CaptureError([&]() { return SolveGrouped("slowA,slowB,medium,fast", grouped, &stats, &scales); });
   EXPECT_NE(e.message.find("has 2 values but there are 4 scales (RHS splits), so it needs 3"), std::string::npos) << e.message;
-  for (const auto &bad : std::vector<std::pair<const char *, const char *>>{
-         {"slowA+,medium,fast", "scale 'slowA+' has an empty split name"},
-         {"slowA++slowB,medium,fast", "scale 'slowA++slowB' has an empty split name"},
-         {"slowA+slowB+medium+fast", "-ts_vshmm_splits needs at least two scales"},
-         {"slowA+slowB,medium", "names 3 splits but the TS has 4 (slowA, slowB, medium, fast)"},
-         {"slowA+slowA,medium,fast", "Split 'slowA' appears twice"},
-         {"slowA+slowC,medium,fast", "Unknown split 'slowC'"}}) {
+  for (const auto &bad : std::vector<std::pair<const char *, const char *>>{{"slowA+,medium,fast", "scale 'slowA+' has an empty split name"}, {"slowA++slowB,medium,fast", "scale 'slowA++slowB' has an empty split name"}, {"slowA+slowB+medium+fast", "-ts_vshmm_splits needs at least two scales"}, {"slowA+slowB,medium", "names 3 splits but the TS has 4 (slowA, slowB, medium, fast)"}, {"slowA+slowA,medium,fast", "Split 'slowA' appears twice"}, {"slowA+slowC,medium,fast", "Unknown split 'slowC'"}}) {
     e = CaptureError([&]() { return SolveGrouped(bad.first, grouped, &stats, &scales); });
     EXPECT_NE(e.code, 0) << bad.first;
     EXPECT_NE(e.message.find(bad.second), std::string::npos) << bad.first << ": " << e.message;
@@ -797,9 +791,9 @@ TEST(VSHMMBadInput, ZeroLengthLocalVectorsOnSomeRanks)
     TS           ts;
     Vec          x;
     PetscReal    alpha = 3;
-    p.n      = 1;
-    p.terms  = {DecaySlow, Nothing};
-    p.params = &params;
+    p.n                = 1;
+    p.terms            = {DecaySlow, Nothing};
+    p.params           = &params;
     ASSERT_EQ(CreateSplitTS(comm, &p, SplitKind::Additive, {1.0}, {"slow", "fast"}, &ts, &x), 0);
     ASSERT_EQ(TSSetTimeStep(ts, 0.25), 0);
     ASSERT_EQ(TSSetMaxTime(ts, 1.0), 0);

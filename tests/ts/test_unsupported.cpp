@@ -22,8 +22,8 @@ UnsupportedRun SolveWith(const char *options, const std::function<PetscErrorCode
 {
   DissipativeParams params;
   SplitProblem      p;
-  TS                ts = nullptr;
-  Vec               x  = nullptr;
+  TS                ts      = nullptr;
+  Vec               x       = nullptr;
   const PetscReal   alpha[] = {100, 10};
   UnsupportedRun    run;
 

@@ -32,7 +32,10 @@ const char *normalizationName(Normalization n)
   }
 }
 
-double softThreshold(double magnitude, double lambda) { return std::max(magnitude - lambda, 0.0); }
+double softThreshold(double magnitude, double lambda)
+{
+  return std::max(magnitude - lambda, 0.0);
+}
 
 std::vector<int> thresholdSupport(const std::vector<std::vector<double>> &mags, int N, double lambda, Normalization norm)
 {

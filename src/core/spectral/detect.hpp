@@ -12,9 +12,13 @@ namespace spectral {
 //   unitary  factor sqrt(N)  (DFT with 1/sqrt(N): the default; gives the paper's clusters)
 //   series   factor 1        (Fourier series coefficients c_k)
 //   dft      factor N        (unnormalised DFT, as FFTW and numpy.fft.fft return it)
-enum class Normalization { Unitary, Series, DFT };
-double             normalizationFactor(Normalization n, int N);
-const char        *normalizationName(Normalization n);
+enum class Normalization {
+  Unitary,
+  Series,
+  DFT
+};
+double      normalizationFactor(Normalization n, int N);
+const char *normalizationName(Normalization n);
 
 // Soft thresholding: v^s_k = max(|v_k| - lambda, 0) v_k / |v_k|. The support is the set of k
 // with |v_k| > lambda.

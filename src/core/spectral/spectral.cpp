@@ -14,7 +14,10 @@ namespace spectral {
 
 static constexpr double kPi = 3.14159265358979323846;
 
-double gridPoint(int N, int j) { return 2.0 * kPi * (double)j / (double)N; }
+double gridPoint(int N, int j)
+{
+  return 2.0 * kPi * (double)j / (double)N;
+}
 
 // ---------------------------------------------------------------------------------------------
 // Clusters
@@ -27,7 +30,7 @@ static std::string trim(const std::string &s)
 
 static int parseWavenumber(const std::string &text, const std::string &item)
 {
-  const std::string t = trim(text);
+  const std::string t   = trim(text);
   size_t            pos = 0;
   long              v   = 0;
   bool              ok  = !t.empty();
@@ -95,7 +98,7 @@ void ClusterSet::validate() const
 {
   if (N < 2) throw std::invalid_argument("the grid needs at least 2 points, got N = " + std::to_string(N));
   if (clusters.empty()) throw std::invalid_argument("the cluster list is empty: a sparse run needs at least one cluster");
-  const int         kmax = maxWavenumber(N);
+  const int        kmax = maxWavenumber(N);
   std::vector<int> owner(kmax + 1, -1);
   for (size_t j = 0; j < clusters.size(); ++j) {
     if (clusters[j].empty()) throw std::invalid_argument("cluster K" + std::to_string(j) + " is empty");
@@ -128,7 +131,7 @@ bool ClusterSet::sortByLowest()
 std::string formatModes(const std::vector<int> &modes)
 {
   std::ostringstream s;
-  size_t             i = 0;
+  size_t             i     = 0;
   bool               first = true;
   while (i < modes.size()) {
     size_t j = i;
@@ -185,9 +188,9 @@ void Layout::finish()
   where_.assign(maxWavenumber(N_) + 1, -1);
   size_ = 0;
   for (size_t i = 0; i < modes_.size(); ++i) {
-    offsets_[i]        = size_;
-    where_[modes_[i]]  = (int)i;
-    size_             += realsOf(N_, modes_[i]);
+    offsets_[i]       = size_;
+    where_[modes_[i]] = (int)i;
+    size_ += realsOf(N_, modes_[i]);
   }
 }
 
@@ -216,7 +219,10 @@ static void checkSeries(const Series &s, const char *what)
 
 static const char *const kFormNames[] = {"constant", "gaussian", "expsin", "fourier", "exp_ratio", "samples"};
 
-const char *Field::formName(Form f) { return kFormNames[(int)f]; }
+const char *Field::formName(Form f)
+{
+  return kFormNames[(int)f];
+}
 
 Field Field::ofForm(Form f)
 {
@@ -349,8 +355,8 @@ RealFFT::RealFFT(int N, Planner planner) : N_(N)
   spec_ = (double *)fftw_alloc_complex((size_t)(N / 2 + 1));
   if (!real_ || !spec_) throw std::bad_alloc();
   const unsigned flags = plannerFlags(planner);
-  fwd_ = fftw_plan_dft_r2c_1d(N, real_, (fftw_complex *)spec_, flags);
-  inv_ = fftw_plan_dft_c2r_1d(N, (fftw_complex *)spec_, real_, flags);
+  fwd_                 = fftw_plan_dft_r2c_1d(N, real_, (fftw_complex *)spec_, flags);
+  inv_                 = fftw_plan_dft_c2r_1d(N, (fftw_complex *)spec_, real_, flags);
   if (!fwd_ || !inv_) throw std::runtime_error("FFTW could not make the plans for N = " + std::to_string(N));
   std::memset(real_, 0, sizeof(double) * N);
   std::memset(spec_, 0, sizeof(double) * 2 * (N / 2 + 1));
@@ -364,8 +370,14 @@ RealFFT::~RealFFT()
   fftw_free(spec_);
 }
 
-void RealFFT::forward() { fftw_execute((fftw_plan)fwd_); }
-void RealFFT::inverse() { fftw_execute((fftw_plan)inv_); }
+void RealFFT::forward()
+{
+  fftw_execute((fftw_plan)fwd_);
+}
+void RealFFT::inverse()
+{
+  fftw_execute((fftw_plan)inv_);
+}
 
 // ---------------------------------------------------------------------------------------------
 // The operator
@@ -442,7 +454,7 @@ static inline void storeMode(int N, int k, double s1r, double s1i, double s0r, d
 {
   const double kk = isRealOnly(N, k) ? 0.0 : (double)k;
   const double re = -kk * s1i + s0r, im = kk * s1r + s0i;
-  o[0]            = re;
+  o[0] = re;
   if (!isRealOnly(N, k)) o[1] = im;
 }
 
@@ -481,8 +493,8 @@ void SpectralOperator::projectDirect(int mb, int me, double *out, int base)
   for (int i = mb; i < me; ++i) {
     const int                  k  = layout_.mode(i);
     const std::vector<double> &tw = twiddle(i);
-    const double *c = tw.data(), *s = tw.data() + N_;
-    double        r1 = 0, i1 = 0, r0 = 0, i0 = 0;
+    const double              *c = tw.data(), *s = tw.data() + N_;
+    double                     r1 = 0, i1 = 0, r0 = 0, i0 = 0;
     if (w1) dot2(w1, c, s, N_, r1, i1);
     if (w0) dot2(w0, c, s, N_, r0, i0);
     storeMode(N_, k, r1 * invN, i1 * invN, r0 * invN, i0 * invN, out + layout_.offset(i) - base);
@@ -502,8 +514,8 @@ void SpectralOperator::synthesize(const double *coef, double *u)
   RealFFT fft(N_, Planner::Estimate);
   double *s = fft.spectrum();
   for (int i = 0; i < layout_.modeCount(); ++i) {
-    const int k = layout_.mode(i);
-    s[2 * k]    = coef[layout_.offset(i)];
+    const int k  = layout_.mode(i);
+    s[2 * k]     = coef[layout_.offset(i)];
     s[2 * k + 1] = isRealOnly(N_, k) ? 0.0 : coef[layout_.offset(i) + 1];
   }
   fft.inverse();
@@ -517,7 +529,7 @@ void SpectralOperator::analyze(const double *u, double *coef)
   fft.forward();
   const double *s = fft.spectrum();
   for (int i = 0; i < layout_.modeCount(); ++i) {
-    const int k            = layout_.mode(i);
+    const int k             = layout_.mode(i);
     coef[layout_.offset(i)] = s[2 * k] / N_;
     if (!isRealOnly(N_, k)) coef[layout_.offset(i) + 1] = s[2 * k + 1] / N_;
   }

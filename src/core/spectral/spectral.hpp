@@ -23,9 +23,18 @@ namespace vshmm {
 namespace spectral {
 
 // Wavenumbers of N points: 0..N/2. k is stored as one real if k = 0 or k = N/2 (N even).
-inline int maxWavenumber(int N) { return N / 2; }
-inline bool isRealOnly(int N, int k) { return k == 0 || (N % 2 == 0 && k == N / 2); }
-inline int realsOf(int N, int k) { return isRealOnly(N, k) ? 1 : 2; }
+inline int maxWavenumber(int N)
+{
+  return N / 2;
+}
+inline bool isRealOnly(int N, int k)
+{
+  return k == 0 || (N % 2 == 0 && k == N / 2);
+}
+inline int realsOf(int N, int k)
+{
+  return isRealOnly(N, k) ? 1 : 2;
+}
 // x_j = 2 pi j / N
 double gridPoint(int N, int j);
 
@@ -44,9 +53,9 @@ struct ClusterSet {
   // wavenumber is in two clusters.
   void validate() const;
   // Sorts the clusters by their lowest wavenumber (slowest first). Returns true if it changed the order.
-  bool sortByLowest();
-  size_t           size() const { return clusters.size(); }
-  std::string      format() const;   // "K0 = {0..3}, K1 = {62,63,65,66}"
+  bool        sortByLowest();
+  size_t      size() const { return clusters.size(); }
+  std::string format() const; // "K0 = {0..3}, K1 = {62,63,65,66}"
 };
 
 // "0..3" for runs of 3 or more, "62,63,65,66" otherwise: a compact list of sorted wavenumbers.
@@ -61,23 +70,23 @@ public:
   // Every mode 0..N/2 as one cluster (the direct simulation): size() = N.
   static Layout full(int N);
 
-  int N() const { return N_; }
-  int size() const { return size_; }                          // number of reals
-  int modeCount() const { return (int)modes_.size(); }        // retained nonnegative wavenumbers
-  int mode(int i) const { return modes_[i]; }                 // i-th retained wavenumber
-  int offset(int i) const { return offsets_[i]; }             // where mode i starts in the reals
+  int                     N() const { return N_; }
+  int                     size() const { return size_; }                   // number of reals
+  int                     modeCount() const { return (int)modes_.size(); } // retained nonnegative wavenumbers
+  int                     mode(int i) const { return modes_[i]; }          // i-th retained wavenumber
+  int                     offset(int i) const { return offsets_[i]; }      // where mode i starts in the reals
   const std::vector<int> &modes() const { return modes_; }
-  int clusterCount() const { return (int)clusterModeBegin_.size() - 1; }
-  int clusterModeBegin(int j) const { return clusterModeBegin_[j]; } // modes [begin, end) of cluster j
-  int clusterModeEnd(int j) const { return clusterModeBegin_[j + 1]; }
-  int clusterOffsetBegin(int j) const { return offsets_[clusterModeBegin_[j]]; } // reals [begin, end)
-  int clusterOffsetEnd(int j) const { return clusterModeEnd(j) < modeCount() ? offsets_[clusterModeEnd(j)] : size_; }
+  int                     clusterCount() const { return (int)clusterModeBegin_.size() - 1; }
+  int                     clusterModeBegin(int j) const { return clusterModeBegin_[j]; } // modes [begin, end) of cluster j
+  int                     clusterModeEnd(int j) const { return clusterModeBegin_[j + 1]; }
+  int                     clusterOffsetBegin(int j) const { return offsets_[clusterModeBegin_[j]]; } // reals [begin, end)
+  int                     clusterOffsetEnd(int j) const { return clusterModeEnd(j) < modeCount() ? offsets_[clusterModeEnd(j)] : size_; }
   // Index of wavenumber k in the layout, or -1.
   int indexOf(int k) const { return k >= 0 && k < (int)where_.size() ? where_[k] : -1; }
 
 private:
   Layout() = default;
-  void finish();
+  void             finish();
   int              N_ = 0, size_ = 0;
   std::vector<int> modes_, offsets_, clusterModeBegin_, where_;
 };
@@ -91,7 +100,14 @@ struct Series { // offset + sum_i (cos_i cos(k_i x) + sin_i sin(k_i x))
 };
 
 struct Field {
-  enum class Form { Constant, Gaussian, ExpSin, Fourier, ExpRatio, Samples };
+  enum class Form {
+    Constant,
+    Gaussian,
+    ExpSin,
+    Fourier,
+    ExpRatio,
+    Samples
+  };
   Form form = Form::Constant;
   // constant: value
   double value = 0.0;
@@ -120,7 +136,11 @@ struct Field {
 
 // ---------------------------------------------------------------------------------------------
 // FFTW r2c / c2r transforms of size N: plans made once, buffers owned.
-enum class Planner { Estimate, Measure, Patient };
+enum class Planner {
+  Estimate,
+  Measure,
+  Patient
+};
 
 class RealFFT {
 public:
@@ -128,11 +148,11 @@ public:
   ~RealFFT();
   RealFFT(const RealFFT &)            = delete;
   RealFFT &operator=(const RealFFT &) = delete;
-  int     N() const { return N_; }
-  double *real() { return real_; }           // N reals
-  double *spectrum() { return spec_; }       // N/2+1 complex numbers as (re, im) pairs
-  void    forward();                         // spectrum = sum_j real_j exp(-i k x_j) (unnormalised)
-  void    inverse();                         // real_j = sum_k spectrum_k exp(i k x_j) (Hermitian); destroys spectrum
+  int      N() const { return N_; }
+  double  *real() { return real_; }     // N reals
+  double  *spectrum() { return spec_; } // N/2+1 complex numbers as (re, im) pairs
+  void     forward();                   // spectrum = sum_j real_j exp(-i k x_j) (unnormalised)
+  void     inverse();                   // real_j = sum_k spectrum_k exp(i k x_j) (Hermitian); destroys spectrum
 
 private:
   int     N_;
@@ -148,8 +168,8 @@ std::vector<double> coefficientMagnitudes(const std::vector<double> &u);
 class SpectralOperator {
 public:
   struct Counters {
-    std::int64_t inverse = 0;     // c2r transforms (one per physical evaluation)
-    std::int64_t forward = 0;     // r2c transforms
+    std::int64_t inverse     = 0; // c2r transforms (one per physical evaluation)
+    std::int64_t forward     = 0; // r2c transforms
     std::int64_t directModes = 0; // modes projected by direct sums over the grid
   };
   // D, A: values on the grid (size N) or empty when the term is absent (at least one given).
@@ -173,24 +193,24 @@ public:
   void synthesize(const double *coef, double *u);
   void analyze(const double *u, double *coef);
 
-  Counters       &counters() { return counters_; }
-  bool            hasDiffusion() const { return !D_.empty(); }
-  bool            hasAdvection() const { return !A_.empty(); }
+  Counters &counters() { return counters_; }
+  bool      hasDiffusion() const { return !D_.empty(); }
+  bool      hasAdvection() const { return !A_.empty(); }
   // How many modes a direct projection can handle for the cost of one forward transform:
   // a flop-model estimate until setDirectModesPerForward() gives a measured value.
   double directModesPerForward() const { return directPerForward_; }
   void   setDirectModesPerForward(double r) { directPerForward_ = r; }
 
 private:
-  Layout                   layout_;
-  int                      N_;
-  std::vector<double>      D_, A_;
-  std::unique_ptr<RealFFT> inv_, fw1_, fw0_;   // c2r; r2c of W1; r2c of W0
-  std::vector<double>      W1_, W0_;
+  Layout                           layout_;
+  int                              N_;
+  std::vector<double>              D_, A_;
+  std::unique_ptr<RealFFT>         inv_, fw1_, fw0_; // c2r; r2c of W1; r2c of W0
+  std::vector<double>              W1_, W0_;
   std::vector<std::vector<double>> twiddle_; // per layout mode, built on first use: cos, -sin interleaved by halves
-  double                   directPerForward_ = 1.0;
-  Counters                 counters_;
-  const std::vector<double> &twiddle(int i);
+  double                           directPerForward_ = 1.0;
+  Counters                         counters_;
+  const std::vector<double>       &twiddle(int i);
 };
 
 // A dense matrix of the (linear) operator restricted to the retained modes: rows and columns
