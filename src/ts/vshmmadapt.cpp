@@ -26,22 +26,20 @@
 #include <algorithm>
 #include <cmath>
 
-static constexpr PetscReal kMinSeparation       = 10;     /* a pair of levels this far apart in spectral radius is separated */
-static constexpr PetscReal kInitialSeparation   = 10;     /* effective separation sigma_l of the first parameters */
-static constexpr PetscReal kSafety              = 0.8;    /* the parameters aim at this fraction of a step's share */
-static constexpr PetscInt  kRecalibrate         = 10;     /* macro steps between full measurements of the model */
-static constexpr PetscInt  kMaxAttempts         = 12;     /* tries of one macro step */
-static constexpr PetscInt  kMinCycles           = 20;     /* micro cycles per macro step at least */
-static constexpr PetscReal kStableFraction      = 0.9;    /* of the largest stable step */
-static constexpr PetscReal kFloorFactor         = 0.7;    /* a refinement that lowers the estimate by less than this has hit its floor */
-static constexpr PetscReal kMinShare            = 1e-3;   /* no error term is taken as less than this share of the estimate */
-static constexpr PetscReal kRatioCoarsening     = 4;      /* a calibration's coarser r_l - 1 */
-static constexpr PetscInt  kComparisons         = 1;      /* comparison runs per estimate, */
-static constexpr PetscReal kComparisonFactor[2] = {2, 3}; /* each with every error term this many times that of the step */
-static constexpr PetscReal kMaxCheaper          = 8;      /* after an accepted step the work may fall by this factor at most */
-static constexpr PetscReal kWarn                = 2;      /* a step accepted with an estimate above this many shares is reported on stderr */
-static constexpr PetscReal kFloorAccept         = 4;      /* an estimate above this many shares is never taken as a noise floor */
-static constexpr PetscReal kMaxDearer           = 4;      /* and rise by this factor at most per try (the estimate is noisy: refining in steps wastes less) */
+static constexpr PetscReal kMinSeparation     = 10;   /* a pair of levels this far apart in spectral radius is separated */
+static constexpr PetscReal kInitialSeparation = 10;   /* effective separation sigma_l of the first parameters */
+static constexpr PetscReal kSafety            = 0.8;  /* the parameters aim at this fraction of a step's share */
+static constexpr PetscInt  kRecalibrate       = 10;   /* macro steps between full measurements of the model */
+static constexpr PetscInt  kMaxAttempts       = 12;   /* tries of one macro step */
+static constexpr PetscInt  kMinCycles         = 20;   /* micro cycles per macro step at least */
+static constexpr PetscReal kStableFraction    = 0.9;  /* of the largest stable step */
+static constexpr PetscReal kFloorFactor       = 0.7;  /* a refinement that lowers the estimate by less than this has hit its floor */
+static constexpr PetscReal kMinShare          = 1e-3; /* no error term is taken as less than this share of the estimate */
+static constexpr PetscReal kRatioCoarsening   = 4;    /* a calibration's coarser r_l - 1 */
+static constexpr PetscReal kMaxCheaper        = 8;    /* after an accepted step the work may fall by this factor at most */
+static constexpr PetscReal kWarn              = 2;    /* a step accepted with an estimate above this many shares is reported on stderr */
+static constexpr PetscReal kFloorAccept       = 4;    /* an estimate above this many shares is never taken as a noise floor */
+static constexpr PetscReal kMaxDearer         = 4;    /* and rise by this factor at most per try (the estimate is noisy: refining in steps wastes less) */
 
 const char *const TSVSHMMSeparationChecks[] = {"off", "warn", "error", "TSVSHMMSeparationCheck", "TSVSHMM_SEPARATION_", nullptr};
 
@@ -122,15 +120,23 @@ static vshmm::AdaptBounds Bounds(TS ts, PetscReal DeltaT)
   return b;
 }
 
-static void LimitToStableSteps(TS ts, vshmm::AdaptParameters &p)
+/* Every step of p inside kStableFraction of each level's largest stable step (all parameters). */
+static void LimitAllToStableSteps(TS_VSHMM *vs, vshmm::AdaptParameters &p)
 {
-  TS_VSHMM           *vs = (TS_VSHMM *)ts->data;
   std::vector<double> hmax(vs->level_max_step.size());
 
-  if (vs->micro_dt > 0 && !vs->savings.empty()) return; /* nothing is the library's to choose */
   for (size_t l = 0; l < hmax.size(); ++l) hmax[l] = kStableFraction * vs->level_max_step[l];
-  const double dt = p.microStep;
   vshmm::limitToStableSteps(p, vs->kernel->value(0.5), hmax);
+}
+
+/* The same for the parameters the library chooses; those the user set are kept. */
+static void LimitToStableSteps(TS ts, vshmm::AdaptParameters &p)
+{
+  TS_VSHMM *vs = (TS_VSHMM *)ts->data;
+
+  if (vs->micro_dt > 0 && !vs->savings.empty()) return; /* nothing is the library's to choose */
+  const double dt = p.microStep;
+  LimitAllToStableSteps(vs, p);
   if (vs->micro_dt > 0) p.microStep = dt;
   if (!vs->savings.empty()) p.ratios = vshmm::timeRatiosFromSavings(vs->savings);
 }
@@ -245,61 +251,39 @@ static void DiscardTry(TS_VSHMM *vs, const std::vector<PetscInt64> &rhs0, const 
    parameter (a comparison may coarsen a parameter the user set: it only measures). */
 static vshmm::AdaptParameters Comparison(TS ts, const vshmm::AdaptParameters &p, vshmm::AdaptParameters q)
 {
-  TS_VSHMM           *vs = (TS_VSHMM *)ts->data;
-  std::vector<double> hmax(vs->level_max_step.size());
-
-  for (size_t l = 0; l < hmax.size(); ++l) hmax[l] = kStableFraction * vs->level_max_step[l];
-  vshmm::limitToStableSteps(q, vs->kernel->value(0.5), hmax);
+  LimitAllToStableSteps((TS_VSHMM *)ts->data, q);
   q.microStep = PetscMax(q.microStep, p.microStep);
   for (size_t l = 0; l < q.ratios.size(); ++l) q.ratios[l] = PetscMax(q.ratios[l], p.ratios[l]);
   return q;
 }
 
-/* The comparisons of the macro step just taken from X0 into Xbase with p: the same step with every
-   error term doubled and tripled (vshmm::termsScaled). Under the model their differences d are 1
-   and 2 times the error of p (Estimate); the faster levels' phase at the sampling
-   time makes each of them noisy (a factor 3 either way on the oscillators), so the larger of the
-   two estimates is taken. A comparison that is not finite is tried again with the micro step of p,
-   and is left out if it is still not finite. */
-struct Comparisons {
-  std::vector<vshmm::AdaptParameters> q;
-  std::vector<PetscReal>              d;
-};
-
-static PetscErrorCode Compare(TS ts, const vshmm::AdaptParameters &p, PetscReal t0, PetscReal DeltaT, Comparisons &c)
+/* The comparison of the macro step just taken from X0 into Xbase with p: the same step with every
+   error term doubled (vshmm::termsScaled). Under the model its difference d is the error of p
+   (Estimate); the faster levels' phase at the sampling time makes it noisy (a factor 3 either way
+   on the oscillators). A comparison that is not finite is tried again with the micro step of p;
+   if that is not finite either, d is infinite (no estimate). */
+static PetscErrorCode Compare(TS ts, const vshmm::AdaptParameters &p, PetscReal t0, PetscReal DeltaT, vshmm::AdaptParameters *q, PetscReal *d)
 {
   TS_VSHMM *vs = (TS_VSHMM *)ts->data;
   PetscFunctionBegin;
-  c.q.clear();
-  c.d.clear();
-  for (PetscInt k = 0; k < kComparisons; ++k) {
-    PetscReal              d;
-    vshmm::AdaptParameters q = Comparison(ts, p, vshmm::termsScaled(p, kComparisonFactor[k], vs->tableau->order));
-    PetscCall(TrialStep(ts, q, t0, DeltaT, vs->Xtrial));
-    PetscCall(ObservableDifference(ts, t0 + DeltaT, vs->Xbase, vs->Xtrial, &d));
-    if (!std::isfinite(d) && q.microStep > p.microStep) {
-      PetscCall(PetscInfo(ts, "Adapt: the comparison with dt %g is not finite; comparing with dt %g\n", (double)q.microStep, (double)p.microStep));
-      q.microStep = p.microStep;
-      PetscCall(TrialStep(ts, q, t0, DeltaT, vs->Xtrial));
-      PetscCall(ObservableDifference(ts, t0 + DeltaT, vs->Xbase, vs->Xtrial, &d));
-    }
-    PetscCall(PetscInfo(ts, "Adapt: comparison dt %g, cycle %g: difference %g\n", (double)q.microStep, (double)vshmm::cycleLength(q), (double)d));
-    if (!std::isfinite(d)) break; /* a coarser one would not be finite either */
-    c.q.push_back(q);
-    c.d.push_back(d);
+  *q = Comparison(ts, p, vshmm::termsScaled(p, 2.0, vs->tableau->order));
+  PetscCall(TrialStep(ts, *q, t0, DeltaT, vs->Xtrial));
+  PetscCall(ObservableDifference(ts, t0 + DeltaT, vs->Xbase, vs->Xtrial, d));
+  if (!std::isfinite(*d) && q->microStep > p.microStep) {
+    PetscCall(PetscInfo(ts, "Adapt: the comparison with dt %g is not finite; comparing with dt %g\n", (double)q->microStep, (double)p.microStep));
+    q->microStep = p.microStep;
+    PetscCall(TrialStep(ts, *q, t0, DeltaT, vs->Xtrial));
+    PetscCall(ObservableDifference(ts, t0 + DeltaT, vs->Xbase, vs->Xtrial, d));
   }
+  PetscCall(PetscInfo(ts, "Adapt: comparison dt %g, cycle %g: difference %g\n", (double)q->microStep, (double)vshmm::cycleLength(*q), (double)*d));
   PetscFunctionReturn(0);
 }
 
-/* The error of p: the largest of the comparisons' differences converted with the model. */
-static PetscReal Estimate(const vshmm::ErrorModel &model, const vshmm::AdaptParameters &p, const Comparisons &c)
+/* The error of p from the difference d to the comparison q, converted with the model. */
+static PetscReal Estimate(const vshmm::ErrorModel &model, const vshmm::AdaptParameters &p, const vshmm::AdaptParameters &q, PetscReal d)
 {
-  PetscReal E = c.d.empty() ? PETSC_INFINITY : 0;
-  for (size_t k = 0; k < c.d.size(); ++k) {
-    const PetscReal before = model.total(p), predicted = model.total(c.q[k]) - before;
-    E = PetscMax(E, predicted > 0 ? c.d[k] * before / predicted : c.d[k]);
-  }
-  return E;
+  const PetscReal before = model.total(p), predicted = model.total(q) - before;
+  return (std::isfinite(d) && predicted > 0) ? d * before / predicted : d;
 }
 
 /* The error model's split between the terms: one comparison run per parameter, the micro step
@@ -387,14 +371,15 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
     }
 
     /* Its error, and (when calibrating, or before the first refinement) the split between the terms */
-    Comparisons comparisons;
+    vshmm::AdaptParameters q;
+    PetscReal              d;
     if (vs->adapt_model.c.size() != (size_t)K || !(vs->adapt_model.total(p) > 0)) vs->adapt_model = vshmm::ErrorModel::equalShares(p, order, 1.0);
-    PetscCall(Compare(ts, p, t0, DeltaT, comparisons));
-    PetscReal E = Estimate(vs->adapt_model, p, comparisons);
+    PetscCall(Compare(ts, p, t0, DeltaT, &q, &d));
+    PetscReal E = Estimate(vs->adapt_model, p, q, d);
     if (calibrate || (E > budget && !vs->adapt_calibrated)) {
       PetscCall(Calibrate(ts, p, t0, DeltaT, bounds));
       calibrate = PETSC_FALSE;
-      E         = Estimate(vs->adapt_model, p, comparisons);
+      E         = Estimate(vs->adapt_model, p, q, d);
     }
     if (std::isfinite(E) && E > 0) {
       vs->adapt_model.scale(E / vs->adapt_model.total(p));
