@@ -16,6 +16,7 @@
     the step, the eigenvalue, the spectral radius and the largest stable step.
 */
 #include "vshmmimpl.hpp"
+#include "coupling.hpp"
 
 #include <petscblaslapack.h>
 
@@ -24,12 +25,17 @@
 #include <string>
 
 static constexpr PetscInt  kArnoldiSteps       = 16;
-static constexpr PetscReal kDampingTarget      = 0.5; /* what a suggested savings factor achieves over a macro step */
-static constexpr PetscReal kGrowingMode        = 0.1; /* Re lambda > this |lambda|: a growing mode, not checked */
-static constexpr PetscReal kMaxTransientGrowth = 100; /* largest growth of a mode within a macro step that only warns */
+static constexpr PetscReal kDampingTarget      = 0.5;  /* what a suggested savings factor achieves over a macro step */
+static constexpr PetscReal kGrowingMode        = 0.1;  /* Re lambda > this |lambda|: a growing mode, not checked */
+static constexpr PetscReal kMaxTransientGrowth = 100;  /* largest growth of a mode within a macro step that only warns */
+static constexpr PetscReal kMaxCouplingGrowth  = 1.05; /* largest growth of a mode over a macro step from the coupling of the levels */
+static constexpr PetscReal kCouplingTarget     = 1.01; /* what suggested savings factors achieve */
 
-/* Ritz values of the Jacobian of level l's field at (t, X). */
-static PetscErrorCode LevelRitzValues(TS ts, PetscInt level, PetscReal t, Vec X, std::vector<std::complex<double>> &ritz, PetscBool *finite)
+/* Arnoldi on the Jacobian of level l's field at (t, X), applied by finite differences of the level's
+   field: an orthonormal basis V[0..k-1] of a Krylov space (V has m + 1 vectors, m = min(16, N),
+   destroyed by the caller with VecDestroyVecs(m + 1, &V)) and the k x k Hessenberg matrix
+   V^T J V (column-major, leading dimension m + 1, in H). k = 0 where the field is not finite near X. */
+static PetscErrorCode LevelArnoldi(TS ts, PetscInt level, PetscReal t, Vec X, Vec **Vout, PetscInt *mout, std::vector<PetscScalar> &H, PetscInt *kout, PetscReal *delta_out)
 {
   TS_VSHMM    *vs = (TS_VSHMM *)ts->data;
   PetscInt     N, rstart, rend;
@@ -38,8 +44,6 @@ static PetscErrorCode LevelRitzValues(TS ts, PetscInt level, PetscReal t, Vec X,
   PetscScalar *v;
 
   PetscFunctionBegin;
-  ritz.clear();
-  *finite = PETSC_TRUE;
   PetscCall(VecGetSize(X, &N));
   const PetscInt m = PetscMin(kArnoldiSteps, N);
   PetscCall(VecDuplicateVecs(X, m + 1, &V));
@@ -59,7 +63,8 @@ static PetscErrorCode LevelRitzValues(TS ts, PetscInt level, PetscReal t, Vec X,
   const PetscReal delta = std::sqrt(PETSC_MACHINE_EPSILON) * (1.0 + xnorm);
   PetscCall(TSVSHMMEvaluateLevel_Private(vs, level, t, X, G0));
 
-  std::vector<PetscScalar> H((m + 1) * m, 0.0), h(m + 1);
+  H.assign((m + 1) * m, 0.0);
+  std::vector<PetscScalar> h(m + 1);
   PetscInt                 k = 0; /* Krylov dimension reached */
   for (PetscInt j = 0; j < m; ++j) {
     /* W = J V_j ~ (G(X + delta V_j) - G(X)) / delta */
@@ -79,7 +84,7 @@ static PetscErrorCode LevelRitzValues(TS ts, PetscInt level, PetscReal t, Vec X,
     PetscReal hnext;
     PetscCall(VecNorm(W, NORM_2, &hnext));
     if (!std::isfinite(hnext)) {
-      *finite = PETSC_FALSE;
+      k = 0;
       break;
     }
     H[j + 1 + j * (m + 1)] = hnext;
@@ -90,25 +95,104 @@ static PetscErrorCode LevelRitzValues(TS ts, PetscInt level, PetscReal t, Vec X,
     PetscCall(VecCopy(W, V[j + 1]));
     PetscCall(VecScale(V[j + 1], 1.0 / hnext));
   }
+  PetscCall(VecDestroy(&G0));
+  PetscCall(VecDestroy(&Xp));
+  PetscCall(VecDestroy(&W));
+  *Vout = V;
+  *mout = m;
+  *kout = k;
+  if (delta_out) *delta_out = delta;
+  PetscFunctionReturn(0);
+}
+
+/* Eigenvalues of the k x k matrix A (column-major, leading dimension lda); finite = false if LAPACK fails. */
+static PetscErrorCode Eigenvalues(PetscInt k, PetscInt lda, const PetscScalar *A, std::vector<std::complex<double>> &lambda, PetscBool *finite)
+{
+  std::vector<PetscScalar> B(k * k), work(8 * k + 8);
+  std::vector<PetscReal>   wr(k), wi(k);
+
+  PetscFunctionBegin;
+  lambda.clear();
+  for (PetscInt j = 0; j < k; ++j)
+    for (PetscInt i = 0; i < k; ++i) B[i + j * k] = A[i + j * lda];
+  PetscBLASInt n, lwork = (PetscBLASInt)work.size(), one = 1, info;
+  PetscCall(PetscBLASIntCast(k, &n));
+  PetscCallBLAS("LAPACKgeev", LAPACKgeev_("N", "N", &n, B.data(), &n, wr.data(), wi.data(), nullptr, &one, nullptr, &one, work.data(), &lwork, &info));
+  *finite = info ? PETSC_FALSE : PETSC_TRUE;
+  if (!info)
+    for (PetscInt i = 0; i < k; ++i) lambda.emplace_back(wr[i], wi[i]);
+  PetscFunctionReturn(0);
+}
+
+/* Ritz values of the Jacobian of level l's field at (t, X). */
+static PetscErrorCode LevelRitzValues(TS ts, PetscInt level, PetscReal t, Vec X, std::vector<std::complex<double>> &ritz, PetscBool *finite)
+{
+  Vec                     *V;
+  PetscInt                 m, k;
+  std::vector<PetscScalar> H;
+
+  PetscFunctionBegin;
+  ritz.clear();
+  PetscCall(LevelArnoldi(ts, level, t, X, &V, &m, H, &k, NULL));
+  PetscCall(VecDestroyVecs(m + 1, &V));
+  *finite = k > 0 ? PETSC_TRUE : PETSC_FALSE;
+  if (!k) PetscFunctionReturn(0);
+
+  PetscCall(Eigenvalues(k, m + 1, H.data(), ritz, finite));
+  PetscFunctionReturn(0);
+}
+
+/* Every level's Jacobian at (t, X) restricted to a Krylov space of the full field's Jacobian (the
+   top level's): the Galerkin matrices V^T J_l V of the coupled stability analysis (core/coupling.hpp).
+   Exact where the Krylov space is the whole space (states of up to 16 unknowns); otherwise it
+   holds the full field's extreme modes, the fast ones. levels.n = 0 where a field is not finite. */
+static PetscErrorCode CoupledLevelOperators(TS ts, PetscReal t, Vec X, vshmm::CoupledLevels &levels)
+{
+  TS_VSHMM                *vs      = (TS_VSHMM *)ts->data;
+  const PetscInt           nscales = (PetscInt)vs->level_end.size(), top = nscales - 1;
+  Vec                     *V, G0, Xp, W;
+  PetscInt                 m, k;
+  PetscReal                delta;
+  std::vector<PetscScalar> H, h;
+
+  PetscFunctionBegin;
+  levels.n = 0;
+  levels.jacobian.clear();
+  PetscCall(LevelArnoldi(ts, top, t, X, &V, &m, H, &k, &delta));
+  if (!k) {
+    PetscCall(VecDestroyVecs(m + 1, &V));
+    PetscFunctionReturn(0);
+  }
+  levels.jacobian.assign(nscales, std::vector<double>(k * k, 0.0));
+  for (PetscInt j = 0; j < k; ++j)
+    for (PetscInt i = 0; i < k; ++i) levels.jacobian[top][i + j * k] = PetscRealPart(H[i + j * (m + 1)]);
+  PetscCall(VecDuplicate(X, &G0));
+  PetscCall(VecDuplicate(X, &Xp));
+  PetscCall(VecDuplicate(X, &W));
+  h.resize(k);
+  PetscBool finite = PETSC_TRUE;
+  for (PetscInt level = 0; level < top && finite; ++level) {
+    PetscCall(TSVSHMMEvaluateLevel_Private(vs, level, t, X, G0));
+    for (PetscInt j = 0; j < k; ++j) {
+      PetscReal wn;
+      PetscCall(VecWAXPY(Xp, delta, V[j], X));
+      PetscCall(TSVSHMMEvaluateLevel_Private(vs, level, t, Xp, W));
+      PetscCall(VecAXPY(W, -1.0, G0));
+      PetscCall(VecScale(W, 1.0 / delta));
+      PetscCall(VecNorm(W, NORM_2, &wn));
+      if (!std::isfinite(wn)) {
+        finite = PETSC_FALSE;
+        break;
+      }
+      PetscCall(VecMDot(W, k, V, h.data()));
+      for (PetscInt i = 0; i < k; ++i) levels.jacobian[level][i + j * k] = PetscRealPart(h[i]);
+    }
+  }
   PetscCall(VecDestroyVecs(m + 1, &V));
   PetscCall(VecDestroy(&G0));
   PetscCall(VecDestroy(&Xp));
   PetscCall(VecDestroy(&W));
-  if (!*finite || k == 0) PetscFunctionReturn(0);
-
-  /* Eigenvalues of the k x k Hessenberg matrix */
-  std::vector<PetscScalar> A(k * k), work(8 * k + 8);
-  std::vector<PetscReal>   wr(k), wi(k);
-  for (PetscInt j = 0; j < k; ++j)
-    for (PetscInt i = 0; i < k; ++i) A[i + j * k] = H[i + j * (m + 1)];
-  PetscBLASInt n, lwork = (PetscBLASInt)work.size(), one = 1, info;
-  PetscCall(PetscBLASIntCast(k, &n));
-  PetscCallBLAS("LAPACKgeev", LAPACKgeev_("N", "N", &n, A.data(), &n, wr.data(), wi.data(), nullptr, &one, nullptr, &one, work.data(), &lwork, &info));
-  if (info) {
-    *finite = PETSC_FALSE;
-    PetscFunctionReturn(0);
-  }
-  for (PetscInt i = 0; i < k; ++i) ritz.emplace_back(wr[i], wi[i]);
+  levels.n = finite ? (int)k : 0;
   PetscFunctionReturn(0);
 }
 
@@ -139,7 +223,7 @@ PetscErrorCode TSVSHMMLevelSpectra_Private(TS ts)
   vs->level_worst.assign(nscales, 0.0);
   vs->level_limiting.assign(nscales, {});
   for (PetscInt level = 0; level < nscales; ++level) {
-    PetscBool finite;
+    PetscBool finite = PETSC_FALSE;
     PetscCall(LevelRitzValues(ts, level, ts->ptime, ts->vec_sol, ritz, &finite));
     if (!finite) {
       PetscCall(PetscInfo(ts, "Spectra at t = %g: the field of level %" PetscInt_FMT " is not finite near the state; skipped\n", (double)ts->ptime, level));
@@ -163,6 +247,61 @@ PetscErrorCode TSVSHMMLevelSpectra_Private(TS ts)
   vs->nonfinite_split = saved_split;
   vs->nonfinite_time  = saved_time;
   PetscFunctionReturn(0);
+}
+
+/* The coupled levels (core/coupling.hpp): every level may be stable alone while their composition
+   in a micro cycle grows a mode (a slow field that moves the fast variables). Stops with an error
+   when the coupling grows some mode by more than kMaxCouplingGrowth over a macro step. */
+static PetscErrorCode CheckCoupling(TS ts, PetscReal dt, const vshmm::MesoscopicSchedule &schedule)
+{
+  TS_VSHMM            *vs   = (TS_VSHMM *)ts->data;
+  MPI_Comm             comm = PetscObjectComm((PetscObject)ts);
+  const PetscReal      t = ts->ptime, DeltaT = ts->time_step;
+  vshmm::CoupledLevels levels;
+
+  PetscFunctionBegin;
+  if (vs->level_end.size() < 2) PetscFunctionReturn(0);
+  const TS_VSHMM::Counter saved       = vs->counting;
+  const PetscInt          saved_split = vs->nonfinite_split;
+  const PetscReal         saved_time  = vs->nonfinite_time;
+  vs->counting                        = TS_VSHMM::COUNT_STABILITY;
+  PetscCall(CoupledLevelOperators(ts, t, ts->vec_sol, levels));
+  vs->counting        = saved;
+  vs->nonfinite_split = saved_split;
+  vs->nonfinite_time  = saved_time;
+  if (!levels.n) PetscFunctionReturn(0);
+  /* The exact flow may grow a mode too (an unstable slow manifold): allowed, at the rate of the
+     full field's eigenvalue with the largest real part */
+  std::vector<std::complex<double>> lambda;
+  std::vector<PetscScalar>          Jtop(levels.jacobian.back().begin(), levels.jacobian.back().end());
+  PetscBool                         finite;
+  double                            rate = 0;
+  PetscCall(Eigenvalues(levels.n, levels.n, Jtop.data(), lambda, &finite));
+  for (const std::complex<double> &l : lambda) rate = std::max(rate, l.real());
+  const double                allowed = rate * DeltaT + std::log(kMaxCouplingGrowth);
+  const vshmm::CouplingGrowth g       = vshmm::couplingGrowth(*vs->tableau, levels, schedule, DeltaT);
+  PetscCall(PetscInfo(ts, "Stability check at t = %g: coupled levels (%d-dimensional Krylov space of the full field's Jacobian): the composition of the levels' steps grows some mode by %g over a macro step of %ld cycles%s (the exact flow by up to %g)\n", (double)t,
+                      levels.n, std::exp(g.logGrowth), g.cycles, g.extrapolated ? ", extrapolated from its first steps" : "", std::exp(rate * DeltaT)));
+  if (g.logGrowth <= allowed) PetscFunctionReturn(0);
+  std::vector<double> savings(vs->savings_used.begin(), vs->savings_used.end());
+  double              s = 0;
+  try {
+    s = vshmm::largestCouplingStableScaling(*vs->tableau, levels, *vs->kernel, dt, savings, std::vector<int>(vs->subintervals_used.begin(), vs->subintervals_used.end()), DeltaT, rate * DeltaT + std::log(kCouplingTarget));
+  } catch (const std::exception &e) {
+    SETERRQ(comm, PETSC_ERR_ARG_OUTOFRANGE, "TSVSHMM: %s", e.what());
+  }
+  std::string now, safe;
+  for (size_t j = 0; j < savings.size(); ++j) {
+    char buf[64];
+    PetscCall(PetscSNPrintf(buf, sizeof(buf), "%s%g", j ? "," : "", savings[j]));
+    now += buf;
+    PetscCall(PetscSNPrintf(buf, sizeof(buf), "%s%.3g", j ? "," : "", savings[j] * s));
+    safe += buf;
+  }
+  SETERRQ(comm, PETSC_ERR_ARG_OUTOFRANGE, "TSVSHMM stability check at t = %g: every level is stable alone, but their steps composed in a micro cycle grow some mode by a factor %g over a macro step (at most %g is tolerated): a slower level's field moves the variables of a faster one (for example the kinematics q' = p in the slow split of an oscillator chain), so its mesoscopic steps shear the fast oscillation and pump energy into it. %s Or use -ts_vshmm_adapt (its error estimate sees such growth), or -ts_vshmm_check_stability false to skip the check", (double)t, std::exp(g.logGrowth), std::exp(allowed),
+          s > 0 ? ("Savings factors " + safe + " (now " + now + ", -ts_vshmm_savings_factors) keep it stable; a split that leaves the fast variables' kinematics to the fast scale may allow more.").c_str()
+                : ("No savings factors keep it stable with the micro step " + std::to_string(dt) + " (savings factors " + now + "): the scales are not separated for VSHMM with these splits; use a smaller -ts_vshmm_micro_dt, splits that leave the fast variables' kinematics to the fast scale, or a single-rate TS type (-ts_type rk).")
+                    .c_str());
 }
 
 PetscErrorCode TSVSHMMCheckStability_Private(TS ts)
@@ -237,5 +376,6 @@ PetscErrorCode TSVSHMMCheckStability_Private(TS ts)
     SETERRQ(comm, PETSC_ERR_ARG_OUTOFRANGE, "TSVSHMM stability check at t = %g: level %" PetscInt_FMT " (splits %s) is unstable with its mesoscopic step h_%" PetscInt_FMT ": its largest step %g times the estimated eigenvalue %g%+gi (spectral radius %g) lies outside the stability region of TSRK %s, whose largest stable step for it is %g; within a macro step the level's steps amplify that mode by up to %g (at most %g is tolerated) and over the macro step by %g. Use a savings factor alpha_%" PetscInt_FMT " <= %g (now %g) in -ts_vshmm_savings_factors, -ts_vshmm_adapt, or -ts_vshmm_check_stability false to skip the check", (double)t, level,
             LevelSplits(vs, level).c_str(), j, hpeak, grows.real(), grows.imag(), radius, rk, R.largestStableStep(grows), std::exp(growth), (double)kMaxTransientGrowth, std::exp(logA), j, (double)alpha_max, (double)vs->savings_used[j - 1]);
   }
+  PetscCall(CheckCoupling(ts, dt, *schedule));
   PetscFunctionReturn(0);
 }
