@@ -671,7 +671,7 @@ PetscErrorCode TSVSHMMGetSeparationCheck(TS ts, TSVSHMMSeparationCheck *check)
 /*@
    TSVSHMMSetWarningsViewer - Sets where TSVSHMM writes the warnings a user must see without asking
 
-   Collective
+   Logically Collective
 
    Input Parameters:
 +  ts     - the `TS` of type `TSVSHMM`
