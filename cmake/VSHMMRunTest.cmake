@@ -1,7 +1,8 @@
 # Runs one test program for vshmm_example_test() (see VSHMMTesting.cmake):
 #   cmake -DNAME=<test> -DNUMDIFF=<numdiff.sh> [-DOUTPUT=<expected>] [-DRTOL=r] [-DATOL=a]
 #         [-DREGEX=<regex>] [-DSTDERR_REGEX=<regex>] [-DVALUE_REGEX=<regex> -DVALUE_MAX=<x>]
-#         [-DEXPECT_FAILURE=1] -P VSHMMRunTest.cmake -- <command> <args>...
+#         [-DEXPECT_FAILURE=1] [-DFILE=<file> -DFILE_REGEX=<regex>]
+#         -P VSHMMRunTest.cmake -- <command> <args>...
 # in the test's working directory; stdout is kept in stdout.txt there.
 
 set(cmd)
@@ -21,6 +22,9 @@ endif()
 
 string(REPLACE ";" " " shown "${cmd}")
 message("${NAME}: ${shown}")
+if(DEFINED FILE)
+  file(REMOVE "${FILE}") # a file left by an earlier run must not pass the test
+endif()
 execute_process(COMMAND ${cmd} OUTPUT_VARIABLE out ERROR_VARIABLE err RESULT_VARIABLE rc)
 file(WRITE stdout.txt "${out}")
 message("---- stdout ----\n${out}")
@@ -49,6 +53,16 @@ if(DEFINED VALUE_REGEX)
   set(value "${CMAKE_MATCH_1}")
   if(NOT value LESS_EQUAL "${VALUE_MAX}") # also false for nan and for a value that is not a number
     message(FATAL_ERROR "${NAME}: FAILED, the value ${value} matched by '${VALUE_REGEX}' is not at most ${VALUE_MAX}")
+  endif()
+endif()
+if(DEFINED FILE)
+  if(NOT EXISTS "${FILE}")
+    message(FATAL_ERROR "${NAME}: FAILED, the program wrote no file ${FILE}")
+  endif()
+  file(READ "${FILE}" written)
+  message("---- ${FILE} ----\n${written}")
+  if(NOT written MATCHES "${FILE_REGEX}")
+    message(FATAL_ERROR "${NAME}: FAILED, ${FILE} does not match the regular expression '${FILE_REGEX}'")
   endif()
 endif()
 if(DEFINED OUTPUT)

@@ -28,6 +28,7 @@ endfunction()
 vshmm_example_test(NAME <test> EXE <target> [NP <n>] [ARGS <arg>...]
                    [OUTPUT <expected file>] [RTOL <r>] [ATOL <a>] [REGEX <regex>]
                    [STDERR_REGEX <regex>] [VALUE_REGEX <regex> VALUE_MAX <x>] [EXPECT_FAILURE]
+                   [FILE <file> FILE_REGEX <regex>]
                    [ENVIRONMENT <VAR=value>...] [LABELS <label>...]   (default: example)
                    [TIMEOUT <seconds>])                               (default: 300)
 
@@ -35,7 +36,9 @@ Runs `mpiexec -n <n> <flags> <target's file> <args>` (NP defaults to 1) in
 <build>/tests/output/<test>/ and passes when the program exits with 0 (with EXPECT_FAILURE:
 with any other status) and
   - REGEX (if given) matches its standard output, STDERR_REGEX (if given) its standard error,
-  - the first group of VALUE_REGEX (if given) in its standard output is a number <= VALUE_MAX, and
+  - the first group of VALUE_REGEX (if given) in its standard output is a number <= VALUE_MAX,
+  - the file FILE (if given; relative to the working directory, removed before the run) exists
+    and matches FILE_REGEX, and
   - OUTPUT (if given; relative paths are relative to the directory of the file that calls
     this function) matches its standard output according to tests/numdiff.sh: tokens compared
     one by one, numbers within relative tolerance RTOL (default 1e-6) or absolute tolerance
@@ -44,7 +47,7 @@ The standard output is kept in <build>/tests/output/<test>/stdout.txt; to (re)ge
 expected file, copy it from there after checking it. EXE may also be a path to a program.
 #]]
 function(vshmm_example_test)
-  cmake_parse_arguments(PARSE_ARGV 0 arg "EXPECT_FAILURE" "NAME;EXE;NP;OUTPUT;RTOL;ATOL;REGEX;STDERR_REGEX;VALUE_REGEX;VALUE_MAX;TIMEOUT" "ARGS;ENVIRONMENT;LABELS")
+  cmake_parse_arguments(PARSE_ARGV 0 arg "EXPECT_FAILURE" "NAME;EXE;NP;OUTPUT;RTOL;ATOL;REGEX;STDERR_REGEX;VALUE_REGEX;VALUE_MAX;FILE;FILE_REGEX;TIMEOUT" "ARGS;ENVIRONMENT;LABELS")
   if(arg_UNPARSED_ARGUMENTS)
     message(FATAL_ERROR "vshmm_example_test: unknown arguments ${arg_UNPARSED_ARGUMENTS}")
   endif()
@@ -72,7 +75,13 @@ function(vshmm_example_test)
       list(APPEND defs "-D${opt}=${arg_${opt}}")
     endif()
   endforeach()
-  foreach(opt REGEX STDERR_REGEX VALUE_REGEX)
+  if(DEFINED arg_FILE)
+    if(NOT DEFINED arg_FILE_REGEX)
+      message(FATAL_ERROR "vshmm_example_test(${arg_NAME}): FILE needs FILE_REGEX")
+    endif()
+    list(APPEND defs "-DFILE=${arg_FILE}")
+  endif()
+  foreach(opt REGEX STDERR_REGEX VALUE_REGEX FILE_REGEX)
     if(DEFINED arg_${opt})
       string(REPLACE ";" "\\;" regex "${arg_${opt}}")
       list(APPEND defs "-D${opt}=${regex}")

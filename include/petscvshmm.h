@@ -49,7 +49,7 @@ PETSC_EXTERN const char *const TSVSHMMKernelTypes[];
    TSVSHMMSeparationCheck - what TSVSHMM does when no pair of consecutive levels is separated in time scale
 
 $  TSVSHMM_SEPARATION_OFF   - do not check
-$  TSVSHMM_SEPARATION_WARN  - say so on stderr at set-up (the default)
+$  TSVSHMM_SEPARATION_WARN  - say so at set-up on the warnings viewer, stderr by default (the default)
 $  TSVSHMM_SEPARATION_ERROR - stop with an error at set-up
 
    Options Database Key:
@@ -80,7 +80,7 @@ PETSC_EXTERN const char *const TSVSHMMSeparationChecks[];
 .  level_evaluations - evaluations of each level's field G_l = f_0 + ... + f_l (one per RK stage); nscales entries
 .  stability_checks - stability checks run (see TSVSHMMSetStabilityCheck())
 .  stability_evaluations - split RHS evaluations spent by those checks (not in the counts above)
-.  stability_warnings - checks that found a level's largest step beyond its stable step, though damped over a macro step (warned on stderr)
+.  stability_warnings - checks that found a level's largest step beyond its stable step, though damped over a macro step (warned on the warnings viewer, see TSVSHMMSetWarningsViewer())
 .  error_estimate   - estimated error of the last macro step in the observables, in the TS's weighted norm (1 = the tolerance); 0 without -ts_vshmm_adapt
 .  error_estimate_total - the sum of error_estimate over the macro steps: an estimate of the error at the current time
 .  adapt_evaluations - split RHS evaluations spent on error estimation and rejected macro steps (not in rhs_evaluations)
@@ -133,6 +133,7 @@ PETSC_EXTERN PetscErrorCode TSVSHMMGetAdapt(TS, PetscBool *);
 PETSC_EXTERN PetscErrorCode TSVSHMMSetObservables(TS, PetscInt, PetscErrorCode (*)(TS, PetscReal, Vec, PetscReal[], void *), void *);
 PETSC_EXTERN PetscErrorCode TSVSHMMSetSeparationCheck(TS, TSVSHMMSeparationCheck);
 PETSC_EXTERN PetscErrorCode TSVSHMMGetSeparationCheck(TS, TSVSHMMSeparationCheck *);
+PETSC_EXTERN PetscErrorCode TSVSHMMSetWarningsViewer(TS, PetscViewer);
 PETSC_EXTERN PetscErrorCode TSVSHMMGetStatistics(TS, TSVSHMMStatistics *);
 PETSC_EXTERN PetscErrorCode TSVSHMMResetStatistics(TS);
 

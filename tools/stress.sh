@@ -1,5 +1,5 @@
 #!/bin/sh
-# shellcheck disable=SC2046 # "set -- $(maxerr ...)" splits its two numbers on purpose
+# shellcheck disable=SC2046 # "set -- $(maxerr ...)" and $(vshmm_report ...) split on purpose
 # stress.sh - the long stress runs of TSVSHMM (issue #5, "Hard cases stay numerically stable")
 #
 # Usage: tools/stress.sh BUILD_DIR
@@ -70,7 +70,8 @@ run() {
   else
     reached=$(awk '$1 == "final" && $2 == "t" { print $3 }' "$W/$rn.out")
     if ! awk -v a="$reached" -v b="$rt" 'BEGIN { exit !(a != "" && a - b < 1e-9 * b && b - a < 1e-9 * b) }'; then
-      why="stopped at t = ${reached:-?}: $(grep -m1 -o 'produced Inf or NaN at t = [0-9.e+-]*' "$W/$rn.err")"
+      why="stopped at t = ${reached:-?}"
+      [ -f "$W/$rn.warnings" ] && why="$why: $(grep -m1 -o 'produced Inf or NaN at t = [0-9.e+-]*' "$W/$rn.warnings")"
     fi
   fi
   if [ -n "$why" ]; then
@@ -82,6 +83,17 @@ run() {
 
 # value NAME KEY: the number after KEY in NAME.out (rhs_evaluations, wall_time)
 value() { awk -v k="$2" '$1 == k { print $2 }' "$W/$1.out"; }
+
+# vshmm_report NAME: the options of a TSVSHMM run NAME: -ts_view prints the statistics
+# (TSVSHMMGetStatistics()) in NAME.out, the library's warnings go to NAME.warnings (which names
+# the split and time of an Inf or NaN that stopped the solve)
+vshmm_report() { echo "-ts_view -ts_vshmm_warnings_viewer ascii:$W/$1.warnings"; }
+
+# warned NAME: " (stability warning)" if the statistics of NAME count stability warnings (the
+# "stability check: ..., N warnings" line of -ts_view), else nothing
+warned() {
+  awk '/stability check:/ && $NF == "warnings" && $(NF - 1) > 0 { w = 1 } END { if (w) printf " (stability warning)" }' "$W/$1.out"
+}
 
 # maxerr REF.csv RUN.csv COL: the largest |RUN - REF| in column COL over the times of RUN.csv
 # (matched to 4 decimals) and the number of times of RUN.csv missing from REF.csv.
@@ -187,7 +199,7 @@ for eps in 1e-2 5e-3 1e-3 1e-4 1e-5; do
     a2=$(g "0.05 / $eps")
     name=diss_${rule}_$eps
     if run "$name" 2 "$DISS" -eps "$eps" -ts_type vshmm -ts_dt 0.1 -ts_vshmm_micro_dt "$dt" -ts_vshmm_savings_factors "$a1,$a2" \
-      -ts_vshmm_check_stability_interval 1 -ts_error_if_step_fails false -slow_csv "$W/$name.csv"; then
+      -ts_vshmm_check_stability_interval 1 -ts_error_if_step_fails false -slow_csv "$W/$name.csv" $(vshmm_report "$name"); then
       set -- $(maxerr "$W/diss_avg.csv" "$W/$name.csv" 2)
       err="$1 (averaged)"
       ok=$(check "$1" "$tol")
@@ -202,7 +214,7 @@ for eps in 1e-2 5e-3 1e-3 1e-4 1e-5; do
     else
       err="failed: $why"; ok=NO; ev=-; wall=-; rat=-
     fi
-    grep -q "TSVSHMM warning" "$W/$name.err" && ok="$ok (stability warning)"
+    ok="$ok$(warned "$name")"
     [ "$ok" = yes ] || status=1
     row "dissipative, rule $rule, t = 2 | eps = $eps | $dt; $a1, $a2 | $err | $tol | $ok | $ev | $wall | $dns | $rat"
   done
@@ -237,7 +249,7 @@ for e in 1e-2 1e-3 1e-4; do
       dns=$(dnscost "$dnsevals" "")
     fi
     if run "$name" 10 "$CHAIN" -scales "$n" -e "$e" -ts_type vshmm -ts_dt 0.1 -ts_max_time 10 -ts_vshmm_micro_dt "$dt" -ts_vshmm_savings_factors "$al" \
-      -ts_vshmm_check_stability_interval 1 -ts_error_if_step_fails false -slow_csv "$W/$name.csv"; then
+      -ts_vshmm_check_stability_interval 1 -ts_error_if_step_fails false -slow_csv "$W/$name.csv" $(vshmm_report "$name"); then
       set -- $(maxerr "$W/chain_ref_$e.csv" "$W/$name.csv" 2)
       err="$1 (DNS); max abs state $(awk '$1 == "max_abs_state" { print $2 }' "$W/$name.out")"
       ok=$(check "$1" "$e")
@@ -248,7 +260,7 @@ for e in 1e-2 1e-3 1e-4; do
     else
       err="failed: $why"; ok=NO; ev=-; wall=-; rat=-
     fi
-    grep -q "TSVSHMM warning" "$W/$name.err" && ok="$ok (stability warning)"
+    ok="$ok$(warned "$name")"
     [ "$ok" = yes ] || status=1
     row "chain, t = 10 | e = $e, $n scales | $dt; $al | $err | $e | $ok | $ev | $wall | $dns | $rat"
   done
@@ -284,7 +296,7 @@ if [ -x "$OSC" ]; then
       tol=5e-2
       name=osc_${rule}_$eps
       if run "$name" 50 "$OSC" -eps "$eps" -ts_type vshmm -ts_dt "$DT" -ts_max_time 50 -ts_vshmm_micro_dt "$dt" -ts_vshmm_savings_factors "$a1,$a2" \
-        -ts_vshmm_check_stability_interval 1 -ts_error_if_step_fails false -slow_csv "$W/$name.csv"; then
+        -ts_vshmm_check_stability_interval 1 -ts_error_if_step_fails false -slow_csv "$W/$name.csv" $(vshmm_report "$name"); then
         set -- $(maxerr "$W/osc_lv.csv" "$W/$name.csv" 2)
         e1=$1
         set -- $(maxerr "$W/osc_lv.csv" "$W/$name.csv" 3)

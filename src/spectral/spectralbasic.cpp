@@ -4,6 +4,8 @@
 */
 #include "spectralimpl.hpp"
 
+#include <petscvshmm.h>
+
 #include <fstream>
 #include <sstream>
 
@@ -39,21 +41,24 @@ PetscErrorCode VSHMMSpectralFinalizePackage(void)
    Not Collective
 
    Notes:
-   Called by `VSHMMSpectralCreate()`; idempotent, and reset by `PetscFinalize()`. The log events
+   Also registers the `TSVSHMM` type (`TSVSHMMInitializePackage()`). Reached from
+   `VSHMMSpectralCreate()` and, for a program that loads the library at run time
+   (-dll_append <prefix>/lib/libpetscvshmmspectral.so), from PETSc's dynamic-library hook;
+   idempotent, and reset by `PetscFinalize()`. The log events
    (`-log_view`) are SpecSetUp, SpecRHS (the full right-hand side), SpecSplit (a cluster's split),
    SpecPhysical (c2r transform and products on the grid), SpecForwardFFT (r2c transforms),
    SpecProjDirect (direct projections on a cluster) and SpecMatVec (dense-operator evaluation).
 
    Level: developer
 
-.seealso: `VSHMMSpectralCreate()`, `VSHMMSpectralFinalizePackage()`
+.seealso: `VSHMMSpectralCreate()`, `VSHMMSpectralFinalizePackage()`, `TSVSHMMInitializePackage()`
 @*/
 PetscErrorCode VSHMMSpectralInitializePackage(void)
 {
   PetscFunctionBegin;
   if (VSHMMSpectralPackageInitialized) PetscFunctionReturn(0);
   VSHMMSpectralPackageInitialized = PETSC_TRUE;
-  PetscCall(TSInitializePackage());
+  PetscCall(TSVSHMMInitializePackage());
   if (!VSHMMSPECTRAL_CLASSID) PetscCall(PetscClassIdRegister("VSHMMSpectral", &VSHMMSPECTRAL_CLASSID));
   PetscCall(PetscLogEventRegister("SpecSetUp", VSHMMSPECTRAL_CLASSID, &VSHMMSPECTRAL_SetUp));
   PetscCall(PetscLogEventRegister("SpecRHS", VSHMMSPECTRAL_CLASSID, &VSHMMSPECTRAL_RHS));
@@ -63,6 +68,17 @@ PetscErrorCode VSHMMSpectralInitializePackage(void)
   PetscCall(PetscLogEventRegister("SpecProjDirect", VSHMMSPECTRAL_CLASSID, &VSHMMSPECTRAL_ProjDirect));
   PetscCall(PetscLogEventRegister("SpecMatVec", VSHMMSPECTRAL_CLASSID, &VSHMMSPECTRAL_MatVec));
   PetscCall(PetscRegisterFinalize(VSHMMSpectralFinalizePackage));
+  PetscFunctionReturn(0);
+}
+
+/*
+  PetscDLLibraryRegister_petscvshmmspectral - called by PETSc when the library is loaded with
+  -dll_append (the name follows from the file name libpetscvshmmspectral.so)
+*/
+PETSC_EXTERN PetscErrorCode PetscDLLibraryRegister_petscvshmmspectral(void)
+{
+  PetscFunctionBegin;
+  PetscCall(VSHMMSpectralInitializePackage());
   PetscFunctionReturn(0);
 }
 

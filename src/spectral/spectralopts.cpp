@@ -5,104 +5,29 @@
 */
 #include "spectralimpl.hpp"
 
+#include "vshmmoptions.hpp"
+
 #include <cmath>
-#include <cstring>
-#include <functional>
 
 static const char *const FieldForms[] = {"constant", "gaussian", "expsin", "fourier", "exp_ratio", "samples", "VSHMMSpectralFieldForm", "", nullptr};
 static const char *const KnownTerms   = "diffusion (d/dx(d(x) du/dx), field -spectral_diffusion_coefficient) and advection (-a(x) du/dx, field -spectral_velocity)";
 
-/* The number of values given for a list option (0 if it is absent). PETSc's array readers stop
-   silently at the capacity they are given, so the capacity is doubled until the list fits. */
-static PetscErrorCode ListLength(const std::function<PetscErrorCode(PetscInt, PetscInt *, PetscBool *)> &get, PetscInt *length)
-{
-  PetscFunctionBegin;
-  for (PetscInt capacity = 16;; capacity *= 2) {
-    PetscInt  n = capacity;
-    PetscBool set;
-
-    PetscCall(get(capacity, &n, &set));
-    *length = set ? n : 0;
-    if (!set || n < capacity) break;
-  }
-  PetscFunctionReturn(0);
-}
-
-/* PETSc's readers take an option given without a value for one not given, and drop empty list
-   items ("1,,2", "1,2,"); both are refused here, from the option's value in the database. */
-static PetscErrorCode CheckValue(VSHMMSpectral sp, const char opt[], bool list)
-{
-  const char *value;
-  PetscBool   found;
-
-  PetscFunctionBegin;
-  PetscCall(PetscOptionsFindPair(((PetscObject)sp)->options, ((PetscObject)sp)->prefix, opt, &value, &found));
-  if (!found) PetscFunctionReturn(0);
-  PetscCheck(value && value[0], PetscObjectComm((PetscObject)sp), PETSC_ERR_ARG_WRONG, "-%s%s is given without a value", VSHMMSpectralPrefix(sp), opt + 1);
-  if (list) {
-    const size_t n = std::strlen(value);
-    PetscCheck(value[0] != ',' && value[n - 1] != ',' && !std::strstr(value, ",,"), PetscObjectComm((PetscObject)sp), PETSC_ERR_ARG_WRONG, "-%s%s %s has an empty item (two commas in a row, or a comma at an end)", VSHMMSpectralPrefix(sp), opt + 1, value);
-  }
-  PetscFunctionReturn(0);
-}
-
-/* A real or integer list of any length (PETSc's integer ranges a-b included): sized with get
-   (PetscOptionsGetRealArray/IntArray), then read with read (PetscOptionsRealArray/IntArray) for
-   -help. v holds the default on entry and the values given on return. */
-template <typename T>
-static PetscErrorCode OptionsList(PetscOptionItems *PetscOptionsObject, VSHMMSpectral sp, const char opt[], const char text[], std::vector<T> &v, PetscBool *set, PetscErrorCode (*get)(PetscOptions, const char[], const char[], T[], PetscInt *, PetscBool *), PetscErrorCode (*read)(PetscOptionItems *, const char[], const char[], const char[], T[], PetscInt *, PetscBool *))
-{
-  PetscInt       length, n;
-  std::vector<T> buf;
-
-  PetscFunctionBegin;
-  PetscCall(CheckValue(sp, opt, true));
-  PetscCall(ListLength(
-    [&](PetscInt capacity, PetscInt *m, PetscBool *flg) {
-      buf.resize(capacity);
-      return get(((PetscObject)sp)->options, ((PetscObject)sp)->prefix, opt, buf.data(), m, flg);
-    },
-    &length));
-  buf = v;
-  buf.resize(PetscMax(1, PetscMax(length, (PetscInt)v.size())));
-  n = (PetscInt)buf.size();
-  PetscCall(read(PetscOptionsObject, opt, text, "VSHMMSpectralSetFromOptions", buf.data(), &n, set));
-  if (*set) v.assign(buf.begin(), buf.begin() + n);
-  PetscFunctionReturn(0);
-}
+/* PETSc's readers with the checks of src/common/vshmmoptions.hpp, for this object. */
+static const char *const Man = "VSHMMSpectralSetFromOptions";
 
 static PetscErrorCode OptionsRealList(PetscOptionItems *PetscOptionsObject, VSHMMSpectral sp, const char opt[], const char text[], std::vector<PetscReal> &v, PetscBool *set)
 {
-  return OptionsList<PetscReal>(PetscOptionsObject, sp, opt, text, v, set, PetscOptionsGetRealArray, PetscOptionsRealArray_Private);
+  return VSHMMOptionsRealList(PetscOptionsObject, (PetscObject)sp, opt, text, Man, v, set);
 }
 
 static PetscErrorCode OptionsIntList(PetscOptionItems *PetscOptionsObject, VSHMMSpectral sp, const char opt[], const char text[], std::vector<PetscInt> &v, PetscBool *set)
 {
-  return OptionsList<PetscInt>(PetscOptionsObject, sp, opt, text, v, set, PetscOptionsGetIntArray, PetscOptionsIntArray_Private);
+  return VSHMMOptionsIntList(PetscOptionsObject, (PetscObject)sp, opt, text, Man, v, set);
 }
 
-/* A list of names of any length. */
 static PetscErrorCode OptionsStringList(PetscOptionItems *PetscOptionsObject, VSHMMSpectral sp, const char opt[], const char text[], std::vector<std::string> &v, PetscBool *set)
 {
-  PetscInt            length, n;
-  std::vector<char *> buf;
-
-  PetscFunctionBegin;
-  PetscCall(CheckValue(sp, opt, true));
-  PetscCall(ListLength(
-    [&](PetscInt capacity, PetscInt *m, PetscBool *flg) {
-      buf.assign(capacity, nullptr);
-      PetscCall(PetscOptionsGetStringArray(((PetscObject)sp)->options, ((PetscObject)sp)->prefix, opt, buf.data(), m, flg));
-      for (PetscInt i = 0; i < *m; ++i) PetscCall(PetscFree(buf[i]));
-      return PetscErrorCode(0);
-    },
-    &length));
-  buf.assign(PetscMax(1, length), nullptr);
-  n = (PetscInt)buf.size();
-  PetscCall(PetscOptionsStringArray(opt, text, "VSHMMSpectralSetFromOptions", buf.data(), &n, set));
-  if (*set) v.assign(buf.begin(), buf.begin() + n);
-  for (PetscInt i = 0; *set && i < n; ++i) PetscCall(PetscFree(buf[i]));
-  PetscFunctionReturn(0);
+  return VSHMMOptionsStringList(PetscOptionsObject, (PetscObject)sp, opt, text, Man, v, set);
 }
 
 /* The option name -spectral_<field>_<parameter> (without the object's prefix). */
@@ -113,45 +38,25 @@ static std::string Opt(const char field[], const char parameter[])
   return o;
 }
 
-/* PETSc's scalar readers, each followed by CheckValue(). */
 static PetscErrorCode OptionsReal(PetscOptionItems *PetscOptionsObject, VSHMMSpectral sp, const std::string &opt, const char text[], PetscReal *value)
 {
-  PetscFunctionBegin;
-  PetscCall(CheckValue(sp, opt.c_str(), false));
-  PetscCall(PetscOptionsReal(opt.c_str(), text, "VSHMMSpectralSetFromOptions", *value, value, NULL));
-  PetscFunctionReturn(0);
+  return VSHMMOptionsReal(PetscOptionsObject, (PetscObject)sp, opt.c_str(), text, Man, value, nullptr);
 }
 
 static PetscErrorCode OptionsInt(PetscOptionItems *PetscOptionsObject, VSHMMSpectral sp, const char opt[], const char text[], PetscInt *value)
 {
-  PetscFunctionBegin;
-  PetscCall(CheckValue(sp, opt, false));
-  PetscCall(PetscOptionsInt(opt, text, "VSHMMSpectralSetFromOptions", *value, value, NULL));
-  PetscFunctionReturn(0);
+  return VSHMMOptionsInt(PetscOptionsObject, (PetscObject)sp, opt, text, Man, value, nullptr);
 }
 
 template <typename E>
 static PetscErrorCode OptionsEnum(PetscOptionItems *PetscOptionsObject, VSHMMSpectral sp, const char opt[], const char text[], const char *const names[], E *value, PetscBool *set)
 {
-  PetscEnum e = (PetscEnum)*value;
-
-  PetscFunctionBegin;
-  PetscCall(CheckValue(sp, opt, false));
-  PetscCall(PetscOptionsEnum(opt, text, "VSHMMSpectralSetFromOptions", names, e, &e, set));
-  *value = (E)e;
-  PetscFunctionReturn(0);
+  return VSHMMOptionsEnum(PetscOptionsObject, (PetscObject)sp, opt, text, Man, names, value, set);
 }
 
-static PetscErrorCode OptionsString(PetscOptionItems *PetscOptionsObject, VSHMMSpectral sp, const char opt[], const char text[], std::string &value, PetscBool *set)
+static PetscErrorCode OptionsString(PetscOptionItems *PetscOptionsObject, VSHMMSpectral sp, const char opt[], const char text[], const char takes[], std::string &value, PetscBool *set)
 {
-  char buf[PETSC_MAX_PATH_LEN];
-
-  PetscFunctionBegin;
-  PetscCall(CheckValue(sp, opt, false));
-  PetscCall(PetscStrncpy(buf, value.c_str(), sizeof(buf)));
-  PetscCall(PetscOptionsString(opt, text, "VSHMMSpectralSetFromOptions", buf, buf, sizeof(buf), set));
-  if (*set) value = buf;
-  PetscFunctionReturn(0);
+  return VSHMMOptionsString(PetscOptionsObject, (PetscObject)sp, opt, text, Man, takes, value, set);
 }
 
 static PetscErrorCode OptionsSeries(PetscOptionItems *PetscOptionsObject, VSHMMSpectral sp, const char field[], const char series[], spc::Series &s)
@@ -188,7 +93,7 @@ static PetscErrorCode OptionsField(PetscOptionItems *PetscOptionsObject, VSHMMSp
     PetscCall(OptionsReal(PetscOptionsObject, sp, Opt(field, "amplitude"), "gaussian: amplitude (default 1)", &f.amplitude));
     PetscCall(OptionsReal(PetscOptionsObject, sp, Opt(field, "center"), "gaussian: center (default pi)", &f.center));
     PetscCall(OptionsReal(PetscOptionsObject, sp, Opt(field, "width"), "gaussian: width w in exp(-((x-c)/w)^2) (default 1)", &f.width));
-    PetscCall(PetscOptionsBool(Opt(field, "periodic").c_str(), "gaussian: periodic distance to the center", "VSHMMSpectralSetFromOptions", periodic, &periodic, NULL));
+    PetscCall(VSHMMOptionsBool(PetscOptionsObject, (PetscObject)sp, Opt(field, "periodic").c_str(), "gaussian: periodic distance to the center", Man, &periodic, nullptr));
     f.periodic = periodic;
   } break;
   case spc::Field::Form::ExpSin:
@@ -208,7 +113,7 @@ static PetscErrorCode OptionsField(PetscOptionItems *PetscOptionsObject, VSHMMSp
     break;
   case spc::Field::Form::Samples: {
     std::string file;
-    PetscCall(OptionsString(PetscOptionsObject, sp, Opt(field, "file").c_str(), "samples: grid file of N lines 'x value' or 'value'", file, &set));
+    PetscCall(OptionsString(PetscOptionsObject, sp, Opt(field, "file").c_str(), "samples: grid file of N lines 'x value' or 'value'", "a file name", file, &set));
     PetscCheck(set && !file.empty(), PetscObjectComm((PetscObject)sp), PETSC_ERR_ARG_WRONGSTATE, "-%sspectral_%s samples needs -%sspectral_%s_file <grid file>", VSHMMSpectralPrefix(sp), field, VSHMMSpectralPrefix(sp), field);
     PetscCall(VSHMMSpectralReadGridFile_Private(PetscObjectComm((PetscObject)sp), file.c_str(), f.samples));
   } break;
@@ -296,7 +201,7 @@ PetscErrorCode VSHMMSpectralSetFromOptions(VSHMMSpectral sp)
   PetscCall(OptionsField(PetscOptionsObject, sp, "velocity", "advection velocity a(x) (form)", s->vel));
   PetscCall(OptionsField(PetscOptionsObject, sp, "u0", "initial data u0(x) (form)", s->u0));
   PetscCall(OptionsEnum(PetscOptionsObject, sp, "-spectral_mode", "dns: every mode; sparse: the clusters' modes", VSHMMSpectralModes, &s->mode, &set));
-  PetscCall(OptionsString(PetscOptionsObject, sp, "-spectral_clusters", "explicit clusters, e.g. 0:3,62:66,192:193,255:257 (none: no explicit clusters)", clusters, &set));
+  PetscCall(OptionsString(PetscOptionsObject, sp, "-spectral_clusters", "explicit clusters, e.g. 0:3,62:66,192:193,255:257 (none: no explicit clusters)", "clusters lo:hi or k, joined by + within a cluster and by commas between clusters, or none", clusters, &set));
   if (set) s->cluster_spec = clusters == "none" ? std::string() : clusters;
   PetscCall(OptionsEnum(PetscOptionsObject, sp, "-spectral_cluster_detect", "find the clusters by soft thresholding", VSHMMSpectralDetects, &s->detect, &set));
   PetscCall(OptionsReal(PetscOptionsObject, sp, "-spectral_cluster_lambda", "shrinkage value of the soft thresholding", &s->lambda));
@@ -305,7 +210,7 @@ PetscErrorCode VSHMMSpectralSetFromOptions(VSHMMSpectral sp)
   PetscCall(OptionsIntList(PetscOptionsObject, sp, "-spectral_cluster_buffers", "buffer widths around the clusters (one, or one per cluster)", s->buffers, &set));
   PetscCall(OptionsRealList(PetscOptionsObject, sp, "-spectral_cluster_detect_times", "snapshot times of the detection DNS", s->detect_times, &set));
   PetscCall(OptionsReal(PetscOptionsObject, sp, "-spectral_cluster_detect_dt", "time step of the detection DNS (0: estimate)", &s->detect_dt));
-  PetscCall(OptionsString(PetscOptionsObject, sp, "-spectral_cluster_detect_file", "grid file to threshold", s->detect_file, &set));
+  PetscCall(OptionsString(PetscOptionsObject, sp, "-spectral_cluster_detect_file", "grid file to threshold", "a file name", s->detect_file, &set));
   PetscCall(OptionsEnum(PetscOptionsObject, sp, "-spectral_evaluation", "fft or matrix", VSHMMSpectralEvaluations, &s->evaluation, &set));
   PetscCall(OptionsEnum(PetscOptionsObject, sp, "-spectral_projection", "auto, fft or direct", VSHMMSpectralProjections, &s->projection, &set));
   PetscCall(OptionsEnum(PetscOptionsObject, sp, "-spectral_fftw_planner", "FFTW planning rigour", VSHMMSpectralPlanners, &s->planner, &set));

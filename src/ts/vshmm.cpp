@@ -6,16 +6,12 @@
 */
 #include "vshmmimpl.hpp"
 
-#include <cerrno>
-#include <cmath>
-#include <cstdio>
-#include <cstdlib>
-#include <cstring>
-#include <sstream>
-#include <string>
-#include <stdexcept>
+#include "vshmmoptions.hpp"
 
-static constexpr PetscInt kMaxListOption = 256; /* longest list an option may hold */
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+#include <string>
 
 const char *const TSVSHMMKernelTypes[] = {"cosine", "constant", "polynomial", "exponential", "TSVSHMMKernelType", "TSVSHMM_KERNEL_", nullptr};
 
@@ -377,7 +373,7 @@ static PetscErrorCode TSStep_VSHMM(TS ts)
     ts->reason = TS_DIVERGED_STEP_REJECTED;
     PetscCheck(!ts->errorifstepfailed, comm, PETSC_ERR_FP, "TSVSHMM: split '%s' (scale %d) produced Inf or NaN at t = %.17g, evaluated for level %d, in the macro step from t = %g to %g; the solution was left at t = %g (use -ts_error_if_step_fails false to stop with TS_DIVERGED_STEP_REJECTED instead)", name, scale, (double)t_fault, level, (double)t0, (double)(t0 + DeltaT), (double)t0);
     PetscCall(PetscInfo(ts, "Split '%s' (scale %d) produced Inf or NaN at t = %.17g, evaluated for level %d; stopping with TS_DIVERGED_STEP_REJECTED at t = %g\n", name, scale, (double)t_fault, level, (double)t0));
-    PetscCall(PetscFPrintf(comm, PETSC_STDERR, "TSVSHMM: split '%s' (scale %d) produced Inf or NaN at t = %.17g, evaluated for level %d; the solve stops with TS_DIVERGED_STEP_REJECTED at t = %g\n", name, scale, (double)t_fault, level, (double)t0));
+    PetscCall(TSVSHMMWarn_Private(ts, "TSVSHMM: split '%s' (scale %d) produced Inf or NaN at t = %.17g, evaluated for level %d; the solve stops with TS_DIVERGED_STEP_REJECTED at t = %g\n", name, scale, (double)t_fault, level, (double)t0));
     PetscFunctionReturn(0);
   }
   ts->ptime = last ? ts->max_time : t0 + DeltaT;
@@ -400,138 +396,97 @@ static PetscErrorCode TSInterpolate_VSHMM(TS ts, PetscReal t, Vec X)
 /* ------------------------------------------------------------------------------------------ */
 /* Options and view                                                                             */
 
-static PetscErrorCode ParseReal(MPI_Comm comm, const char *option, const char *text, PetscReal *value)
+/* What -help shows for -ts_vshmm_warnings_viewer: stderr (the default), none, or the file's name. */
+static PetscErrorCode WarningsViewerName(TS ts, std::string &name)
 {
-  char *end = nullptr;
+  TS_VSHMM   *vs   = (TS_VSHMM *)ts->data;
+  const char *file = nullptr;
 
   PetscFunctionBegin;
-  errno    = 0;
-  double v = std::strtod(text, &end);
-  PetscCheck(text[0] && end != text && *end == '\0' && errno != ERANGE, comm, PETSC_ERR_ARG_WRONG, "%s: '%s' is not a real number", option, text);
-  *value = (PetscReal)v;
+  if (vs->warnings_none) name = "none";
+  else if (!vs->warnings) name = "stderr";
+  else {
+    PetscCall(PetscViewerFileGetName(vs->warnings, &file));
+    name = file && file[0] ? std::string("ascii:") + file : std::string("ascii");
+  }
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode ParseInt(MPI_Comm comm, const char *option, const char *text, PetscInt *value)
-{
-  char *end = nullptr;
-
-  PetscFunctionBegin;
-  errno  = 0;
-  long v = std::strtol(text, &end, 10);
-  PetscCheck(text[0] && end != text && *end == '\0' && errno != ERANGE && v >= PETSC_MIN_INT && v <= PETSC_MAX_INT, comm, PETSC_ERR_ARG_WRONG, "%s: '%s' is not an integer", option, text);
-  *value = (PetscInt)v;
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode ParseBool(MPI_Comm comm, const char *option, const char *text, PetscBool *value)
-{
-  PetscFunctionBegin;
-  const std::string v = text;
-  if (v == "true" || v == "1" || v == "yes" || v == "on" || v == "") *value = PETSC_TRUE; /* a flag alone means true */
-  else if (v == "false" || v == "0" || v == "no" || v == "off") *value = PETSC_FALSE;
-  else SETERRQ(comm, PETSC_ERR_ARG_WRONG, "%s: '%s' is not a truth value: use true or false", option, text);
-  PetscFunctionReturn(0);
-}
-
-/* Reads a comma-separated option as strings, keeping empty items so that they can be rejected
-   (PETSc's list parsers drop them); an option given with no value is an error. */
-static PetscErrorCode ReadList(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, const char *option, const char *text, const char *man, std::vector<std::string> &items, PetscBool *set)
-{
-  char value[4096];
-
-  PetscFunctionBegin;
-  items.clear();
-  value[0] = 0;
-  PetscCall(PetscOptionsString(option, text, man, "", value, sizeof(value), set));
-  if (!*set) PetscFunctionReturn(0);
-  PetscCheck(strlen(value) < sizeof(value) - 1, comm, PETSC_ERR_ARG_SIZ, "%s is too long (at most %d characters)", option, (int)sizeof(value) - 2);
-  PetscCheck(value[0], comm, PETSC_ERR_ARG_WRONG, "%s needs a comma-separated list of values", option);
-  std::string       all = value, item;
-  std::stringstream in(all);
-  while (std::getline(in, item, ',')) items.push_back(item);
-  if (!all.empty() && all.back() == ',') items.push_back("");
-  PetscCheck((PetscInt)items.size() < kMaxListOption, comm, PETSC_ERR_ARG_SIZ, "%s has more than %d values", option, (int)kMaxListOption - 1);
-  PetscFunctionReturn(0);
-}
-
+/* Every option with PETSc's readers (src/common/vshmmoptions.hpp: an option without a value, an
+   empty list item and an integer beyond PetscInt are refused, a value PETSc cannot read is an
+   error naming the option); the setters check the values. */
 static PetscErrorCode TSSetFromOptions_VSHMM(TS ts, PetscOptionItems *PetscOptionsObject)
 {
-  TS_VSHMM                *vs   = (TS_VSHMM *)ts->data;
-  MPI_Comm                 comm = PetscObjectComm((PetscObject)ts);
-  char                     text[256];
-  PetscBool                set;
-  std::vector<std::string> items;
+  TS_VSHMM      *vs  = (TS_VSHMM *)ts->data;
+  PetscObject    obj = (PetscObject)ts;
+  const PetscInt K   = PetscMax(1, ts->num_rhs_splits - 1); /* for -help: the defaults' length */
+  PetscBool      set;
 
   PetscFunctionBegin;
   PetscOptionsHeadBegin(PetscOptionsObject, "VSHMM multiscale ODE solver options");
   {
-    std::ostringstream dflt;
-    if (vs->micro_dt > 0) dflt << vs->micro_dt;
-    else dflt << "DeltaT/" << kDefaultMicroStepsPerMacroStep;
-    PetscCall(PetscOptionsString("-ts_vshmm_micro_dt", "Micro step dt of the full field (default: DeltaT/100)", "TSVSHMMSetMicroStep", dflt.str().c_str(), text, sizeof(text), &set));
-    if (set) {
-      PetscReal dt;
-      PetscCall(ParseReal(comm, "-ts_vshmm_micro_dt", text, &dt));
-      PetscCall(TSVSHMMSetMicroStep(ts, dt));
-    }
+    PetscReal dt = vs->micro_dt > 0 ? vs->micro_dt : ts->time_step / kDefaultMicroStepsPerMacroStep;
+    PetscCall(VSHMMOptionsReal(PetscOptionsObject, obj, "-ts_vshmm_micro_dt", "Micro step dt of the full field (default: DeltaT/100)", "TSVSHMMSetMicroStep", &dt, &set));
+    if (set) PetscCall(TSVSHMMSetMicroStep(ts, dt));
 
-    PetscCall(ReadList(PetscOptionsObject, comm, "-ts_vshmm_savings_factors", "Savings factors alpha_1,...,alpha_K, slowest level first", "TSVSHMMSetSavingsFactors", items, &set));
-    if (set) {
-      std::vector<PetscReal> a(items.size());
-      for (size_t i = 0; i < items.size(); ++i) PetscCall(ParseReal(comm, "-ts_vshmm_savings_factors", items[i].c_str(), &a[i]));
-      PetscCall(TSVSHMMSetSavingsFactors(ts, (PetscInt)a.size(), a.data()));
-    }
+    std::vector<PetscReal> alpha = vs->savings.empty() ? std::vector<PetscReal>(K, 1.0) : vs->savings;
+    PetscCall(VSHMMOptionsRealList(PetscOptionsObject, obj, "-ts_vshmm_savings_factors", "Savings factors alpha_1,...,alpha_K, slowest level first (default: all 1)", "TSVSHMMSetSavingsFactors", alpha, &set));
+    if (set) PetscCall(TSVSHMMSetSavingsFactors(ts, (PetscInt)alpha.size(), alpha.data()));
 
-    PetscCall(ReadList(PetscOptionsObject, comm, "-ts_vshmm_subintervals", "Subinterval counts m_1,...,m_K (periods of the kernel per DeltaT), slowest level first", "TSVSHMMSetSubintervals", items, &set));
-    if (set) {
-      std::vector<PetscInt> m(items.size());
-      for (size_t i = 0; i < items.size(); ++i) PetscCall(ParseInt(comm, "-ts_vshmm_subintervals", items[i].c_str(), &m[i]));
-      PetscCall(TSVSHMMSetSubintervals(ts, (PetscInt)m.size(), m.data()));
-    }
+    std::vector<PetscInt> m = vs->subintervals.empty() ? std::vector<PetscInt>(K, 1) : vs->subintervals;
+    PetscCall(VSHMMOptionsIntList(PetscOptionsObject, obj, "-ts_vshmm_subintervals", "Subinterval counts m_1,...,m_K (periods of the kernel per DeltaT), slowest level first (default: all 1)", "TSVSHMMSetSubintervals", m, &set));
+    if (set) PetscCall(TSVSHMMSetSubintervals(ts, (PetscInt)m.size(), m.data()));
 
-    PetscCall(PetscOptionsString("-ts_vshmm_kernel", "Kernel of the mesoscopic steps: cosine, constant, polynomial, exponential", "TSVSHMMSetKernel", TSVSHMMKernelTypes[vs->kernel_type], text, sizeof(text), &set));
-    if (set) {
-      PetscInt found = -1;
-      for (PetscInt i = 0; i < 4; ++i)
-        if (!strcmp(text, TSVSHMMKernelTypes[i])) found = i;
-      PetscCheck(found >= 0, comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "Unknown -ts_vshmm_kernel '%s': use cosine, constant, polynomial or exponential", text);
-      PetscCall(TSVSHMMSetKernel(ts, (TSVSHMMKernelType)found));
-    }
+    TSVSHMMKernelType kernel = vs->kernel_type;
+    PetscCall(VSHMMOptionsEnum(PetscOptionsObject, obj, "-ts_vshmm_kernel", "Kernel of the mesoscopic steps", "TSVSHMMSetKernel", TSVSHMMKernelTypes, &kernel, &set));
+    if (set) PetscCall(TSVSHMMSetKernel(ts, kernel));
 
-    PetscCall(PetscOptionsString("-ts_vshmm_kernel_order", "Order q of the polynomial kernel (derivatives 0..q vanish at the ends)", "TSVSHMMSetKernelOrder", "1", text, sizeof(text), &set));
-    if (set) {
-      PetscInt q;
-      PetscCall(ParseInt(comm, "-ts_vshmm_kernel_order", text, &q));
-      PetscCall(TSVSHMMSetKernelOrder(ts, q));
-    }
+    PetscInt q;
+    PetscCall(TSVSHMMGetKernelOrder(ts, &q));
+    PetscCall(VSHMMOptionsInt(PetscOptionsObject, obj, "-ts_vshmm_kernel_order", "Order q of the polynomial kernel (derivatives 0..q vanish at the ends)", "TSVSHMMSetKernelOrder", &q, &set));
+    if (set) PetscCall(TSVSHMMSetKernelOrder(ts, q));
 
-    PetscCall(PetscOptionsString("-ts_vshmm_rk_type", "TSRK type of the inner steps", "TSVSHMMSetRKType", vs->rk_type.c_str(), text, sizeof(text), &set));
-    if (set) PetscCall(TSVSHMMSetRKType(ts, text));
+    std::string rk = vs->rk_type;
+    PetscCall(VSHMMOptionsString(PetscOptionsObject, obj, "-ts_vshmm_rk_type", "TSRK type of the inner steps", "TSVSHMMSetRKType", "a TSRK type name (4, 3bs, 5dp, ...)", rk, &set));
+    if (set) PetscCall(TSVSHMMSetRKType(ts, rk.c_str()));
 
-    PetscCall(PetscOptionsString("-ts_vshmm_check_stability", "Check the steps against the stability region of the inner Runge-Kutta method at set-up (true or false)", "TSVSHMMSetStabilityCheck", vs->check_stability ? "true" : "false", text, sizeof(text), &set));
-    PetscBool check = vs->check_stability;
-    if (set) PetscCall(ParseBool(comm, "-ts_vshmm_check_stability", text, &check));
-    PetscInt interval = vs->stability_interval;
-    char     dflt_interval[32];
-    std::snprintf(dflt_interval, sizeof(dflt_interval), "%d", (int)vs->stability_interval);
-    PetscBool iset;
-    PetscCall(PetscOptionsString("-ts_vshmm_check_stability_interval", "Also check every this many macro steps (0: only at set-up)", "TSVSHMMSetStabilityCheck", dflt_interval, text, sizeof(text), &iset));
-    if (iset) PetscCall(ParseInt(comm, "-ts_vshmm_check_stability_interval", text, &interval));
+    PetscBool check    = vs->check_stability, iset;
+    PetscInt  interval = vs->stability_interval;
+    PetscCall(VSHMMOptionsBool(PetscOptionsObject, obj, "-ts_vshmm_check_stability", "Check the steps against the stability region of the inner Runge-Kutta method at set-up", "TSVSHMMSetStabilityCheck", &check, &set));
+    PetscCall(VSHMMOptionsInt(PetscOptionsObject, obj, "-ts_vshmm_check_stability_interval", "Also check every this many macro steps (0: only at set-up)", "TSVSHMMSetStabilityCheck", &interval, &iset));
     if (set || iset) PetscCall(TSVSHMMSetStabilityCheck(ts, check, interval));
 
     PetscBool adapt = vs->adapt;
-    PetscCall(PetscOptionsBool("-ts_vshmm_adapt", "Choose the micro step and savings factors not set from the TS tolerances -ts_rtol, -ts_atol", "TSVSHMMSetAdapt", adapt, &adapt, &set));
+    PetscCall(VSHMMOptionsBool(PetscOptionsObject, obj, "-ts_vshmm_adapt", "Choose the micro step and savings factors not set from the TS tolerances -ts_rtol, -ts_atol", "TSVSHMMSetAdapt", &adapt, &set));
     if (set) PetscCall(TSVSHMMSetAdapt(ts, adapt));
-    PetscEnum sep = (PetscEnum)vs->check_separation;
-    PetscCall(PetscOptionsEnum("-ts_vshmm_check_separation", "What to do where the scales are not separated", "TSVSHMMSetSeparationCheck", TSVSHMMSeparationChecks, sep, &sep, &set));
-    if (set) PetscCall(TSVSHMMSetSeparationCheck(ts, (TSVSHMMSeparationCheck)sep));
 
-    PetscCall(ReadList(PetscOptionsObject, comm, "-ts_vshmm_splits", "The scales, slowest first: RHS split names, or groups of them joined by +", "TSVSHMMSetSplitOrder", items, &set));
+    TSVSHMMSeparationCheck sep = vs->check_separation;
+    PetscCall(VSHMMOptionsEnum(PetscOptionsObject, obj, "-ts_vshmm_check_separation", "What to do where the scales are not separated", "TSVSHMMSetSeparationCheck", TSVSHMMSeparationChecks, &sep, &set));
+    if (set) PetscCall(TSVSHMMSetSeparationCheck(ts, sep));
+
+    std::vector<std::string> scales;
+    PetscCall(VSHMMOptionsStringList(PetscOptionsObject, obj, "-ts_vshmm_splits", "The scales, slowest first: RHS split names, or groups of them joined by + (default: each split a scale, in creation order)", "TSVSHMMSetSplitOrder", scales, &set));
     if (set) {
       std::vector<const char *> names;
-      for (const std::string &s : items) names.push_back(s.c_str());
+      for (const std::string &scale : scales) names.push_back(scale.c_str());
       PetscCall(TSVSHMMSetSplitOrder(ts, (PetscInt)names.size(), names.data()));
+    }
+
+    std::string warnings;
+    PetscCall(WarningsViewerName(ts, warnings));
+    PetscCall(VSHMMOptionsString(PetscOptionsObject, obj, "-ts_vshmm_warnings_viewer", "Where the warnings go (stability and separation checks, accuracy, Inf/NaN): stderr, none, or a PETSc ASCII viewer ascii:<file>", "TSVSHMMSetWarningsViewer", "stderr, none, or an ASCII viewer ascii[:file] (ascii alone: stdout)", warnings, &set));
+    if (set) {
+      PetscViewer viewer = nullptr;
+      if (warnings == "none") PetscCall(TSVSHMMSetWarningsViewer(ts, nullptr));
+      else if (warnings == "stderr") { /* the default: PETSC_STDERR at the time of each warning */ PetscCall(PetscViewerDestroy(&vs->warnings));
+        vs->warnings_none = PETSC_FALSE;
+      } else {
+        PetscViewerFormat format;
+        PetscCall(
+          VSHMMOptionRead(obj, "-ts_vshmm_warnings_viewer", "stderr, none, or an ASCII viewer ascii[:file]", [&]() { return PetscOptionsGetViewer(PetscObjectComm(obj), obj->options, obj->prefix, "-ts_vshmm_warnings_viewer", &viewer, &format, &set); }));
+        PetscCall(TSVSHMMSetWarningsViewer(ts, viewer));
+        PetscCall(PetscViewerDestroy(&viewer));
+      }
     }
   }
   PetscOptionsHeadEnd();
@@ -792,6 +747,18 @@ static PetscErrorCode TSVSHMMGetSeparationCheck_VSHMM(TS ts, TSVSHMMSeparationCh
   PetscFunctionReturn(0);
 }
 
+static PetscErrorCode TSVSHMMSetWarningsViewer_VSHMM(TS ts, PetscViewer viewer)
+{
+  TS_VSHMM *vs = (TS_VSHMM *)ts->data;
+
+  PetscFunctionBegin;
+  if (viewer) PetscCall(PetscObjectReference((PetscObject)viewer));
+  PetscCall(PetscViewerDestroy(&vs->warnings));
+  vs->warnings      = viewer;
+  vs->warnings_none = viewer ? PETSC_FALSE : PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode TSVSHMMGetStatistics_VSHMM(TS ts, TSVSHMMStatistics *stats)
 {
   TS_VSHMM *vs = (TS_VSHMM *)ts->data;
@@ -860,6 +827,7 @@ static PetscErrorCode TSVSHMMResetStatistics_VSHMM(TS ts)
   X(TSVSHMMSetObservables) \
   X(TSVSHMMSetSeparationCheck) \
   X(TSVSHMMGetSeparationCheck) \
+  X(TSVSHMMSetWarningsViewer) \
   X(TSVSHMMGetStatistics) \
   X(TSVSHMMResetStatistics)
 
@@ -867,6 +835,7 @@ static PetscErrorCode TSDestroy_VSHMM(TS ts)
 {
   PetscFunctionBegin;
   PetscCall(TSReset_VSHMM(ts));
+  PetscCall(PetscViewerDestroy(&((TS_VSHMM *)ts->data)->warnings));
 #define VSHMM_UNCOMPOSE(name) PetscCall(PetscObjectComposeFunction((PetscObject)ts, #name "_C", nullptr));
   VSHMM_METHODS(VSHMM_UNCOMPOSE)
 #undef VSHMM_UNCOMPOSE
@@ -897,6 +866,11 @@ $    h_j(t) = alpha_j dt K(Theta^{-1}(((t - t_n) mod P_j) / P_j)),   P_j = Delta
    subinterval counts. Every step is one step of an explicit Runge-Kutta method from the TSRK
    registry. Only the sampled states (at multiples of DeltaT) are accurate for the slow variables.
 
+   The warnings a user must see (stability and separation checks, accuracy control, a split that
+   produced Inf or NaN) go to one ASCII viewer, stderr by default (`TSVSHMMSetWarningsViewer()`);
+   notes go through `PetscInfo()` (-info), the work done through `TSVSHMMGetStatistics()` and
+   -ts_view.
+
    Options Database Keys:
 +  -ts_vshmm_micro_dt <dt> - micro step of the full field (default DeltaT/100)
 .  -ts_vshmm_savings_factors <a1,...,aK> - savings factors, slowest level first (default all 1)
@@ -908,12 +882,13 @@ $    h_j(t) = alpha_j dt K(Theta^{-1}(((t - t_n) mod P_j) / P_j)),   P_j = Delta
 .  -ts_vshmm_check_stability <true,false> - check the steps against the stability region at set-up (default true)
 .  -ts_vshmm_check_stability_interval <N> - also check every N macro steps (default 0: never)
 .  -ts_vshmm_adapt <true,false> - choose the micro step and savings factors not set from -ts_rtol, -ts_atol (default false)
--  -ts_vshmm_check_separation <off,warn,error> - what to do where the scales are not separated (default warn)
+.  -ts_vshmm_check_separation <off,warn,error> - what to do where the scales are not separated (default warn)
+-  -ts_vshmm_warnings_viewer <stderr,none,ascii:file> - where the warnings go (default stderr)
 
    Level: intermediate
 
 .seealso: `TSCreate()`, `TS`, `TSSetType()`, `TSRHSSplitSetIS()`, `TSVSHMMSetSavingsFactors()`,
-          `TSVSHMMSetMicroStep()`, `TSVSHMMGetStatistics()`, `TSMPRK`
+          `TSVSHMMSetMicroStep()`, `TSVSHMMGetStatistics()`, `TSVSHMMSetWarningsViewer()`, `TSMPRK`
 M*/
 PETSC_INTERN PetscErrorCode TSCreate_VSHMM(TS ts)
 {

@@ -37,7 +37,7 @@ static constexpr PetscReal kFloorFactor       = 0.7;  /* a refinement that lower
 static constexpr PetscReal kMinShare          = 1e-3; /* no error term is taken as less than this share of the estimate */
 static constexpr PetscReal kRatioCoarsening   = 4;    /* a calibration's coarser r_l - 1 */
 static constexpr PetscReal kMaxCheaper        = 8;    /* after an accepted step the work may fall by this factor at most */
-static constexpr PetscReal kWarn              = 2;    /* a step accepted with an estimate above this many shares is reported on stderr */
+static constexpr PetscReal kWarn              = 2;    /* a step accepted with an estimate above this many shares is warned of */
 static constexpr PetscReal kFloorAccept       = 4;    /* an estimate above this many shares is never taken as a noise floor */
 static constexpr PetscReal kMaxDearer         = 4;    /* and rise by this factor at most per try (the estimate is noisy: refining in steps wastes less) */
 
@@ -165,8 +165,8 @@ PetscErrorCode TSVSHMMCheckSeparation_Private(TS ts)
   if (!vs->no_separation || vs->check_separation == TSVSHMM_SEPARATION_OFF) PetscFunctionReturn(0);
   PetscCheck(vs->check_separation != TSVSHMM_SEPARATION_ERROR, comm, PETSC_ERR_ARG_INCOMP, "TSVSHMM separation check at t = %g: the time scales of the RHS splits are not separated (ratio of the spectral radii of consecutive levels, at least %g needed: %s). VSHMM samples the faster scales statistically and would change the answer here; use a single-rate TS type (-ts_type rk) or a multirate one (-ts_type mprk), or -ts_vshmm_check_separation warn to run anyway",
              (double)ts->ptime, (double)kMinSeparation, figures.c_str());
-  PetscCall(PetscFPrintf(comm, PETSC_STDERR, "TSVSHMM warning: separation check at t = %g: the time scales of the RHS splits are not separated (ratio of the spectral radii of consecutive levels, at least %g needed: %s). VSHMM samples the faster scales statistically and %s; a single-rate TS type (-ts_type rk) or a multirate one (-ts_type mprk) is the right tool. (-ts_vshmm_check_separation error makes this an error, off silences it.)\n",
-                         (double)ts->ptime, (double)kMinSeparation, figures.c_str(), vs->adapt ? "-ts_vshmm_adapt therefore takes no savings (every level steps with the micro step)" : "its answer will be wrong by an amount it cannot estimate"));
+  PetscCall(TSVSHMMWarn_Private(ts, "TSVSHMM warning: separation check at t = %g: the time scales of the RHS splits are not separated (ratio of the spectral radii of consecutive levels, at least %g needed: %s). VSHMM samples the faster scales statistically and %s; a single-rate TS type (-ts_type rk) or a multirate one (-ts_type mprk) is the right tool. (-ts_vshmm_check_separation error makes this an error, off silences it.)\n",
+                                (double)ts->ptime, (double)kMinSeparation, figures.c_str(), vs->adapt ? "-ts_vshmm_adapt therefore takes no savings (every level steps with the micro step)" : "its answer will be wrong by an amount it cannot estimate"));
   PetscFunctionReturn(0);
 }
 
@@ -429,7 +429,7 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
       PetscCall(PetscInfo(ts, "Adapt: macro step [%g, %g] accepted with estimate %g above its share %g: %s\n", (double)t0, (double)t1, (double)E, (double)budget, why));
       if (!vs->floor_warned && E > kWarn * budget) {
         vs->floor_warned = PETSC_TRUE;
-        PetscCall(PetscFPrintf(PetscObjectComm((PetscObject)ts), PETSC_STDERR, "TSVSHMM warning (-ts_vshmm_adapt): the macro step [%g, %g] is accepted with an error estimate of %g times its share of the tolerance (%s). %s The run goes on; the estimates are in the statistics (TSVSHMMGetStatistics(), -ts_view). This warning is given once per solve.\n", (double)t0, (double)t1, (double)(E / budget), why, noise ? "The sampled values carry a part VSHMM does not resolve (typically fast fluctuations): a tolerance this far below -ts_rtol/-ts_atol is out of reach for VSHMM here." : "Loosen the tolerance, or leave the micro step and savings factors to -ts_vshmm_adapt, or use a single-rate TS type."));
+        PetscCall(TSVSHMMWarn_Private(ts, "TSVSHMM warning (-ts_vshmm_adapt): the macro step [%g, %g] is accepted with an error estimate of %g times its share of the tolerance (%s). %s The run goes on; the estimates are in the statistics (TSVSHMMGetStatistics(), -ts_view). This warning is given once per solve.\n", (double)t0, (double)t1, (double)(E / budget), why, noise ? "The sampled values carry a part VSHMM does not resolve (typically fast fluctuations): a tolerance this far below -ts_rtol/-ts_atol is out of reach for VSHMM here." : "Loosen the tolerance, or leave the micro step and savings factors to -ts_vshmm_adapt, or use a single-rate TS type."));
       }
     }
     PetscCall(VecCopy(vs->Xbase, ts->vec_sol));

@@ -626,8 +626,9 @@ PetscErrorCode TSVSHMMSetObservables(TS ts, PetscInt n, PetscErrorCode (*f)(TS, 
    consecutive levels. VSHMM samples the faster scales statistically; if no pair of levels is at
    least 10 apart, the components the faster splits write are part of the answer (for example a
    multirate finite-volume scheme whose fast region is twice as fast as the slow one) and VSHMM
-   would return a wrong answer without knowing it. Then the check warns on stderr (or stops with an
-   error), and `TSVSHMMSetAdapt()` takes no savings.
+   would return a wrong answer without knowing it. Then the check warns (on the warnings viewer,
+   stderr by default: `TSVSHMMSetWarningsViewer()`) or stops with an
+   error, and `TSVSHMMSetAdapt()` takes no savings.
 
    Level: intermediate
 
@@ -664,5 +665,53 @@ PetscErrorCode TSVSHMMGetSeparationCheck(TS ts, TSVSHMMSeparationCheck *check)
   PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
   PetscValidPointer(check, 2);
   PetscUseMethod(ts, "TSVSHMMGetSeparationCheck_C", (TS, TSVSHMMSeparationCheck *), (ts, check));
+  PetscFunctionReturn(0);
+}
+
+/*@
+   TSVSHMMSetWarningsViewer - Sets where TSVSHMM writes the warnings a user must see without asking
+
+   Logically Collective
+
+   Input Parameters:
++  ts     - the `TS` of type `TSVSHMM`
+-  viewer - an ASCII `PetscViewer` on the communicator of ts (for example from
+            `PetscViewerASCIIOpen()`), or NULL for no warnings at all
+
+   Options Database Key:
+.  -ts_vshmm_warnings_viewer <stderr,none,ascii:file> - stderr (the default), none, or a PETSc
+   ASCII viewer: ascii:<file> (written from the start; ascii:<file>::append appends), ascii alone
+   for stdout
+
+   Notes:
+   The warnings are those of the stability check (`TSVSHMMSetStabilityCheck()`: a level's
+   largest step beyond its stable step, though damped over a macro step), of the separation
+   check (`TSVSHMMSetSeparationCheck()`), of the accuracy control (`TSVSHMMSetAdapt()`: a macro
+   step accepted far above its share of the tolerance) and of a split that produced Inf or NaN
+   (the solve stops with `TS_DIVERGED_STEP_REJECTED` under -ts_error_if_step_fails false). They
+   are printed by the first rank. Errors are raised as PETSc errors whatever the viewer;
+   `PetscInfo()` (-info) gives the notes of every check; the statistics
+   (`TSVSHMMGetStatistics()`) count the stability warnings. The TS keeps a reference to the
+   viewer. By default the warnings go to `PETSC_STDERR` as it is when each is printed (so a
+   program that redirects `PETSC_STDERR` gets them there); -ts_vshmm_warnings_viewer stderr goes
+   back to that default.
+
+   Level: intermediate
+
+.seealso: `TSVSHMM`, `TSVSHMMSetStabilityCheck()`, `TSVSHMMSetSeparationCheck()`, `PetscViewerASCIIOpen()`
+@*/
+PetscErrorCode TSVSHMMSetWarningsViewer(TS ts, PetscViewer viewer)
+{
+  PetscBool ascii;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  if (viewer) {
+    PetscValidHeaderSpecific(viewer, PETSC_VIEWER_CLASSID, 2);
+    PetscCheckSameComm(ts, 1, viewer, 2);
+    PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &ascii));
+    PetscCheck(ascii, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_WRONG, "-ts_vshmm_warnings_viewer (TSVSHMMSetWarningsViewer()): the warnings viewer must be an ASCII viewer (stderr, none or ascii:<file>), not %s", ((PetscObject)viewer)->type_name);
+  }
+  PetscTryMethod(ts, "TSVSHMMSetWarningsViewer_C", (TS, PetscViewer), (ts, viewer));
   PetscFunctionReturn(0);
 }

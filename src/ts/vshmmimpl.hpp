@@ -49,7 +49,9 @@ struct TS_VSHMM {
   TSVSHMMSeparationCheck    check_separation                             = TSVSHMM_SEPARATION_WARN;
   PetscInt                  nobservables                                 = 0; // 0: the whole state in the TS's weighted norm
   PetscErrorCode (*observables)(TS, PetscReal, Vec, PetscReal[], void *) = nullptr;
-  void *observables_ctx                                                  = nullptr;
+  void       *observables_ctx                                            = nullptr;
+  PetscViewer warnings                                                   = nullptr;     // where the warnings go (NULL: PETSC_STDERR)
+  PetscBool   warnings_none                                              = PETSC_FALSE; // no warnings at all (TSVSHMMSetWarningsViewer(ts, NULL))
 
   // Set-up state
   std::vector<VSHMMSplit>                    splits;    // in scale order
@@ -113,6 +115,8 @@ static constexpr PetscReal kMinMicroStepFraction          = 1e-13; /* dt / Delta
 
 /* vshmm.cpp: the type */
 PETSC_INTERN PetscErrorCode TSCreate_VSHMM(TS);
+/* vshmmwarnings.cpp: the one channel of the warnings a user must see without asking */
+PETSC_INTERN PetscErrorCode TSVSHMMWarn_Private(TS, const char[], ...) PETSC_ATTRIBUTE_FORMAT(2, 3);
 /* vshmmlevel.cpp: the levels' fields and steps, their log events */
 PETSC_INTERN PetscErrorCode TSVSHMMEvaluateLevel_Private(TS_VSHMM *, PetscInt, PetscReal, Vec, Vec);
 PETSC_INTERN PetscErrorCode TSVSHMMCreateSchedule_Private(TS, PetscReal, std::unique_ptr<vshmm::MesoscopicSchedule> &);

@@ -361,8 +361,8 @@ PetscErrorCode TSVSHMMCheckStability_Private(TS ts)
                           worst.real(), worst.imag(), peak_growth, std::exp(growth), std::exp(logA)));
       if (hpeak / hmax > 1.1 * vs->warned_ratio[level]) { /* first time, or clearly worse than last warned */
         vs->warned_ratio[level] = hpeak / hmax;
-        PetscCall(PetscFPrintf(comm, PETSC_STDERR, "TSVSHMM warning: stability check at t = %g: level %" PetscInt_FMT " (splits %s): its largest step h_%" PetscInt_FMT " = %g exceeds the stable step %g of TSRK %s for the estimated eigenvalue %g%+gi (spectral radius %g), which grows by %g per step near the kernel's peak (by up to %g within a macro step); over a macro step the mode changes by a factor %g. Such transient growth can bias the slow variables. A savings factor alpha_%" PetscInt_FMT " <= %g (now %g) keeps every step stable. (Shown again only if it gets worse; -info shows every check.)\n", (double)t, level,
-                               LevelSplits(vs, level).c_str(), j, hpeak, hmax, rk, worst.real(), worst.imag(), radius, peak_growth, std::exp(growth), std::exp(logA), j, (double)alpha_safe, (double)vs->savings_used[j - 1]));
+        PetscCall(TSVSHMMWarn_Private(ts, "TSVSHMM warning: stability check at t = %g: level %" PetscInt_FMT " (splits %s): its largest step h_%" PetscInt_FMT " = %g exceeds the stable step %g of TSRK %s for the estimated eigenvalue %g%+gi (spectral radius %g), which grows by %g per step near the kernel's peak (by up to %g within a macro step); over a macro step the mode changes by a factor %g. Such transient growth can bias the slow variables. A savings factor alpha_%" PetscInt_FMT " <= %g (now %g) keeps every step stable. (Shown again only if it gets worse; -info shows every check.)\n", (double)t, level,
+                                      LevelSplits(vs, level).c_str(), j, hpeak, hmax, rk, worst.real(), worst.imag(), radius, peak_growth, std::exp(growth), std::exp(logA), j, (double)alpha_safe, (double)vs->savings_used[j - 1]));
       }
       continue;
     }

@@ -4,8 +4,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <fstream>
 #include <numeric>
 #include <sstream>
+#include <string>
 
 #include "problems.hpp"
 
@@ -341,6 +344,36 @@ TEST(VSHMMStabilityCheck, MarginalStabilityThatDevelopsIsReportedByThePeriodicCh
   EXPECT_NEAR(warned.x[0], 1.117, 5e-3);
 }
 
+TEST(VSHMMStabilityCheck, WarningsGoToTheWarningsViewer)
+{
+  // The marginal case above warns: on stderr by default, in the file of -ts_vshmm_warnings_viewer
+  // ascii:<file> (and not on stderr), nowhere with none; the statistics count the warnings alike.
+  const char *warning = "TSVSHMM warning: stability check at t = ";
+  const char *common  = "-ts_vshmm_savings_factors 100,50 -ts_vshmm_check_stability_interval 1";
+  PetscMPIInt size, rank;
+  MPI_Comm_size(PETSC_COMM_WORLD, &size);
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  const std::string file = "vshmm_warnings_np" + std::to_string(size) + ".txt";
+  std::remove(file.c_str());
+  for (const std::string &where : {std::string(""), " -ts_vshmm_warnings_viewer ascii:" + file, std::string(" -ts_vshmm_warnings_viewer none")}) {
+    SolveResult run;
+    testing::internal::CaptureStderr();
+    const PetscErrorCode ierr = SolveDissipative(PETSC_COMM_WORLD, SplitKind::Component, 0.5, 0.1, &run, (common + where).c_str(), nullptr, {}, {0.5, 1.0, -0.5});
+    const std::string    err  = testing::internal::GetCapturedStderr();
+    ASSERT_EQ(ierr, 0) << where;
+    EXPECT_GT(run.stability_warnings, 0) << where;
+    if (rank == 0 && where.empty()) EXPECT_NE(err.find(warning), std::string::npos) << err;
+    else EXPECT_EQ(err.find(warning), std::string::npos) << where << ": " << err;
+  }
+  MPI_Barrier(PETSC_COMM_WORLD); // the file was closed with the TS
+  std::ifstream      in(file);
+  std::ostringstream text;
+  text << in.rdbuf();
+  EXPECT_EQ(text.str().find(warning), 0u) << file << ": " << text.str();
+  MPI_Barrier(PETSC_COMM_WORLD);
+  if (rank == 0) std::remove(file.c_str());
+}
+
 TEST(VSHMMStabilityCheck, PaperParametersPassAtEveryMacroStep)
 {
   // The peak mesoscopic steps of level 1 exceed RK4's limit for a while (t = 0.1 to 0.5, where the
@@ -671,61 +704,75 @@ TEST(VSHMMBadInput, EachBadSettingIsAClearError)
     {"-ts_vshmm_savings_factors 0,10", 3, "Savings factor 1 is 0"},
     {"-ts_vshmm_savings_factors nan,10", 3, "must be positive and finite"},
     {"-ts_vshmm_savings_factors inf,10", 3, "must be positive and finite"},
-    {"-ts_vshmm_savings_factors abc,10", 3, "-ts_vshmm_savings_factors: 'abc' is not a real number"},
-    {"-ts_vshmm_savings_factors", 3, "-ts_vshmm_savings_factors needs a comma-separated list"},
+    {"-ts_vshmm_savings_factors abc,10", 3, "-ts_vshmm_savings_factors abc,10: Input string abc has no numeric value; the option takes a comma-separated list of real numbers"},
+    {"-ts_vshmm_savings_factors", 3, "-ts_vshmm_savings_factors is given without a value: it takes a comma-separated list of real numbers"},
     {"-ts_vshmm_micro_dt 0", 3, "-ts_vshmm_micro_dt must be positive and finite"},
     {"-ts_vshmm_micro_dt -1e-4", 3, "-ts_vshmm_micro_dt must be positive and finite"},
     {"-ts_vshmm_micro_dt nan", 3, "-ts_vshmm_micro_dt must be positive and finite"},
     {"-ts_vshmm_micro_dt 0.1", 3, "not smaller than the sampling interval DeltaT = 0.1"},
     {"-ts_vshmm_micro_dt 1", 3, "not smaller than the sampling interval"},
     {"-ts_vshmm_micro_dt 1e-20", 3, "below the time resolution of the sampling interval DeltaT = 0.1"},
-    {"-ts_vshmm_micro_dt x", 3, "-ts_vshmm_micro_dt: 'x' is not a real number"},
+    {"-ts_vshmm_micro_dt x", 3, "-ts_vshmm_micro_dt x: Input string x has no numeric value; the option takes a real number"},
     {"-ts_vshmm_subintervals 1,0", 3, "Subinterval count 2 is 0: -ts_vshmm_subintervals values must be integers >= 1"},
-    {"-ts_vshmm_subintervals", 3, "-ts_vshmm_subintervals needs a comma-separated list"},
-    {"-ts_vshmm_splits", 3, "-ts_vshmm_splits needs a comma-separated list"},
+    {"-ts_vshmm_subintervals", 3, "-ts_vshmm_subintervals is given without a value: it takes a comma-separated list of integers"},
+    {"-ts_vshmm_splits", 3, "-ts_vshmm_splits is given without a value: it takes a comma-separated list of names"},
     {"-ts_vshmm_subintervals 1", 3, "-ts_vshmm_subintervals (TSVSHMMSetSubintervals()) has 1 values but there are 3 scales"},
-    {"-ts_vshmm_subintervals 1.5,2", 3, "-ts_vshmm_subintervals: '1.5' is not an integer"},
+    {"-ts_vshmm_subintervals 1.5,2", 3, "-ts_vshmm_subintervals 1.5,2: Input string 1.5 has no integer value"},
     {"-ts_vshmm_splits slow,medium,bogus", 3, "Unknown split 'bogus' in -ts_vshmm_splits (TSVSHMMSetSplitOrder()): the TS's splits are slow, medium, fast"},
     {"-ts_vshmm_splits slow,fast", 3, "names 2 splits but the TS has 3 (slow, medium, fast)"},
     {"-ts_vshmm_splits slow,slow,fast", 3, "Split 'slow' appears twice"},
-    {"-ts_vshmm_kernel gaussian", 3, "Unknown -ts_vshmm_kernel 'gaussian': use cosine, constant, polynomial or exponential"},
+    {"-ts_vshmm_kernel gaussian", 3, "Unknown option gaussian for -ts_vshmm_kernel. Available options: cosine constant polynomial exponential"},
     {"-ts_vshmm_kernel polynomial -ts_vshmm_kernel_order 17", 3, "Kernel order 17 is out of range: -ts_vshmm_kernel_order takes 0..16"},
     {"-ts_vshmm_kernel polynomial -ts_vshmm_kernel_order -1", 3, "Kernel order -1 is out of range"},
     {"-ts_vshmm_kernel cosine -ts_vshmm_kernel_order 3", 3, "-ts_vshmm_kernel_order 3 does not apply to the cosine kernel"},
     {"-ts_vshmm_rk_type 9zz", 3, "Unknown inner Runge-Kutta type '9zz' in -ts_vshmm_rk_type"},
     {"-ts_dt -0.1", 3, "sampling interval DeltaT) is -0.1"},
-    {"-ts_vshmm_savings_factors 1e400,10", 3, "-ts_vshmm_savings_factors: '1e400' is not a real number"},
-    {"-ts_vshmm_savings_factors 100,,10", 3, "-ts_vshmm_savings_factors: '' is not a real number"},
+    {"-ts_vshmm_savings_factors 1e400,10", 3, "Savings factor 1 is inf.: -ts_vshmm_savings_factors values must be positive and finite"},
+    {"-ts_vshmm_savings_factors 100,,10", 3, "-ts_vshmm_savings_factors 100,,10 has an empty item (two commas in a row, or a comma at an end): it takes a comma-separated list of real numbers"},
+    {"-ts_vshmm_savings_factors 100,10,", 3, "-ts_vshmm_savings_factors 100,10, has an empty item"},
     {"-ts_vshmm_savings_factors -inf,10", 3, "must be positive and finite"},
-    {"-ts_vshmm_micro_dt 1e400", 3, "-ts_vshmm_micro_dt: '1e400' is not a real number"},
+    {"-ts_vshmm_micro_dt 1e400", 3, "Micro step inf. is invalid: -ts_vshmm_micro_dt must be positive and finite"},
     {"-ts_vshmm_micro_dt inf", 3, "-ts_vshmm_micro_dt must be positive and finite"},
-    {"-ts_vshmm_micro_dt", 3, "-ts_vshmm_micro_dt: '' is not a real number"},
-    {"-ts_vshmm_subintervals 1,99999999999999999999", 3, "-ts_vshmm_subintervals: '99999999999999999999' is not an integer"},
+    {"-ts_vshmm_micro_dt", 3, "-ts_vshmm_micro_dt is given without a value: it takes a real number"},
+    {"-ts_vshmm_subintervals 1,99999999999999999999", 3, "-ts_vshmm_subintervals 1,99999999999999999999: 99999999999999999999 is beyond the largest integer"},
+    {"-ts_vshmm_kernel polynomial -ts_vshmm_kernel_order 4294967298", 3, "-ts_vshmm_kernel_order 4294967298: 4294967298 is beyond the largest integer"},
     {"-ts_vshmm_subintervals -3,1", 3, "Subinterval count 1 is -3"},
     {"-ts_vshmm_subintervals 1,2,3", 3, "-ts_vshmm_subintervals (TSVSHMMSetSubintervals()) has 3 values but there are 3 scales"},
-    {"-ts_vshmm_kernel", 3, "Unknown -ts_vshmm_kernel '': use cosine, constant, polynomial or exponential"},
-    {"-ts_vshmm_kernel COSINE", 3, "Unknown -ts_vshmm_kernel 'COSINE'"},
-    {"-ts_vshmm_kernel_order", 3, "-ts_vshmm_kernel_order: '' is not an integer"},
-    {"-ts_vshmm_kernel polynomial -ts_vshmm_kernel_order 2.5", 3, "-ts_vshmm_kernel_order: '2.5' is not an integer"},
+    {"-ts_vshmm_kernel", 3, "-ts_vshmm_kernel is given without a value: it takes one of cosine, constant, polynomial, exponential"},
+    {"-ts_vshmm_kernel_order", 3, "-ts_vshmm_kernel_order is given without a value: it takes an integer"},
+    {"-ts_vshmm_kernel polynomial -ts_vshmm_kernel_order 2.5", 3, "-ts_vshmm_kernel_order 2.5: Input string 2.5 has no integer value"},
     {"-ts_vshmm_kernel exponential -ts_vshmm_kernel_order 2", 3, "does not apply to the exponential kernel"},
     {"-ts_vshmm_kernel constant -ts_vshmm_kernel_order 0", 3, "does not apply to the constant kernel"},
-    {"-ts_vshmm_rk_type", 3, "-ts_vshmm_rk_type needs a TSRK type name"},
+    {"-ts_vshmm_rk_type", 3, "-ts_vshmm_rk_type is given without a value: it takes a TSRK type name"},
     {"-ts_vshmm_rk_type beuler", 3, "Unknown inner Runge-Kutta type 'beuler'"},
-    {"-ts_vshmm_splits slow,,fast", 3, "-ts_vshmm_splits: name 2 is empty"},
+    {"-ts_vshmm_splits slow,,fast", 3, "-ts_vshmm_splits slow,,fast has an empty item"},
+    {"-ts_vshmm_splits ,slow,medium,fast", 3, "-ts_vshmm_splits ,slow,medium,fast has an empty item"},
     {"-ts_vshmm_splits fast", 3, "-ts_vshmm_splits needs at least two scales"},
     {"-ts_vshmm_splits SLOW,medium,fast", 3, "Unknown split 'SLOW'"},
-    {"-ts_vshmm_check_stability maybe", 3, "-ts_vshmm_check_stability: 'maybe' is not a truth value: use true or false"},
+    {"-ts_vshmm_check_stability maybe", 3, "-ts_vshmm_check_stability maybe: Unknown logical value: maybe; the option takes true or false"},
     {"-ts_vshmm_check_stability_interval -1", 3, "-ts_vshmm_check_stability_interval takes 0 (never) or a number of macro steps >= 1"},
-    {"-ts_vshmm_check_stability_interval two", 3, "-ts_vshmm_check_stability_interval: 'two' is not an integer"},
+    {"-ts_vshmm_check_stability_interval two", 3, "-ts_vshmm_check_stability_interval two: Input string two has no integer value"},
+    {"-ts_vshmm_check_stability_interval", 3, "-ts_vshmm_check_stability_interval is given without a value: it takes an integer"},
+    {"-ts_vshmm_check_separation sometimes", 3, "Unknown option sometimes for -ts_vshmm_check_separation. Available options: off warn error"},
+    {"-ts_vshmm_check_separation", 3, "-ts_vshmm_check_separation is given without a value: it takes one of off, warn, error"},
+    {"-ts_vshmm_warnings_viewer", 3, "-ts_vshmm_warnings_viewer is given without a value: it takes stderr, none, or an ASCII viewer ascii[:file]"},
+    {"-ts_vshmm_warnings_viewer binary:warnings.bin", 3, "-ts_vshmm_warnings_viewer (TSVSHMMSetWarningsViewer()): the warnings viewer must be an ASCII viewer (stderr, none or ascii:<file>), not binary"},
+    {"-ts_vshmm_warnings_viewer nowhere", 3, "-ts_vshmm_warnings_viewer nowhere: Unsupported viewer nowhere; the option takes stderr, none, or an ASCII viewer ascii[:file]"},
   };
   for (const BadInput &bad : cases) {
     CapturedError e = SetUpWith(bad);
     EXPECT_NE(e.code, 0) << (bad.options ? bad.options : "(no options)");
     EXPECT_NE(e.message.find(bad.expected), std::string::npos) << (bad.options ? bad.options : "(no options)") << "\n  message: " << e.message << "\n  expected: " << bad.expected;
   }
+  // A list takes as many values as given: 300 savings factors are 300, not cut at a buffer's size.
+  std::string many = "-ts_vshmm_savings_factors 1";
+  for (int i = 1; i < 300; ++i) many += ",1";
+  CapturedError e = SetUpWith({many.c_str(), 3, ""});
+  EXPECT_NE(e.message.find("-ts_vshmm_savings_factors (TSVSHMMSetSavingsFactors()) has 300 values but there are 3 scales"), std::string::npos) << e.message;
   // The good settings of the same TS set up without error.
   EXPECT_EQ(SetUpWith({"-ts_vshmm_kernel polynomial -ts_vshmm_kernel_order 4 -ts_vshmm_subintervals 1,3 -ts_vshmm_rk_type 5dp", 3, ""}).code, 0);
   EXPECT_EQ(SetUpWith({"-ts_vshmm_kernel cosine -ts_vshmm_kernel_order 1", 3, ""}).code, 0);
+  EXPECT_EQ(SetUpWith({"-ts_vshmm_kernel COSINE -ts_vshmm_check_stability -ts_vshmm_warnings_viewer none", 3, ""}).code, 0); // PETSc's readers: names in any case, a flag alone is true
   // A method with a longer stability interval accepts a micro step that RK4 does not.
   EXPECT_NE(SetUpWith({"-ts_vshmm_micro_dt 3.2e-4", 3, ""}).code, 0);
   EXPECT_EQ(SetUpWith({"-ts_vshmm_micro_dt 3.2e-4 -ts_vshmm_rk_type 5dp", 3, ""}).code, 0);
