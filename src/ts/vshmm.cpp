@@ -799,6 +799,8 @@ static PetscErrorCode TSVSHMMResetStatistics_VSHMM(TS ts)
   vs->adapt_rejections      = 0;
   vs->adapt_calibrations    = 0;
   vs->warned_ratio.assign(nscales, 0.0);
+  vs->fast_energy_min    = 0;
+  vs->fast_energy_warned = 0;
   vs->rhs_evaluations.assign(n, 0);
   vs->level_steps.assign(nscales, 0);
   vs->level_evaluations.assign(nscales, 0);

@@ -99,6 +99,8 @@ struct TS_VSHMM {
   PetscInt64              macro_steps      = 0;
   PetscInt64              micro_cycles     = 0;
   PetscInt64              stability_checks = 0, stability_evaluations = 0, stability_warnings = 0;
+  PetscReal               fast_energy_min    = 0;         // smallest energy of the fastest scale's oscillation seen by the stability checks of this solve
+  PetscReal               fast_energy_warned = 0;         // its growth when last warned
   std::vector<PetscReal>  warned_ratio;                   // per level: largest step / stable step when last warned
   std::vector<PetscInt64> rhs_evaluations;                // per split
   std::vector<PetscInt64> level_steps, level_evaluations; // per level (scale)

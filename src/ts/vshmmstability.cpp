@@ -29,6 +29,7 @@ static constexpr PetscReal kDampingTarget      = 0.5;  /* what a suggested savin
 static constexpr PetscReal kGrowingMode        = 0.1;  /* Re lambda > this |lambda|: a growing mode, not checked */
 static constexpr PetscReal kMaxTransientGrowth = 100;  /* largest growth of a mode within a macro step that only warns */
 static constexpr PetscReal kMaxCouplingGrowth  = 1.05; /* largest growth of a mode over a macro step from the coupling of the levels */
+static constexpr PetscReal kFastEnergyGrowth   = 4;    /* growth of the fastest scale's oscillation energy that is warned about */
 static constexpr PetscReal kCouplingTarget     = 1.01; /* what suggested savings factors achieve */
 
 /* Arnoldi on the Jacobian of level l's field at (t, X), applied by finite differences of the level's
@@ -249,6 +250,18 @@ PetscErrorCode TSVSHMMLevelSpectra_Private(TS ts)
   PetscFunctionReturn(0);
 }
 
+/* Whether the full field's stiffest mode (the one that limits the micro step) is an oscillation
+   (|Im lambda| > |Re lambda|): only then do the coupled-level and fast-energy checks run. Where the
+   fastest scale is dissipative a slow level cannot pump energy into it, and the per-level check
+   suffices. */
+static bool TopLevelOscillates(const TS_VSHMM *vs)
+{
+  const size_t top = vs->level_end.size() - 1;
+  if (vs->level_limiting.size() <= top || vs->level_limiting[top].empty()) return false;
+  const std::complex<double> worst = vs->level_worst[top];
+  return std::abs(worst.imag()) > std::abs(worst.real()) && vs->level_radius[top] > 0;
+}
+
 /* The coupled levels (core/coupling.hpp): every level may be stable alone while their composition
    in a micro cycle grows a mode (a slow field that moves the fast variables). Stops with an error
    when the coupling grows some mode by more than kMaxCouplingGrowth over a macro step. */
@@ -260,7 +273,7 @@ static PetscErrorCode CheckCoupling(TS ts, PetscReal dt, const vshmm::Mesoscopic
   vshmm::CoupledLevels levels;
 
   PetscFunctionBegin;
-  if (vs->level_end.size() < 2) PetscFunctionReturn(0);
+  if (vs->level_end.size() < 2 || !TopLevelOscillates(vs)) PetscFunctionReturn(0);
   const TS_VSHMM::Counter saved       = vs->counting;
   const PetscInt          saved_split = vs->nonfinite_split;
   const PetscReal         saved_time  = vs->nonfinite_time;
@@ -302,6 +315,72 @@ static PetscErrorCode CheckCoupling(TS ts, PetscReal dt, const vshmm::Mesoscopic
           s > 0 ? ("Savings factors " + safe + " (now " + now + ", -ts_vshmm_savings_factors) keep it stable; a split that leaves the fast variables' kinematics to the fast scale may allow more.").c_str()
                 : ("No savings factors keep it stable with the micro step " + std::to_string(dt) + " (savings factors " + now + "): the scales are not separated for VSHMM with these splits; use a smaller -ts_vshmm_micro_dt, splits that leave the fast variables' kinematics to the fast scale, or a single-rate TS type (-ts_type rk).")
                     .c_str());
+}
+
+/* The energy of the fastest scale's oscillation, for an oscillatory top level: with f the fastest
+   split's field (G_K - G_{K-1}) and omega the top level's spectral radius,
+     E = ||f(X)||^2 + ||f'(X) G_K(X)||^2 / omega^2
+   (f' G_K by a finite difference along the full field), which for a harmonic oscillator
+   x'' = -omega^2 x is 2 omega^2 times its energy whatever its phase. A slow scale whose steps
+   shear the fast oscillation (the kinematics in the slow split of a stiff-spring chain) pumps
+   energy into it although every linearised step is stable: the check warns when E has grown by
+   more than kFastEnergyGrowth since the smallest value it has seen in the solve. */
+static PetscErrorCode CheckFastEnergy(TS ts)
+{
+  TS_VSHMM       *vs  = (TS_VSHMM *)ts->data;
+  const PetscInt  top = (PetscInt)vs->level_end.size() - 1;
+  const PetscReal t   = ts->ptime;
+  Vec             X   = ts->vec_sol, G, F, Xp;
+  PetscReal       fnorm, dfnorm, xnorm, gnorm;
+
+  PetscFunctionBegin;
+  if (top < 1 || !TopLevelOscillates(vs)) PetscFunctionReturn(0);
+  const double            omega       = vs->level_radius[top];
+  const TS_VSHMM::Counter saved       = vs->counting;
+  const PetscInt          saved_split = vs->nonfinite_split;
+  const PetscReal         saved_time  = vs->nonfinite_time;
+  vs->counting                        = TS_VSHMM::COUNT_STABILITY;
+  PetscCall(VecDuplicate(X, &G));
+  PetscCall(VecDuplicate(X, &F));
+  PetscCall(VecDuplicate(X, &Xp));
+  /* f(X) = G_K(X) - G_{K-1}(X); G holds G_K(X) */
+  PetscCall(TSVSHMMEvaluateLevel_Private(vs, top, t, X, G));
+  PetscCall(TSVSHMMEvaluateLevel_Private(vs, top - 1, t, X, F));
+  PetscCall(VecAYPX(F, -1.0, G));
+  PetscCall(VecNorm(F, NORM_2, &fnorm));
+  /* f(X + delta G) - f(X), over delta */
+  PetscCall(VecNorm(X, NORM_2, &xnorm));
+  PetscCall(VecNorm(G, NORM_2, &gnorm));
+  const PetscReal delta = gnorm > 0 ? std::sqrt(PETSC_MACHINE_EPSILON) * (1.0 + xnorm) / gnorm : 0;
+  dfnorm                = 0;
+  if (delta > 0) {
+    PetscCall(VecWAXPY(Xp, delta, G, X));
+    PetscCall(VecScale(F, -1.0)); /* -f(X) */
+    PetscCall(TSVSHMMEvaluateLevel_Private(vs, top, t, Xp, G));
+    PetscCall(VecAXPY(F, 1.0, G));
+    PetscCall(TSVSHMMEvaluateLevel_Private(vs, top - 1, t, Xp, G));
+    PetscCall(VecAXPY(F, -1.0, G));
+    PetscCall(VecNorm(F, NORM_2, &dfnorm));
+    dfnorm /= delta;
+  }
+  PetscCall(VecDestroy(&G));
+  PetscCall(VecDestroy(&F));
+  PetscCall(VecDestroy(&Xp));
+  vs->counting        = saved;
+  vs->nonfinite_split = saved_split;
+  vs->nonfinite_time  = saved_time;
+  const PetscReal E   = fnorm * fnorm + dfnorm * dfnorm / (omega * omega);
+  if (!std::isfinite(E)) PetscFunctionReturn(0);
+  if (!(vs->fast_energy_min > 0) || E < vs->fast_energy_min) vs->fast_energy_min = E;
+  const PetscReal growth = vs->fast_energy_min > 0 ? E / vs->fast_energy_min : 1;
+  PetscCall(PetscInfo(ts, "Stability check at t = %g: energy of the fastest scale's oscillation (scale %s, frequency %g) %g, %g times the smallest seen in this solve\n", (double)t, vs->splits.back().name.c_str(), omega, (double)E, (double)growth));
+  if (growth > kFastEnergyGrowth && growth > 2 * vs->fast_energy_warned) {
+    vs->fast_energy_warned = growth;
+    vs->stability_warnings++;
+    PetscCall(TSVSHMMWarn_Private(ts, "TSVSHMM warning: stability check at t = %g: the energy of the fastest scale's oscillation (split %s, frequency %g) has grown by a factor %g in this solve. Unless the problem itself pumps energy into its fast oscillation, VSHMM's mesoscopic steps do: a slower scale's field that moves the fast variables (for example the kinematics q' = p in the slow split of a stiff-spring chain) shears the fast oscillation at every step, and the slow variables come out wrong although every step is stable. Use smaller savings factors, splits that leave the fast variables' motion to the fast scale, -ts_vshmm_adapt, or a single-rate TS type. (Shown again only if it doubles; -info shows every check.)\n", (double)t,
+                                  vs->splits.back().name.c_str(), omega, (double)growth));
+  }
+  PetscFunctionReturn(0);
 }
 
 PetscErrorCode TSVSHMMCheckStability_Private(TS ts)
@@ -377,5 +456,6 @@ PetscErrorCode TSVSHMMCheckStability_Private(TS ts)
             LevelSplits(vs, level).c_str(), j, hpeak, grows.real(), grows.imag(), radius, rk, R.largestStableStep(grows), std::exp(growth), (double)kMaxTransientGrowth, std::exp(logA), j, (double)alpha_max, (double)vs->savings_used[j - 1]);
   }
   PetscCall(CheckCoupling(ts, dt, *schedule));
+  PetscCall(CheckFastEnergy(ts));
   PetscFunctionReturn(0);
 }
