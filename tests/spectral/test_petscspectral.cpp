@@ -87,7 +87,7 @@ struct BadOptions {
 
 static const BadOptions kBadValues[] = {
   {"-spectral_grid_points 2", "-spectral_grid_points 2 is too small"},
-  {"-spectral_terms diffusion,reaction", "Unknown term 'reaction' in -spectral_terms"},
+  {"-spectral_terms diffusion,convection", "Unknown term 'convection' in -spectral_terms"},
   {"-spectral_terms diffusion,diffusion", "appears twice in -spectral_terms"},
   {"-spectral_mode fast", "Unknown option fast for -spectral_mode. Available options: dns sparse"},
   {"-spectral_u0 wavelet", "-spectral_u0"},
