@@ -538,6 +538,32 @@ TEST(ExtraTerms, SparseEqualsFullRestricted)
   EXPECT_THROW(DenseOperator{sparse}, std::invalid_argument); // nonlinear
 }
 
+TEST(ExtraTerms, SparsePaddedGridBelowN)
+{
+  // few low modes and fields of small bandwidth: the padded grid is coarser than the N grid
+  // (the fields' interpolants sampled there), and the result is still the full one restricted
+  const int  N = 128;
+  Layout     l(ClusterSet::parse("0:3,10:12", N)), full = Layout::full(N);
+  ExtraTerms x;
+  x.burgers.resize(N);
+  x.rate.resize(N);
+  for (int j = 0; j < N; ++j) {
+    x.burgers[j] = 0.5 + 0.3 * std::cos(5 * gridPoint(N, j));
+    x.rate[j]    = 1.0 - 0.2 * std::sin(7 * gridPoint(N, j));
+  }
+  const double r[4] = {0.1, -1.0, 0.5, -0.3};
+  std::copy(r, r + 4, x.reaction);
+  SpectralOperator sparse(l, {}, {}, x, Planner::Estimate), fullop(full, {}, {}, x, Planner::Estimate);
+  EXPECT_LT(sparse.paddedSize(), N); // M > 3 * 12 + 7 + 12 = 55: 60
+  std::vector<double> c = randomVector(l.size(), 81), cfull(full.size(), 0.0), F(l.size()), Ffull(full.size());
+  for (int i = 0; i < l.modeCount(); ++i)
+    for (int q = 0; q < realsOf(N, l.mode(i)); ++q) cfull[full.offset(full.indexOf(l.mode(i))) + q] = c[l.offset(i) + q];
+  sparse.apply(c.data(), F.data());
+  fullop.apply(cfull.data(), Ffull.data());
+  for (int i = 0; i < l.modeCount(); ++i)
+    for (int q = 0; q < realsOf(N, l.mode(i)); ++q) EXPECT_NEAR(F[l.offset(i) + q], Ffull[full.offset(full.indexOf(l.mode(i))) + q], 1e-13) << "k = " << l.mode(i);
+}
+
 TEST(ExtraTerms, AffineDenseOperatorAndDirectProjectionWithSource)
 {
   // a source and a linear reaction are affine: the dense operator holds them as M c + b

@@ -420,23 +420,28 @@ static int bandwidth(const std::vector<double> &f)
   return k;
 }
 
-// Grid values f (N points) interpolated trigonometrically to M > N points (the Nyquist
-// coefficient of an even N split evenly between +-N/2).
+// The trigonometric interpolant of grid values f (N points) at the M points 2 pi j / M (the
+// Nyquist coefficient of an even N split evenly between +-N/2): synthesised on L > N points, L a
+// multiple of M, and sampled every L/M points.
 static std::vector<double> interpolate(const std::vector<double> &f, int M)
 {
   const int N = (int)f.size();
-  RealFFT   a(N, Planner::Estimate), b(M, Planner::Estimate);
+  int       L = M;
+  while (L <= N) L += M;
+  RealFFT a(N, Planner::Estimate), b(L, Planner::Estimate);
   std::memcpy(a.real(), f.data(), sizeof(double) * N);
   a.forward();
   double *s = b.spectrum();
-  std::memset(s, 0, sizeof(double) * 2 * (M / 2 + 1));
+  std::memset(s, 0, sizeof(double) * 2 * (L / 2 + 1));
   for (int k = 0; k <= N / 2; ++k) {
     const double w = (N % 2 == 0 && k == N / 2 && k > 0) ? 0.5 : 1.0;
     s[2 * k]       = w * a.spectrum()[2 * k] / N;
     s[2 * k + 1]   = (N % 2 == 0 && k == N / 2) ? 0.0 : a.spectrum()[2 * k + 1] / N;
   }
   b.inverse();
-  return std::vector<double>(b.real(), b.real() + M);
+  std::vector<double> v(M);
+  for (int j = 0; j < M; ++j) v[j] = b.real()[(size_t)j * (L / M)];
+  return v;
 }
 
 SpectralOperator::SpectralOperator(const Layout &layout, std::vector<double> D, std::vector<double> A, Planner planner) : SpectralOperator(layout, std::move(D), std::move(A), ExtraTerms(), planner) {}
@@ -450,9 +455,10 @@ SpectralOperator::SpectralOperator(const Layout &layout, std::vector<double> D, 
   if (!D_.empty()) fw1_ = std::make_unique<RealFFT>(N_, planner);
   if (!A_.empty()) fw0_ = std::make_unique<RealFFT>(N_, planner);
   if (!extra_.burgers.empty() || !extra_.rate.empty()) {
-    // M > p ku + kf + kout: the retained coefficients of f u^p are free of aliasing
+    // M > p ku + kf + kout: the retained coefficients of f u^p are free of aliasing (and
+    // M > 2 ku: u's modes fit on the padded grid)
     const int ku   = layout_.modes().empty() ? 0 : *std::max_element(layout_.modes().begin(), layout_.modes().end());
-    int       need = N_ + 1;
+    int       need = 2 * ku + 2;
     if (!extra_.burgers.empty()) need = std::max(need, 2 * ku + bandwidth(extra_.burgers) + ku + 1);
     if (!extra_.rate.empty()) {
       int p = 0;

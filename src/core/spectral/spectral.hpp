@@ -178,7 +178,8 @@ std::vector<double> coefficientMagnitudes(const std::vector<double> &u);
 // Dealiasing: B and R stand for their trigonometric interpolants on the N grid (bandwidth kB,
 // kR: their highest wavenumber above 1e-14 of their largest coefficient), u for its retained
 // modes (highest ku). Their products are formed on a padded grid of M points,
-// M > p ku + kf + kout (p the degree in u, kout the highest retained wavenumber), so that the
+// M > p ku + kf + kout and M > 2 ku (p the degree in u, kout = ku the highest retained
+// wavenumber; in sparse mode M may be below N), so that the
 // retained coefficients of the products are exact (no aliasing): the operator returns the
 // projection of the term onto the retained modes. The source is added as its N-grid
 // coefficients.
