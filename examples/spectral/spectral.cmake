@@ -128,6 +128,29 @@ set_tests_properties(spectral_diffusion_vshmm_small_vs_dns spectral_diffusion_vs
 set_tests_properties(spectral_advection_vshmm_small_vs_dns spectral_advection_vshmm_small_rk4_np1 spectral_advection_vshmm_small_rk4_np2
   PROPERTIES FIXTURES_REQUIRED spectral_advection_refs)
 
+# --- the nonlinear scene (examples/scenes/nonlinear.yaml: diffusion, Burgers, cubic reaction), reduced
+# to N = 256 and t = 0.125, 0.25 (sampling interval 0.125); about 2 s in all. DNS reference: RK3
+# dt = 4e-5 (dt = 2e-5 differs by 9e-13; N = 512 by 3.5e-4 at t = 0.25); the explicit sparse method
+# on the scene's clusters, RK3 dt = 1e-4, is 4.9e-3, 4.6e-3 from it.
+set(_sp_nl -options_file_yaml ${PROJECT_SOURCE_DIR}/examples/scenes/nonlinear.yaml -spectral_grid_points 256 -output_times 0.125,0.25 -no_timing)
+vshmm_example_test(NAME spectral_nonlinear_dns_small EXE diffusion
+                   ARGS ${_sp_nl} -spectral_mode dns -ts_type rk -ts_rk_type 3 -ts_dt 4e-5 -grid_solution_file dns
+                   REGEX "term burgers: u_t [+]= -[(]c u.2/2[)]_x, c = constant 0.5.*term reaction: u_t [+]= r [(]c0 [+] c1 u [+] c2 u.2 [+] c3 u.3[)], c = 0,1,0,-1.*output t 0.25 rhs_evaluations 18750 split_evaluations 0 inverse_ffts 37500 forward_ffts 56250")
+vshmm_example_test(NAME spectral_nonlinear_sparse_small EXE diffusion
+                   ARGS ${_sp_nl} -ts_type rk -ts_rk_type 3 -ts_dt 1e-4 -grid_solution_file sparse
+                   REGEX "output t 0.25 rhs_evaluations 7500 ")
+set_tests_properties(spectral_nonlinear_dns_small spectral_nonlinear_sparse_small PROPERTIES FIXTURES_SETUP spectral_nonlinear_refs)
+# VSHMM with the scene's parameters (sampling interval 0.125): against the DNS 6.5e-3, 4.9e-3
+# (tolerance 8e-3), against the explicit sparse method 4.6e-3, 3.4e-3 (tolerance 6e-3); the work
+# counts exactly (a padded c2r and two r2c beside the diffusion's c2r and r2c per state).
+vshmm_example_test(NAME spectral_nonlinear_vshmm_small_vs_dns EXE diffusion
+                   ARGS ${_sp_nl} -ts_dt 0.125 -compare_grid_solution ${_sp_dir}/spectral_nonlinear_dns_small/dns -compare_tolerance 8e-3
+                   REGEX "output t 0.25 rhs_evaluations 136 split_evaluations 381 inverse_ffts 272 forward_ffts 408 direct_modes 0\ncompare t 0.25 relative_l2_error")
+vshmm_example_test(NAME spectral_nonlinear_vshmm_small_vs_sparse EXE diffusion
+                   ARGS ${_sp_nl} -ts_dt 0.125 -compare_grid_solution ${_sp_dir}/spectral_nonlinear_sparse_small/sparse -compare_tolerance 6e-3
+                   REGEX "compare t 0.25 relative_l2_error")
+set_tests_properties(spectral_nonlinear_vshmm_small_vs_dns spectral_nonlinear_vshmm_small_vs_sparse PROPERTIES FIXTURES_REQUIRED spectral_nonlinear_refs)
+
 # --- cluster detection (soft thresholding, lambda = 10^-2.5, unitary normalisation) ----------
 vshmm_example_test(NAME spectral_detect_dns_small EXE diffusion
                    ARGS -spectral_grid_points 256 -spectral_diffusion_coefficient_wavenumbers 16,64 -spectral_mode sparse -spectral_cluster_detect dns
@@ -179,6 +202,9 @@ _spectral_error_test(unknown_form "Unknown option wavelet for -spectral_velocity
 _spectral_error_test(bad_denominator "exp_ratio: the denominator is .* <= 0" -spectral_grid_points 64 -spectral_terms advection -spectral_velocity_denominator_sin 0.6,0.6 -spectral_velocity_denominator_wavenumbers 1,2)
 _spectral_error_test(small_grid "-spectral_grid_points 2 is too small" -spectral_grid_points 2)
 _spectral_error_test(both_cluster_sources "Give either -spectral_clusters \\(explicit\\) or -spectral_cluster_detect initial" -spectral_grid_points 256 -spectral_mode sparse -spectral_clusters 0:3 -spectral_cluster_detect initial)
+_spectral_error_test(matrix_nonlinear "-spectral_evaluation matrix is for linear [(]and affine[)] scenes: the term burgers is nonlinear" -options_file_yaml ${PROJECT_SOURCE_DIR}/examples/scenes/nonlinear.yaml -spectral_grid_points 256 -spectral_evaluation matrix)
+_spectral_error_test(reaction_coefficients "The term reaction needs -spectral_reaction_coefficients" -spectral_grid_points 64 -spectral_terms diffusion,reaction)
+_spectral_error_test(field_sum_unknown_form "Unknown form 'wavelet' in summand 1 of -spectral_diffusion_coefficient fourier[+]wavelet" -spectral_grid_points 64 -spectral_diffusion_coefficient fourier+wavelet)
 _spectral_error_test(output_times_order "-output_times must be increasing" -spectral_grid_points 64 -output_times 0.2,0.1)
 # issue 9 (fuzzing): checked against N before anything is built; a ',' or '+' at an end refused
 _spectral_error_test(cluster_range_huge "cluster item '0:999999999' has wavenumber 999999999, outside 0..128" -spectral_grid_points 256 -spectral_mode sparse -spectral_clusters 0:999999999)
