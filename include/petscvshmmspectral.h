@@ -6,6 +6,9 @@
        u_t = F(u) = sum over the scene's terms of
                     diffusion:  d/dx( d(x) du/dx )
                     advection:  - a(x) du/dx
+                    burgers:    - d/dx( c(x) u^2 / 2 )
+                    reaction:   r(x) (c0 + c1 u + c2 u^2 + c3 u^3)
+                    source:     s(x)
 
    discretised by the Fourier pseudo-spectral method on N points with FFTW, either on every
    mode (mode "dns") or on a sparse set of retained wavenumbers grouped in clusters (mode

@@ -76,6 +76,13 @@ struct SplitCtx {
   PetscInt      j;
 };
 
+static inline spc::Field ConstantField(double v)
+{
+  spc::Field f = spc::Field::ofForm(spc::Field::Form::Constant);
+  f.value      = v;
+  return f;
+}
+
 /* The C++ state of a VSHMMSpectral: the scene, the set-up and the physical-space cache. */
 struct VSHMMSpectral_Data {
   /* the scene */
@@ -83,6 +90,10 @@ struct VSHMMSpectral_Data {
   PetscInt                 N     = 2048;
   std::vector<std::string> terms;
   spc::Field               diff, vel, u0;
+  spc::Field               burgers = ConstantField(1.0); /* burgers: -(c u^2/2)_x */
+  spc::Field               rate    = ConstantField(1.0); /* reaction: r(x) (c0 + c1 u + c2 u^2 + c3 u^3) */
+  spc::Field               source  = ConstantField(0.0); /* source: s(x) */
+  std::vector<PetscReal>   reaction;                     /* c0..c3 (fewer: the rest 0) */
   VSHMMSpectralMode        mode = VSHMMSPECTRAL_MODE_DNS;
   std::string              cluster_spec;
   VSHMMSpectralDetect      detect = VSHMMSPECTRAL_DETECT_NONE;
@@ -148,6 +159,8 @@ PETSC_INTERN PetscErrorCode VSHMMSpectralSampleField_Private(VSHMMSpectral, cons
 PETSC_INTERN PetscErrorCode VSHMMSpectralReadGridFile_Private(MPI_Comm, const char[], std::vector<double> &);
 /* The fields D = sum of diffusion coefficients, A = - sum of velocities, on the grid. */
 PETSC_INTERN PetscErrorCode VSHMMSpectralBuildCoefficients_Private(VSHMMSpectral, std::vector<double> &, std::vector<double> &);
+/* The terms burgers, reaction and source of the scene on the grid (empty fields for absent terms). */
+PETSC_INTERN PetscErrorCode VSHMMSpectralBuildExtraTerms_Private(VSHMMSpectral, spc::ExtraTerms &);
 /* A stable explicit RK3 step for the modes up to kmax. */
 PETSC_INTERN double VSHMMSpectralStableStep_Private(const std::vector<double> &, const std::vector<double> &, int);
 /* The whole state on every rank (the Vec's own array on one rank, a gathered copy otherwise). */

@@ -7,10 +7,18 @@
 
 #include "vshmmoptions.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <iterator>
+#include <functional>
 
 static const char *const FieldForms[] = {"constant", "gaussian", "expsin", "fourier", "exp_ratio", "samples", "VSHMMSpectralFieldForm", "", nullptr};
-static const char *const KnownTerms   = "diffusion (d/dx(d(x) du/dx), field -spectral_diffusion_coefficient) and advection (-a(x) du/dx, field -spectral_velocity)";
+static const char *const KnownTerms = "diffusion (d/dx(d(x) du/dx), field -spectral_diffusion_coefficient), advection (-a(x) du/dx, field -spectral_velocity), burgers (-d/dx(c(x) u^2/2), field -spectral_burgers_coefficient), reaction (r(x) (c0 + c1 "
+                                      "u + c2 u^2 + c3 u^3), field -spectral_reaction_rate, -spectral_reaction_coefficients c0,c1,c2,c3) and source (s(x), field -spectral_source)";
+static const char *const Terms[]    = {"diffusion", "advection", "burgers", "reaction", "source"};
+/* every parameter name of the field forms, to refuse un-numbered parameters beside a sum of forms */
+static const char *const FieldParameters[] = {"value", "offset", "amplitude", "center", "width", "periodic", "weights", "wavenumbers", "amplitudes", "phases", "cos", "sin", "scale", "numerator_offset", "numerator_wavenumbers", "numerator_cos", "numerator_sin", "denominator_offset", "denominator_wavenumbers", "denominator_cos", "denominator_sin", "file"};
 
 /* PETSc's readers with the checks of src/common/vshmmoptions.hpp, for this object. */
 static const char *const Man = "VSHMMSpectralSetFromOptions";
@@ -72,17 +80,12 @@ static PetscErrorCode OptionsSeries(PetscOptionItems *PetscOptionsObject, VSHMMS
   PetscFunctionReturn(0);
 }
 
-/* A field -spectral_<field> <form> and the parameters of its form. Naming the form starts from
-   that form's defaults (spc::Field::ofForm(): every parameter 0 except those stated in -help);
-   without it the parameters given change the scene's default field. */
-static PetscErrorCode OptionsField(PetscOptionItems *PetscOptionsObject, VSHMMSpectral sp, const char field[], const char text[], spc::Field &f)
+/* The parameters -spectral_<field>_<parameter> of the form of f. */
+static PetscErrorCode OptionsFieldParameters(PetscOptionItems *PetscOptionsObject, VSHMMSpectral sp, const char field[], spc::Field &f)
 {
-  spc::Field::Form form = f.form;
-  PetscBool        set;
+  PetscBool set;
 
   PetscFunctionBegin;
-  PetscCall(OptionsEnum(PetscOptionsObject, sp, Opt(field, "").c_str(), text, FieldForms, &form, &set));
-  if (set) f = spc::Field::ofForm(form);
   switch (f.form) {
   case spc::Field::Form::Constant:
     PetscCall(OptionsReal(PetscOptionsObject, sp, Opt(field, "value"), "constant: the value (default 0)", &f.value));
@@ -121,6 +124,70 @@ static PetscErrorCode OptionsField(PetscOptionItems *PetscOptionsObject, VSHMMSp
   PetscFunctionReturn(0);
 }
 
+/* A sum of forms "fourier+expsin" given for -spectral_<field>: summand i's parameters are
+   -spectral_<field>_<i>_<parameter> (i from 0); un-numbered parameters are refused. */
+static PetscErrorCode OptionsFieldSum(PetscOptionItems *PetscOptionsObject, VSHMMSpectral sp, const char field[], const char text[], const std::string &sum, spc::Field &f)
+{
+  const char *pre  = VSHMMSpectralPrefix(sp);
+  MPI_Comm    comm = PetscObjectComm((PetscObject)sp);
+  std::string forms;
+  char        buf[PETSC_MAX_PATH_LEN];
+  spc::Field  total;
+
+  PetscFunctionBegin;
+  for (int i = 0; i < 6; ++i) forms += std::string(i ? " " : "") + FieldForms[i];
+  PetscCall(PetscStrncpy(buf, sum.c_str(), sizeof(buf)));
+  PetscCall(PetscOptionsString(Opt(field, "").c_str(), text, "VSHMMSpectralSetFromOptions", buf, buf, sizeof(buf), NULL)); /* for -help */
+  size_t begin = 0;
+  for (int i = 0;; ++i) {
+    const size_t end  = sum.find('+', begin);
+    std::string  name = sum.substr(begin, end == std::string::npos ? std::string::npos : end - begin);
+    name.erase(0, name.find_first_not_of(" \t"));
+    name.erase(name.find_last_not_of(" \t") + 1);
+    PetscCheck(!name.empty(), comm, PETSC_ERR_ARG_WRONG, "-%sspectral_%s %s has an empty summand ('+' at an end, or two in a row)", pre, field, sum.c_str());
+    int form = -1;
+    for (int k = 0; k < 6; ++k)
+      if (name == FieldForms[k]) form = k;
+    PetscCheck(form >= 0, comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "Unknown form '%s' in summand %d of -%sspectral_%s %s: the forms are %s", name.c_str(), i, pre, field, sum.c_str(), forms.c_str());
+    total.summands.push_back(spc::Field::ofForm((spc::Field::Form)form));
+    if (end == std::string::npos) break;
+    begin = end + 1;
+  }
+  for (const char *p : FieldParameters) {
+    PetscBool has;
+    PetscCall(PetscOptionsHasName(((PetscObject)sp)->options, ((PetscObject)sp)->prefix, Opt(field, p).c_str(), &has));
+    PetscCheck(!has, comm, PETSC_ERR_ARG_WRONG, "-%sspectral_%s_%s: -%sspectral_%s is a sum of forms (%s), whose parameters are numbered by summand from 0: -%sspectral_%s_0_%s, -%sspectral_%s_1_..., ...", pre, field, p, pre, field, sum.c_str(), pre, field, p, pre, field);
+  }
+  for (size_t i = 0; i < total.summands.size(); ++i) PetscCall(OptionsFieldParameters(PetscOptionsObject, sp, (std::string(field) + "_" + std::to_string(i)).c_str(), total.summands[i]));
+  f = total;
+  PetscFunctionReturn(0);
+}
+
+/* A field -spectral_<field> <form> (or a sum of forms, form+form+...) and the parameters of its
+   form(s). Naming the form starts from that form's defaults (spc::Field::ofForm(): every
+   parameter 0 except those stated in -help); without it the parameters given change the
+   scene's default field. */
+static PetscErrorCode OptionsField(PetscOptionItems *PetscOptionsObject, VSHMMSpectral sp, const char field[], const char text[], spc::Field &f)
+{
+  spc::Field::Form form = f.form;
+  PetscBool        set, found;
+  char             value[PETSC_MAX_PATH_LEN];
+
+  PetscFunctionBegin;
+  PetscCall(VSHMMOptionCheckValue((PetscObject)sp, Opt(field, "").c_str(), "a field form, or a sum of forms form+form+...", false, false));
+  PetscCall(PetscOptionsGetString(((PetscObject)sp)->options, ((PetscObject)sp)->prefix, Opt(field, "").c_str(), value, sizeof(value), &found));
+  if (found && std::strchr(value, '+')) {
+    PetscCall(OptionsFieldSum(PetscOptionsObject, sp, field, text, value, f));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(OptionsEnum(PetscOptionsObject, sp, Opt(field, "").c_str(), text, FieldForms, &form, &set));
+  if (set) f = spc::Field::ofForm(form);
+  if (f.summands.empty()) PetscCall(OptionsFieldParameters(PetscOptionsObject, sp, field, f));
+  else
+    for (size_t i = 0; i < f.summands.size(); ++i) PetscCall(OptionsFieldParameters(PetscOptionsObject, sp, (std::string(field) + "_" + std::to_string(i)).c_str(), f.summands[i]));
+  PetscFunctionReturn(0);
+}
+
 /* Checks of values PETSc's readers accept but the scene cannot use. */
 static PetscErrorCode CheckOptions(VSHMMSpectral sp)
 {
@@ -134,8 +201,13 @@ static PetscErrorCode CheckOptions(VSHMMSpectral sp)
   PetscCheck(!s->terms.empty(), comm, PETSC_ERR_ARG_WRONG, "-%sspectral_terms is empty: the scene needs at least one term, %s", pre, KnownTerms);
   for (size_t i = 0; i < s->terms.size(); ++i) {
     const std::string &t = s->terms[i];
-    PetscCheck(t == "diffusion" || t == "advection", comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "Unknown term '%s' in -%sspectral_terms: the known terms are %s", t.c_str(), pre, KnownTerms);
+    PetscCheck(std::find(std::begin(Terms), std::end(Terms), t) != std::end(Terms), comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "Unknown term '%s' in -%sspectral_terms: the known terms are %s", t.c_str(), pre, KnownTerms);
     for (size_t j = 0; j < i; ++j) PetscCheck(s->terms[j] != t, comm, PETSC_ERR_ARG_WRONG, "Term '%s' appears twice in -%sspectral_terms", t.c_str(), pre);
+  }
+  if (std::find(s->terms.begin(), s->terms.end(), "reaction") != s->terms.end()) {
+    PetscCheck(!s->reaction.empty(), comm, PETSC_ERR_ARG_WRONG, "The term reaction needs -%sspectral_reaction_coefficients c0,c1,c2,c3: r(x) (c0 + c1 u + c2 u^2 + c3 u^3) (fewer values: the rest are 0)", pre);
+    PetscCheck(s->reaction.size() <= 4, comm, PETSC_ERR_ARG_SIZ, "-%sspectral_reaction_coefficients takes at most 4 values c0,c1,c2,c3 (a cubic), got %d", pre, (int)s->reaction.size());
+    for (PetscReal c : s->reaction) PetscCheck(std::isfinite(c), comm, PETSC_ERR_ARG_OUTOFRANGE, "-%sspectral_reaction_coefficients must be finite", pre);
   }
   PetscCheck(std::isfinite(s->lambda) && s->lambda >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%sspectral_cluster_lambda must be finite and nonnegative, got %g", pre, (double)s->lambda);
   PetscCheck(s->gap >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%sspectral_cluster_gap must be nonnegative, got %" PetscInt_FMT, pre, s->gap);
@@ -157,9 +229,13 @@ static PetscErrorCode CheckOptions(VSHMMSpectral sp)
 
    Options Database Keys (all with the object's prefix, see `VSHMMSpectralSetOptionsPrefix()`; docs/spectral.md has the field forms):
 +  -spectral_grid_points <n> - grid points N (any n >= 4; FFTW is fastest for powers of two)
-.  -spectral_terms <diffusion,advection> - the terms of F(u); an unknown name is an error
-.  -spectral_diffusion_coefficient <form> - d(x): constant, gaussian, expsin, fourier, exp_ratio, samples (+ -spectral_diffusion_coefficient_* parameters)
+.  -spectral_terms <diffusion,advection,burgers,reaction,source> - the terms of F(u); an unknown name is an error
+.  -spectral_diffusion_coefficient <form> - d(x): constant, gaussian, expsin, fourier, exp_ratio, samples (+ -spectral_diffusion_coefficient_* parameters), or a sum form+form+... (+ -spectral_diffusion_coefficient_<i>_* parameters of summand i = 0, 1, ...)
 .  -spectral_velocity <form> - a(x), same forms (+ -spectral_velocity_* parameters)
+.  -spectral_burgers_coefficient <form> - c(x) of the term burgers -(c u^2/2)_x, same forms (default constant 1)
+.  -spectral_reaction_rate <form> - r(x) of the term reaction r(x) (c0 + c1 u + c2 u^2 + c3 u^3), same forms (default constant 1)
+.  -spectral_reaction_coefficients <c0,c1,c2,c3> - its polynomial (needed with the term; fewer values: the rest 0)
+.  -spectral_source <form> - s(x) of the term source, same forms (default constant 0)
 .  -spectral_u0 <form> - the initial data, same forms (+ -spectral_u0_* parameters)
 .  -spectral_mode <dns,sparse> - every mode, or the clusters' modes only
 .  -spectral_clusters <0:3,62:66,...> - explicit clusters: ranges lo:hi or single k, joined by + within a cluster ("none": no explicit clusters)
@@ -179,7 +255,13 @@ static PetscErrorCode CheckOptions(VSHMMSpectral sp)
    Naming a field's form starts the field from that form's defaults: every parameter left out is
    0, except those -help states (gaussian amplitude 1, center pi, width 1; expsin amplitudes 1;
    exp_ratio scale 1, denominator offset 1). Parameters given without the form change the scene's
-   default field (the paper's d, a and u0).
+   default field (the paper's d, a and u0). A field given as a sum of forms, e.g.
+   -spectral_diffusion_coefficient fourier+expsin, is the sum of the summands, each with its own
+   parameters numbered from 0: -spectral_diffusion_coefficient_0_offset 1,
+   -spectral_diffusion_coefficient_1_weights 0.1, ...
+
+   The terms burgers and reaction are nonlinear: their products are formed without aliasing on a
+   padded grid and projected by FFT (docs/spectral.md); -spectral_evaluation matrix refuses them.
 
    Level: beginner
 
@@ -196,10 +278,14 @@ PetscErrorCode VSHMMSpectralSetFromOptions(VSHMMSpectral sp)
   s = sp->data;
   PetscObjectOptionsBegin((PetscObject)sp);
   PetscCall(OptionsInt(PetscOptionsObject, sp, "-spectral_grid_points", "grid points N (at least 4)", &s->N));
-  PetscCall(OptionsStringList(PetscOptionsObject, sp, "-spectral_terms", "terms of F(u): diffusion, advection", s->terms, &set));
-  PetscCall(OptionsField(PetscOptionsObject, sp, "diffusion_coefficient", "diffusion coefficient d(x) (form)", s->diff));
-  PetscCall(OptionsField(PetscOptionsObject, sp, "velocity", "advection velocity a(x) (form)", s->vel));
-  PetscCall(OptionsField(PetscOptionsObject, sp, "u0", "initial data u0(x) (form)", s->u0));
+  PetscCall(OptionsStringList(PetscOptionsObject, sp, "-spectral_terms", "terms of F(u): diffusion, advection, burgers, reaction, source", s->terms, &set));
+  PetscCall(OptionsField(PetscOptionsObject, sp, "diffusion_coefficient", "diffusion coefficient d(x) (a form, or a sum form+form+... whose parameters are numbered by summand: _0_, _1_, ...)", s->diff));
+  PetscCall(OptionsField(PetscOptionsObject, sp, "velocity", "advection velocity a(x) (a form, or a sum form+form+... whose parameters are numbered by summand: _0_, _1_, ...)", s->vel));
+  PetscCall(OptionsField(PetscOptionsObject, sp, "burgers_coefficient", "Burgers coefficient c(x) in -(c u^2/2)_x (a form or a sum form+form+...; default constant 1)", s->burgers));
+  PetscCall(OptionsField(PetscOptionsObject, sp, "reaction_rate", "reaction rate r(x) (a form or a sum form+form+...; default constant 1)", s->rate));
+  PetscCall(OptionsRealList(PetscOptionsObject, sp, "-spectral_reaction_coefficients", "c0,c1,c2,c3 of the reaction r(x) (c0 + c1 u + c2 u^2 + c3 u^3) (fewer values: the rest 0)", s->reaction, &set));
+  PetscCall(OptionsField(PetscOptionsObject, sp, "source", "source s(x) (a form or a sum form+form+...; default constant 0)", s->source));
+  PetscCall(OptionsField(PetscOptionsObject, sp, "u0", "initial data u0(x) (a form, or a sum form+form+... whose parameters are numbered by summand: _0_, _1_, ...)", s->u0));
   PetscCall(OptionsEnum(PetscOptionsObject, sp, "-spectral_mode", "dns: every mode; sparse: the clusters' modes", VSHMMSpectralModes, &s->mode, &set));
   PetscCall(OptionsString(PetscOptionsObject, sp, "-spectral_clusters", "explicit clusters, e.g. 0:3,62:66,192:193,255:257 (none: no explicit clusters)", "clusters lo:hi or k, joined by + within a cluster and by commas between clusters, or none", clusters, &set));
   if (set) s->cluster_spec = clusters == "none" ? std::string() : clusters;

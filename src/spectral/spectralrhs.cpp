@@ -10,7 +10,9 @@
     modes) while the modes projected so for this state stay below the cost of one r2c, else by
     one r2c (size N, once per state, shared). So level l costs one c2r plus
     min(r2c, sum_{j<=l} n_j N), and the full field one c2r plus one r2c (per term kind).
-    matrix evaluation (linear terms only): split j multiplies the rows of cluster j of the dense
+    Burgers and reaction terms add u on a padded grid (one c2r of size M) and one r2c of size M
+    per term, always by FFT (no direct projection); the source adds its stored coefficients.
+    matrix evaluation (linear and affine terms only): split j multiplies the rows of cluster j of the dense
     operator on the retained modes, (rows of cluster j) x (retained reals) flops: level l pays
     for its own clusters' rows only.
 */
@@ -201,7 +203,7 @@ static PetscErrorCode EnsurePhysical(VSHMMSpectral sp, Vec U, PetscReal t)
   PetscCall(VSHMMSpectralRestoreCoefficients_Private(sp, U, &c));
   PetscCall(PetscLogFlops(2.5 * s->N * std::log2((double)s->N) + 2.0 * s->N));
   PetscCall(PetscLogEventEnd(VSHMMSPECTRAL_Physical, sp, 0, 0, 0));
-  s->stats.inverse_ffts++;
+  s->stats.inverse_ffts += s->op->inversePerState();
   s->cache_valid  = PETSC_TRUE;
   s->cache_id     = id;
   s->cache_state  = state;
@@ -219,7 +221,7 @@ static PetscErrorCode EnsureForward(VSHMMSpectral sp)
   if (s->fft_done) PetscFunctionReturn(0);
   PetscCall(PetscLogEventBegin(VSHMMSPECTRAL_ForwardFFT, sp, 0, 0, 0));
   s->op->computeForward();
-  const int kinds = (s->op->hasDiffusion() ? 1 : 0) + (s->op->hasAdvection() ? 1 : 0);
+  const int kinds = s->op->forwardPerState();
   PetscCall(PetscLogFlops(kinds * 2.5 * s->N * std::log2((double)s->N)));
   PetscCall(PetscLogEventEnd(VSHMMSPECTRAL_ForwardFFT, sp, 0, 0, 0));
   s->stats.forward_ffts += kinds;
@@ -312,7 +314,7 @@ static PetscErrorCode SplitRHS(TS ts, PetscReal t, Vec U, Vec F, void *ctx)
     bool direct = false;
     if (!s->fft_done) {
       if (s->projection == VSHMMSPECTRAL_PROJECTION_DIRECT) direct = true;
-      else if (s->projection == VSHMMSPECTRAL_PROJECTION_AUTO) direct = s->direct_spent + (me - mb) <= s->op->directModesPerForward();
+      else if (s->projection == VSHMMSPECTRAL_PROJECTION_AUTO) direct = !s->op->hasPadded() && s->direct_spent + (me - mb) <= s->op->directModesPerForward();
     }
     if (direct) {
       PetscCall(PetscLogEventBegin(VSHMMSPECTRAL_ProjDirect, sp, 0, 0, 0));

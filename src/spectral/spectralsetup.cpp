@@ -21,10 +21,26 @@ PetscErrorCode VSHMMSpectralBuildCoefficients_Private(VSHMMSpectral sp, std::vec
   A.clear();
   for (const std::string &t : s->terms) {
     if (t == "diffusion") PetscCall(VSHMMSpectralSampleField_Private(sp, "diffusion_coefficient", s->diff, D));
-    else {
+    else if (t == "advection") {
       PetscCall(VSHMMSpectralSampleField_Private(sp, "velocity", s->vel, A));
       for (double &a : A) a = -a;
     }
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode VSHMMSpectralBuildExtraTerms_Private(VSHMMSpectral sp, spc::ExtraTerms &x)
+{
+  VSHMMSpectral_Data *s = sp->data;
+
+  PetscFunctionBegin;
+  x = spc::ExtraTerms();
+  for (const std::string &t : s->terms) {
+    if (t == "burgers") PetscCall(VSHMMSpectralSampleField_Private(sp, "burgers_coefficient", s->burgers, x.burgers));
+    else if (t == "reaction") {
+      PetscCall(VSHMMSpectralSampleField_Private(sp, "reaction_rate", s->rate, x.rate));
+      for (size_t i = 0; i < 4; ++i) x.reaction[i] = i < s->reaction.size() ? s->reaction[i] : 0.0;
+    } else if (t == "source") PetscCall(VSHMMSpectralSampleField_Private(sp, "source", s->source, x.source));
   }
   PetscFunctionReturn(0);
 }
@@ -62,16 +78,18 @@ double VSHMMSpectralStableStep_Private(const std::vector<double> &D, const std::
    options prefix <prefix>spectral_cluster_detect_. */
 static PetscErrorCode DetectionDNS(VSHMMSpectral sp, const std::vector<double> &D, const std::vector<double> &A, const std::vector<double> &u0, std::vector<std::vector<double>> &mags)
 {
-  VSHMMSpectral_Data   *s    = sp->data;
-  spc::Layout           full = spc::Layout::full((int)s->N);
-  spc::SpectralOperator op(full, D, A, spc::Planner::Estimate);
-  Vec                   U;
-  TS                    ts;
-  PetscScalar          *u;
-  const double          dt = s->detect_dt > 0 ? s->detect_dt : VSHMMSpectralStableStep_Private(D, A, spc::maxWavenumber((int)s->N));
+  VSHMMSpectral_Data *s    = sp->data;
+  spc::Layout         full = spc::Layout::full((int)s->N);
+  spc::ExtraTerms     extra;
+  Vec                 U;
+  TS                  ts;
+  PetscScalar        *u;
+  const double        dt = s->detect_dt > 0 ? s->detect_dt : VSHMMSpectralStableStep_Private(D, A, spc::maxWavenumber((int)s->N));
 
   PetscFunctionBegin;
   PetscCheck(!s->detect_times.empty(), PetscObjectComm((PetscObject)sp), PETSC_ERR_ARG_WRONGSTATE, "-%sspectral_cluster_detect dns needs -%sspectral_cluster_detect_times t1,t2,...: the snapshot times of the short direct simulation", VSHMMSpectralPrefix(sp), VSHMMSpectralPrefix(sp));
+  PetscCall(VSHMMSpectralBuildExtraTerms_Private(sp, extra));
+  spc::SpectralOperator op(full, D, A, extra, spc::Planner::Estimate);
   PetscCall(VecCreateSeq(PETSC_COMM_SELF, full.size(), &U));
   PetscCall(VecGetArray(U, &u));
   op.analyze(u0.data(), u);
@@ -190,7 +208,7 @@ static PetscErrorCode CalibrateProjection(VSHMMSpectral sp)
   VSHMMSpectral_Data *s = sp->data;
 
   PetscFunctionBegin;
-  if (s->mode != VSHMMSPECTRAL_MODE_SPARSE || s->dense || s->projection != VSHMMSPECTRAL_PROJECTION_AUTO) PetscFunctionReturn(0);
+  if (s->mode != VSHMMSPECTRAL_MODE_SPARSE || s->dense || s->projection != VSHMMSPECTRAL_PROJECTION_AUTO || s->op->hasPadded()) PetscFunctionReturn(0);
   std::vector<double> zero(s->layout->size(), 0.0), out(s->layout->size());
   const int           R      = 16;
   double              best_f = PETSC_MAX_REAL, best_d = PETSC_MAX_REAL;
@@ -239,6 +257,7 @@ PetscErrorCode VSHMMSpectralSetUp(VSHMMSpectral sp)
   VSHMMSpectral_Data *s;
   MPI_Comm            comm;
   std::vector<double> D, A, u0;
+  spc::ExtraTerms     extra;
 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
@@ -247,6 +266,12 @@ PetscErrorCode VSHMMSpectralSetUp(VSHMMSpectral sp)
   comm = PetscObjectComm((PetscObject)sp);
   PetscCall(PetscLogEventBegin(VSHMMSPECTRAL_SetUp, sp, 0, 0, 0));
   PetscCall(VSHMMSpectralBuildCoefficients_Private(sp, D, A));
+  PetscCall(VSHMMSpectralBuildExtraTerms_Private(sp, extra));
+  if (s->evaluation == VSHMMSPECTRAL_EVALUATION_MATRIX) {
+    const char *nl = !extra.burgers.empty() ? "burgers" : extra.nonlinear() ? "reaction (of degree 2 or 3)" : nullptr;
+    PetscCheck(!nl, comm, PETSC_ERR_SUP, "-%sspectral_evaluation matrix is for linear (and affine) scenes: the term %s is nonlinear; use -%sspectral_evaluation fft", VSHMMSpectralPrefix(sp), nl, VSHMMSpectralPrefix(sp));
+  }
+  PetscCheck(!(s->projection == VSHMMSPECTRAL_PROJECTION_DIRECT && (!extra.burgers.empty() || !extra.rate.empty())), comm, PETSC_ERR_SUP, "-%sspectral_projection direct is not available with the terms burgers and reaction (their products are formed on a padded grid and projected by FFT); use -%sspectral_projection auto or fft", VSHMMSpectralPrefix(sp), VSHMMSpectralPrefix(sp));
   PetscCall(VSHMMSpectralSampleField_Private(sp, "u0", s->u0, u0));
   if (s->mode == VSHMMSPECTRAL_MODE_SPARSE) {
     PetscCall(FindClusters(sp, D, A));
@@ -258,7 +283,7 @@ PetscErrorCode VSHMMSpectralSetUp(VSHMMSpectral sp)
     s->detection = VSHMMSpectralDetection();
   }
   try {
-    s->op = std::make_unique<spc::SpectralOperator>(*s->layout, D, A, CorePlanner(s->planner));
+    s->op = std::make_unique<spc::SpectralOperator>(*s->layout, D, A, extra, CorePlanner(s->planner));
   } catch (const std::exception &e) {
     SETERRQ(comm, PETSC_ERR_LIB, "Spectral operator: %s", e.what());
   }

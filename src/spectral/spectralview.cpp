@@ -26,7 +26,13 @@ static std::string DescribeScene(const VSHMMSpectral_Data *s)
   m << "scene: N = " << s->N << " grid points on [0, 2 pi), wavenumbers 0.." << spc::maxWavenumber((int)s->N) << "\n";
   for (const std::string &t : s->terms) {
     if (t == "diffusion") m << "  term diffusion: u_t += (d u_x)_x, d = " << s->diff.describe() << "\n";
-    else m << "  term advection: u_t += -a u_x, a = " << s->vel.describe() << "\n";
+    else if (t == "advection") m << "  term advection: u_t += -a u_x, a = " << s->vel.describe() << "\n";
+    else if (t == "burgers") m << "  term burgers: u_t += -(c u^2/2)_x, c = " << s->burgers.describe() << "\n";
+    else if (t == "reaction") {
+      m << "  term reaction: u_t += r (c0 + c1 u + c2 u^2 + c3 u^3), c =";
+      for (size_t i = 0; i < 4; ++i) m << (i ? "," : " ") << (i < s->reaction.size() ? s->reaction[i] : 0.0);
+      m << ", r = " << s->rate.describe() << "\n";
+    } else m << "  term source: u_t += s, s = " << s->source.describe() << "\n";
   }
   m << "  u0 = " << s->u0.describe() << "\n";
   if (s->mode == VSHMMSPECTRAL_MODE_DNS) m << "mode dns: every wavenumber, " << s->layout->size() << " coefficients\n";
@@ -39,6 +45,7 @@ static std::string DescribeScene(const VSHMMSpectral_Data *s)
   }
   if (s->evaluation == VSHMMSPECTRAL_EVALUATION_MATRIX) m << "evaluation: dense operator on the retained modes (" << s->layout->size() << " x " << s->layout->size() << ")\n";
   else m << "evaluation: pseudo-spectral with FFTW (" << VSHMMSpectralPlanners[s->planner] << " planner), cluster projection " << VSHMMSpectralProjections[s->projection] << "\n";
+  if (s->op && s->op->hasPadded()) m << "  burgers/reaction products on a padded grid of M = " << s->op->paddedSize() << " points (no aliasing on the retained modes), projected by FFT\n";
   return m.str();
 }
 

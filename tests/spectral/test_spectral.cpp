@@ -393,3 +393,235 @@ TEST(Fields, Forms)
   q.numerator.sines       = {0.6};
   EXPECT_NEAR(q.sample(N)[1], 0.6 * std::sin(24 * gridPoint(N, 1)), 1e-15);
 }
+
+// ---------------------------------------------------------------------------------------------
+// Burgers, reaction and source terms
+
+// The trigonometric interpolant of grid values f (N points) at y (the Nyquist coefficient of an
+// even N as f_{N/2} cos(N y / 2)), from its coefficients by direct sums.
+static std::vector<cplx> directCoefficients(const std::vector<double> &f)
+{
+  const int         N = (int)f.size();
+  std::vector<cplx> c(N / 2 + 1, 0.0);
+  for (int k = 0; k <= N / 2; ++k) {
+    for (int j = 0; j < N; ++j) c[k] += f[j] * std::exp(cplx(0, -2.0 * kPi * (double)k * j / N));
+    c[k] /= (double)N;
+  }
+  return c;
+}
+
+static double evalSeries(int N, const std::vector<cplx> &c, double y)
+{
+  double v = c[0].real();
+  for (int k = 1; k <= N / 2; ++k) v += isRealOnly(N, k) ? c[k].real() * std::cos(k * y) : 2.0 * std::real(c[k] * std::exp(cplx(0, k * y)));
+  return v;
+}
+
+// The extra terms by direct sums (O(N Mref)): u and the fields' interpolants at Mref points, the
+// products there, their coefficients k = 0..N/2 (exact when Mref exceeds the products' bandwidth
+// plus N/2), F_k = i k G^B_k + G^R_k + S_k with the Nyquist mode of an even N holding both +-N/2
+// (2 Re G^R, no derivative).
+static std::vector<cplx> directExtra(int N, const std::vector<cplx> &c, const ExtraTerms &x, int Mref)
+{
+  std::vector<cplx> B, R, S;
+  if (!x.burgers.empty()) B = directCoefficients(x.burgers);
+  if (!x.rate.empty()) R = directCoefficients(x.rate);
+  if (!x.source.empty()) S = directCoefficients(x.source);
+  std::vector<cplx> F(N / 2 + 1, 0.0), GB(N / 2 + 1, 0.0), GR(N / 2 + 1, 0.0);
+  for (int m = 0; m < Mref; ++m) {
+    const double y = 2.0 * kPi * m / Mref, u = evalSeries(N, c, y);
+    const double gb = B.empty() ? 0.0 : -0.5 * evalSeries(N, B, y) * u * u;
+    const double gr = R.empty() ? 0.0 : evalSeries(N, R, y) * (x.reaction[0] + x.reaction[1] * u + x.reaction[2] * u * u + x.reaction[3] * u * u * u);
+    for (int k = 0; k <= N / 2; ++k) {
+      const cplx e = std::exp(cplx(0, -k * y)) / (double)Mref;
+      GB[k] += gb * e;
+      GR[k] += gr * e;
+    }
+  }
+  for (int k = 0; k <= N / 2; ++k) {
+    if (isRealOnly(N, k)) F[k] = (k ? 2.0 : 1.0) * GR[k].real() + (S.empty() ? 0.0 : S[k].real());
+    else F[k] = cplx(0, k) * GB[k] + GR[k] + (S.empty() ? 0.0 : S[k]);
+  }
+  return F;
+}
+
+static ExtraTerms randomExtra(int N, int which)
+{
+  ExtraTerms x;
+  if (which & 1) x.burgers = randomVector(N, 51);
+  if (which & 2) {
+    x.rate            = randomVector(N, 52);
+    const double r[4] = {0.3, -0.7, 0.5, -0.4};
+    std::copy(r, r + 4, x.reaction);
+  }
+  if (which & 4) x.source = randomVector(N, 53);
+  return x;
+}
+
+TEST(ExtraTerms, FullAgainstDirectSums)
+{
+  // every mode (up to the Nyquist mode), random fields and a random state: the padded
+  // evaluation equals the exact projection of the products by direct sums
+  for (int N : {32, 31}) {
+    Layout full = Layout::full(N);
+    for (int which = 1; which < 8; ++which) {
+      const ExtraTerms    x = randomExtra(N, which);
+      SpectralOperator    op(full, {}, {}, x, Planner::Estimate);
+      std::vector<double> c = randomVector(full.size(), 55), F(full.size());
+      for (double &v : c) v *= 0.5;
+      op.apply(c.data(), F.data());
+      const std::vector<cplx> ref = directExtra(N, toComplex(full, c), x, 6 * N), got = toComplex(full, F);
+      for (int k = 0; k <= N / 2; ++k) {
+        EXPECT_NEAR(got[k].real(), ref[k].real(), 1e-12 * N) << "N " << N << " terms " << which << " k " << k;
+        EXPECT_NEAR(got[k].imag(), ref[k].imag(), 1e-12 * N) << "N " << N << " terms " << which << " k " << k;
+      }
+      if (which & 3) {
+        EXPECT_GT(op.paddedSize(), N);
+        // the same products formed on the N grid alone are aliased: the reference sees it
+        const std::vector<cplx> aliased = directExtra(N, toComplex(full, c), x, N);
+        double                  diff    = 0;
+        for (int k = 0; k <= N / 2; ++k) diff = std::max(diff, std::abs(aliased[k] - ref[k]));
+        EXPECT_GT(diff, 1e-3) << "N " << N << " terms " << which;
+      }
+    }
+  }
+}
+
+TEST(ExtraTerms, WithLinearTermsAndConstantFields)
+{
+  // u = a cos x, c = 1: -(u^2/2)_x = a^2 sin(2x) / 2, i.e. F_2 = -i a^2 / 4 ... plus diffusion
+  // d = 1 (F_1 = -a/2) and a source 0.25 (F_0 = 0.25), reaction 1 * (u^3): F_1 += 3 a^3 / 8,
+  // F_3 = a^3 / 8 (coefficients of e^{ikx}, cos x = (e^{ix} + e^{-ix}) / 2)
+  const int  N    = 16;
+  Layout     full = Layout::full(N);
+  ExtraTerms x;
+  x.burgers.assign(N, 1.0);
+  x.rate.assign(N, 1.0);
+  x.reaction[3] = 1.0;
+  x.source.assign(N, 0.25);
+  SpectralOperator    op(full, std::vector<double>(N, 1.0), {}, x, Planner::Estimate);
+  const double        a = 0.8;
+  std::vector<double> c(full.size(), 0.0), F(full.size());
+  c[full.offset(1)] = a / 2;
+  op.apply(c.data(), F.data());
+  const std::vector<cplx> f = toComplex(full, F);
+  EXPECT_NEAR(std::abs(f[0] - 0.25), 0.0, 1e-14);
+  EXPECT_NEAR(std::abs(f[1] - (-a / 2 + 3 * a * a * a / 8)), 0.0, 1e-14);
+  EXPECT_NEAR(std::abs(f[2] - cplx(0, -a * a / 4)), 0.0, 1e-14);
+  EXPECT_NEAR(std::abs(f[3] - a * a * a / 8), 0.0, 1e-14);
+  for (int k = 4; k <= N / 2; ++k) EXPECT_NEAR(std::abs(f[k]), 0.0, 1e-14);
+  EXPECT_EQ(op.inversePerState(), 2);
+  EXPECT_EQ(op.forwardPerState(), 3);
+}
+
+TEST(ExtraTerms, SparseEqualsFullRestricted)
+{
+  // the sparse operator returns the projection onto the retained modes of the terms evaluated
+  // on the sparse state: the full operator on the zero-extended state, restricted
+  const int           N = 128;
+  Layout              l(ClusterSet::parse("0:3,14:18,48:49,58:60", N)), full = Layout::full(N);
+  std::vector<double> D(N);
+  for (int j = 0; j < N; ++j) D[j] = 1.0 + 0.5 * std::sin(16 * gridPoint(N, j));
+  const ExtraTerms    x = randomExtra(N, 7);
+  SpectralOperator    sparse(l, D, {}, x, Planner::Estimate), fullop(full, D, {}, x, Planner::Estimate);
+  std::vector<double> c = randomVector(l.size(), 61), cfull(full.size(), 0.0), F(l.size()), Ffull(full.size());
+  for (double &v : c) v *= 0.3;
+  for (int i = 0; i < l.modeCount(); ++i)
+    for (int r = 0; r < realsOf(N, l.mode(i)); ++r) cfull[full.offset(full.indexOf(l.mode(i))) + r] = c[l.offset(i) + r];
+  sparse.apply(c.data(), F.data());
+  fullop.apply(cfull.data(), Ffull.data());
+  for (int i = 0; i < l.modeCount(); ++i)
+    for (int r = 0; r < realsOf(N, l.mode(i)); ++r) EXPECT_NEAR(F[l.offset(i) + r], Ffull[full.offset(full.indexOf(l.mode(i))) + r], 1e-12) << "k = " << l.mode(i);
+  // the sparse state needs a smaller padded grid than the full one
+  EXPECT_LT(sparse.paddedSize(), fullop.paddedSize());
+  EXPECT_THROW(sparse.projectDirect(0, 1, F.data()), std::logic_error);
+  EXPECT_THROW(DenseOperator{sparse}, std::invalid_argument); // nonlinear
+}
+
+TEST(ExtraTerms, SparsePaddedGridBelowN)
+{
+  // few low modes and fields of small bandwidth: the padded grid is coarser than the N grid
+  // (the fields' interpolants sampled there), and the result is still the full one restricted
+  const int  N = 128;
+  Layout     l(ClusterSet::parse("0:3,10:12", N)), full = Layout::full(N);
+  ExtraTerms x;
+  x.burgers.resize(N);
+  x.rate.resize(N);
+  for (int j = 0; j < N; ++j) {
+    x.burgers[j] = 0.5 + 0.3 * std::cos(5 * gridPoint(N, j));
+    x.rate[j]    = 1.0 - 0.2 * std::sin(7 * gridPoint(N, j));
+  }
+  const double r[4] = {0.1, -1.0, 0.5, -0.3};
+  std::copy(r, r + 4, x.reaction);
+  SpectralOperator sparse(l, {}, {}, x, Planner::Estimate), fullop(full, {}, {}, x, Planner::Estimate);
+  EXPECT_LT(sparse.paddedSize(), N); // M > 3 * 12 + 7 + 12 = 55: 60
+  std::vector<double> c = randomVector(l.size(), 81), cfull(full.size(), 0.0), F(l.size()), Ffull(full.size());
+  for (int i = 0; i < l.modeCount(); ++i)
+    for (int q = 0; q < realsOf(N, l.mode(i)); ++q) cfull[full.offset(full.indexOf(l.mode(i))) + q] = c[l.offset(i) + q];
+  sparse.apply(c.data(), F.data());
+  fullop.apply(cfull.data(), Ffull.data());
+  for (int i = 0; i < l.modeCount(); ++i)
+    for (int q = 0; q < realsOf(N, l.mode(i)); ++q) EXPECT_NEAR(F[l.offset(i) + q], Ffull[full.offset(full.indexOf(l.mode(i))) + q], 1e-13) << "k = " << l.mode(i);
+}
+
+TEST(ExtraTerms, AffineDenseOperatorAndDirectProjectionWithSource)
+{
+  // a source and a linear reaction are affine: the dense operator holds them as M c + b
+  const int           N = 64;
+  Layout              l(ClusterSet::parse("0:3,10:12+14,29:32", N));
+  ExtraTerms          x = randomExtra(N, 4); // source only
+  std::vector<double> D = randomVector(N, 71);
+  for (double &d : D) d += 2.0;
+  SpectralOperator    op(l, D, {}, x, Planner::Estimate);
+  std::vector<double> c = randomVector(l.size(), 72), F(l.size()), G(l.size()), H(l.size());
+  op.apply(c.data(), F.data());
+  DenseOperator M(op);
+  M.applyRows(0, l.size(), c.data(), G.data());
+  op.computePhysical(c.data());
+  op.projectDirect(0, l.modeCount(), H.data());
+  for (int i = 0; i < l.size(); ++i) {
+    EXPECT_NEAR(G[i], F[i], 1e-10);
+    EXPECT_NEAR(H[i], F[i], 1e-12);
+  }
+  x             = randomExtra(N, 2);
+  x.reaction[2] = x.reaction[3] = 0.0; // r (c0 + c1 u)
+  SpectralOperator lin(l, {}, {}, x, Planner::Estimate);
+  EXPECT_FALSE(lin.isNonlinear());
+  lin.apply(c.data(), F.data());
+  DenseOperator L(lin);
+  L.applyRows(0, l.size(), c.data(), G.data());
+  for (int i = 0; i < l.size(); ++i) EXPECT_NEAR(G[i], F[i], 1e-12);
+}
+
+TEST(Fields, Sums)
+{
+  const int N = 64;
+  Field     f, a = Field::ofForm(Field::Form::Fourier), b = Field::ofForm(Field::Form::ExpSin);
+  a.numerator.offset          = 1.0;
+  a.numerator.wavenumbers     = {3};
+  a.numerator.cosines         = {0.5};
+  b.weights                   = {0.1};
+  b.wavenumbers               = {16};
+  f.summands                  = {a, b};
+  const std::vector<double> v = f.sample(N);
+  for (int j = 0; j < N; ++j) {
+    const double x = gridPoint(N, j);
+    EXPECT_NEAR(v[j], 1.0 + 0.5 * std::cos(3 * x) + 0.1 * std::exp(std::sin(16 * x)), 1e-14);
+  }
+  EXPECT_EQ(f.describe(), "[fourier 1 + 0.5 cos(3x)] + [expsin offset 0 weights 0.1 wavenumbers 16 amplitudes 1 phases 0]");
+  f.summands[1].wavenumbers.clear();
+  try {
+    f.sample(N);
+    ADD_FAILURE() << "no error";
+  } catch (const std::invalid_argument &e) {
+    EXPECT_EQ(std::string(e.what()).rfind("summand 1 (expsin): expsin: 1 weights but 0 wavenumbers", 0), 0u) << e.what();
+  }
+}
+
+TEST(ExtraTerms, SmoothSizes)
+{
+  EXPECT_EQ(smoothSize(97), 100);
+  EXPECT_EQ(smoothSize(129), 144);
+  EXPECT_EQ(smoothSize(7), 8);
+  EXPECT_EQ(smoothSize(2049), 2160);
+}

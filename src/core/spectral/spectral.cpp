@@ -235,6 +235,19 @@ Field Field::ofForm(Form f)
 std::vector<double> Field::sample(int N) const
 {
   std::vector<double> v(N);
+  if (!summands.empty()) {
+    std::fill(v.begin(), v.end(), 0.0);
+    for (size_t i = 0; i < summands.size(); ++i) {
+      std::vector<double> w;
+      try {
+        w = summands[i].sample(N);
+      } catch (const std::invalid_argument &e) {
+        throw std::invalid_argument("summand " + std::to_string(i) + " (" + formName(summands[i].form) + "): " + e.what());
+      }
+      for (int j = 0; j < N; ++j) v[j] += w[j];
+    }
+    return v;
+  }
   switch (form) {
   case Form::Constant:
     std::fill(v.begin(), v.end(), value);
@@ -310,6 +323,10 @@ static std::string describeSeries(const Series &s)
 std::string Field::describe() const
 {
   std::ostringstream s;
+  if (!summands.empty()) {
+    for (size_t i = 0; i < summands.size(); ++i) s << (i ? " + " : "") << "[" << summands[i].describe() << "]";
+    return s.str();
+  }
   switch (form) {
   case Form::Constant:
     s << "constant " << value;
@@ -382,13 +399,96 @@ void RealFFT::inverse()
 // ---------------------------------------------------------------------------------------------
 // The operator
 
-SpectralOperator::SpectralOperator(const Layout &layout, std::vector<double> D, std::vector<double> A, Planner planner) : layout_(layout), N_(layout.N()), D_(std::move(D)), A_(std::move(A))
+int smoothSize(int n)
 {
-  if (D_.empty() && A_.empty()) throw std::invalid_argument("the operator has no term: give a diffusion coefficient or a velocity");
-  if ((!D_.empty() && (int)D_.size() != N_) || (!A_.empty() && (int)A_.size() != N_)) throw std::invalid_argument("coefficient fields must have N values");
-  inv_ = std::make_unique<RealFFT>(N_, planner);
+  for (int m = std::max(n, 2) + (std::max(n, 2) % 2);; m += 2) {
+    int r = m;
+    for (int p : {2, 3, 5})
+      while (r % p == 0) r /= p;
+    if (r == 1) return m;
+  }
+}
+
+// The highest wavenumber of grid values f whose coefficient exceeds 1e-14 of the largest.
+static int bandwidth(const std::vector<double> &f)
+{
+  const std::vector<double> m   = coefficientMagnitudes(f);
+  const double              big = *std::max_element(m.begin(), m.end());
+  int                       k   = 0;
+  for (int i = 0; i < (int)m.size(); ++i)
+    if (m[i] > 1e-14 * big) k = i;
+  return k;
+}
+
+// The trigonometric interpolant of grid values f (N points) at the M points 2 pi j / M (the
+// Nyquist coefficient of an even N split evenly between +-N/2): synthesised on L > N points, L a
+// multiple of M, and sampled every L/M points.
+static std::vector<double> interpolate(const std::vector<double> &f, int M)
+{
+  const int N = (int)f.size();
+  int       L = M;
+  while (L <= N) L += M;
+  RealFFT a(N, Planner::Estimate), b(L, Planner::Estimate);
+  std::memcpy(a.real(), f.data(), sizeof(double) * N);
+  a.forward();
+  double *s = b.spectrum();
+  std::memset(s, 0, sizeof(double) * 2 * (L / 2 + 1));
+  for (int k = 0; k <= N / 2; ++k) {
+    const double w = (N % 2 == 0 && k == N / 2 && k > 0) ? 0.5 : 1.0;
+    s[2 * k]       = w * a.spectrum()[2 * k] / N;
+    s[2 * k + 1]   = (N % 2 == 0 && k == N / 2) ? 0.0 : a.spectrum()[2 * k + 1] / N;
+  }
+  b.inverse();
+  std::vector<double> v(M);
+  for (int j = 0; j < M; ++j) v[j] = b.real()[(size_t)j * (L / M)];
+  return v;
+}
+
+SpectralOperator::SpectralOperator(const Layout &layout, std::vector<double> D, std::vector<double> A, Planner planner) : SpectralOperator(layout, std::move(D), std::move(A), ExtraTerms(), planner) {}
+
+SpectralOperator::SpectralOperator(const Layout &layout, std::vector<double> D, std::vector<double> A, const ExtraTerms &extra, Planner planner) : layout_(layout), N_(layout.N()), D_(std::move(D)), A_(std::move(A)), extra_(extra)
+{
+  if (D_.empty() && A_.empty() && extra_.empty()) throw std::invalid_argument("the operator has no term: give a diffusion coefficient, a velocity, a Burgers coefficient, a reaction rate or a source");
+  for (const std::vector<double> *f : {&D_, &A_, &extra_.burgers, &extra_.rate, &extra_.source})
+    if (!f->empty() && (int)f->size() != N_) throw std::invalid_argument("coefficient fields must have N values");
+  if (!D_.empty() || !A_.empty()) inv_ = std::make_unique<RealFFT>(N_, planner);
   if (!D_.empty()) fw1_ = std::make_unique<RealFFT>(N_, planner);
   if (!A_.empty()) fw0_ = std::make_unique<RealFFT>(N_, planner);
+  if (!extra_.burgers.empty() || !extra_.rate.empty()) {
+    // M > p ku + kf + kout: the retained coefficients of f u^p are free of aliasing (and
+    // M > 2 ku: u's modes fit on the padded grid)
+    const int ku   = layout_.modes().empty() ? 0 : *std::max_element(layout_.modes().begin(), layout_.modes().end());
+    int       need = 2 * ku + 2;
+    if (!extra_.burgers.empty()) need = std::max(need, 2 * ku + bandwidth(extra_.burgers) + ku + 1);
+    if (!extra_.rate.empty()) {
+      int p = 0;
+      for (int d = 1; d <= 3; ++d)
+        if (extra_.reaction[d] != 0.0) p = d;
+      need = std::max(need, p * ku + bandwidth(extra_.rate) + ku + 1);
+    }
+    padded_ = smoothSize(need);
+    invM_   = std::make_unique<RealFFT>(padded_, planner);
+    if (!extra_.burgers.empty()) {
+      fwB_ = std::make_unique<RealFFT>(padded_, planner);
+      Bm_  = interpolate(extra_.burgers, padded_);
+      for (double &b : Bm_) b *= -0.5;
+    }
+    if (!extra_.rate.empty()) {
+      fwR_ = std::make_unique<RealFFT>(padded_, planner);
+      Rm_  = interpolate(extra_.rate, padded_);
+    }
+  }
+  if (!extra_.source.empty()) {
+    RealFFT f(N_, Planner::Estimate);
+    std::memcpy(f.real(), extra_.source.data(), sizeof(double) * N_);
+    f.forward();
+    Sk_.resize(2 * (size_t)layout_.modeCount());
+    for (int i = 0; i < layout_.modeCount(); ++i) {
+      const int k    = layout_.mode(i);
+      Sk_[2 * i]     = f.spectrum()[2 * k] / N_;
+      Sk_[2 * i + 1] = isRealOnly(N_, k) ? 0.0 : f.spectrum()[2 * k + 1] / N_;
+    }
+  }
   twiddle_.resize(layout_.modeCount());
   // Flop model: an r2c transform of N reals ~ 2.5 N log2 N flops, a direct projection of one
   // mode ~ 4 N flops. The PETSc glue replaces it by a measured ratio.
@@ -414,6 +514,33 @@ const std::vector<double> &SpectralOperator::twiddle(int i)
 
 void SpectralOperator::computePhysical(const double *coef)
 {
+  if (invM_) {
+    // u on the padded grid: the retained modes as they are, the Nyquist mode of an even N
+    // (c cos(N x / 2) on the N grid) as c/2 at +-N/2
+    double *s = invM_->spectrum();
+    std::memset(s, 0, sizeof(double) * 2 * (padded_ / 2 + 1));
+    for (int i = 0; i < layout_.modeCount(); ++i) {
+      const int k = layout_.mode(i);
+      if (isRealOnly(N_, k)) s[2 * k] = k ? 0.5 * coef[layout_.offset(i)] : coef[layout_.offset(i)];
+      else {
+        s[2 * k]     = coef[layout_.offset(i)];
+        s[2 * k + 1] = coef[layout_.offset(i) + 1];
+      }
+    }
+    invM_->inverse();
+    const double *u = invM_->real();
+    if (fwB_) {
+      double *w = fwB_->real();
+      for (int j = 0; j < padded_; ++j) w[j] = Bm_[j] * u[j] * u[j];
+    }
+    if (fwR_) {
+      const double *r = extra_.reaction;
+      double       *w = fwR_->real();
+      for (int j = 0; j < padded_; ++j) w[j] = Rm_[j] * (r[0] + u[j] * (r[1] + u[j] * (r[2] + u[j] * r[3])));
+    }
+    counters_.inverse++;
+  }
+  if (!inv_) return;
   double *s = inv_->spectrum();
   std::memset(s, 0, sizeof(double) * 2 * (N_ / 2 + 1));
   const int n = layout_.modeCount();
@@ -447,6 +574,11 @@ void SpectralOperator::computeForward()
     fw0_->forward();
     counters_.forward++;
   }
+  for (RealFFT *f : {fwB_.get(), fwR_.get()})
+    if (f) {
+      f->forward();
+      counters_.forward++;
+    }
 }
 
 // F_k = i k S1_k + S0_k (S = transform / N); the derivative of the Nyquist mode is zero.
@@ -462,9 +594,28 @@ void SpectralOperator::extractForward(int mb, int me, double *out, int base) con
 {
   const double  invN = 1.0 / N_;
   const double *s1 = fw1_ ? fw1_->spectrum() : nullptr, *s0 = fw0_ ? fw0_->spectrum() : nullptr;
+  if (!padded_ && Sk_.empty()) { // the linear terms alone
+    for (int i = mb; i < me; ++i) {
+      const int k = layout_.mode(i);
+      storeMode(N_, k, s1 ? s1[2 * k] * invN : 0.0, s1 ? s1[2 * k + 1] * invN : 0.0, s0 ? s0[2 * k] * invN : 0.0, s0 ? s0[2 * k + 1] * invN : 0.0, out + layout_.offset(i) - base);
+    }
+    return;
+  }
+  const double  invM = padded_ ? 1.0 / padded_ : 0.0;
+  const double *sB = fwB_ ? fwB_->spectrum() : nullptr, *sR = fwR_ ? fwR_->spectrum() : nullptr;
   for (int i = mb; i < me; ++i) {
     const int k = layout_.mode(i);
-    storeMode(N_, k, s1 ? s1[2 * k] * invN : 0.0, s1 ? s1[2 * k + 1] * invN : 0.0, s0 ? s0[2 * k] * invN : 0.0, s0 ? s0[2 * k + 1] * invN : 0.0, out + layout_.offset(i) - base);
+    // flux terms (times i k) and direct terms; the Nyquist mode of an even N holds the
+    // coefficients of +-N/2 together: twice the real part of the padded coefficient
+    double fr = s1 ? s1[2 * k] * invN : 0.0, fi = s1 ? s1[2 * k + 1] * invN : 0.0;
+    double dr = s0 ? s0[2 * k] * invN : 0.0, di = s0 ? s0[2 * k + 1] * invN : 0.0;
+    if (sB) fr += sB[2 * k] * invM, fi += sB[2 * k + 1] * invM;
+    if (sR) {
+      const double w = (isRealOnly(N_, k) && k > 0) ? 2.0 : 1.0;
+      dr += w * sR[2 * k] * invM, di += sR[2 * k + 1] * invM;
+    }
+    if (!Sk_.empty()) dr += Sk_[2 * i], di += Sk_[2 * i + 1];
+    storeMode(N_, k, fr, fi, dr, di, out + layout_.offset(i) - base);
   }
 }
 
@@ -488,6 +639,7 @@ static inline void dot2(const double *w, const double *c, const double *s, int n
 
 void SpectralOperator::projectDirect(int mb, int me, double *out, int base)
 {
+  if (padded_) throw std::logic_error("direct projections are not available with Burgers or reaction terms: project by FFT");
   const double  invN = 1.0 / N_;
   const double *w1 = fw1_ ? fw1_->real() : nullptr, *w0 = fw0_ ? fw0_->real() : nullptr;
   for (int i = mb; i < me; ++i) {
@@ -497,7 +649,8 @@ void SpectralOperator::projectDirect(int mb, int me, double *out, int base)
     double                     r1 = 0, i1 = 0, r0 = 0, i0 = 0;
     if (w1) dot2(w1, c, s, N_, r1, i1);
     if (w0) dot2(w0, c, s, N_, r0, i0);
-    storeMode(N_, k, r1 * invN, i1 * invN, r0 * invN, i0 * invN, out + layout_.offset(i) - base);
+    if (Sk_.empty()) storeMode(N_, k, r1 * invN, i1 * invN, r0 * invN, i0 * invN, out + layout_.offset(i) - base);
+    else storeMode(N_, k, r1 * invN, i1 * invN, r0 * invN + Sk_[2 * i], i0 * invN + Sk_[2 * i + 1], out + layout_.offset(i) - base);
   }
   counters_.directModes += me - mb;
 }
@@ -551,12 +704,18 @@ std::vector<double> coefficientMagnitudes(const std::vector<double> &u)
 
 DenseOperator::DenseOperator(SpectralOperator &op) : n_(op.layout().size()), M_((size_t)n_ * n_)
 {
+  if (op.isNonlinear()) throw std::invalid_argument("the operator is nonlinear (Burgers, or a reaction of degree 2 or 3): a matrix holds linear and affine operators only");
   std::vector<double> e(n_, 0.0), col(n_);
+  affine_ = op.hasPadded() || op.hasSource();
+  if (affine_) {
+    b_.resize(n_);
+    op.apply(e.data(), b_.data());
+  }
   for (int c = 0; c < n_; ++c) {
     e[c] = 1.0;
     op.apply(e.data(), col.data());
     e[c] = 0.0;
-    for (int r = 0; r < n_; ++r) M_[(size_t)r * n_ + c] = col[r];
+    for (int r = 0; r < n_; ++r) M_[(size_t)r * n_ + c] = affine_ ? col[r] - b_[r] : col[r];
   }
 }
 
@@ -566,7 +725,7 @@ void DenseOperator::applyRows(int rb, int re, const double *coef, double *out) c
     const double *m = &M_[(size_t)r * n_];
     double        s = 0.0;
     for (int c = 0; c < n_; ++c) s += m[c] * coef[c];
-    out[r - rb] = s;
+    out[r - rb] = affine_ ? s + b_[r] : s;
   }
 }
 

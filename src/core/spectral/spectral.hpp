@@ -11,6 +11,9 @@
 //              A = minus the sum of advection velocities), evaluated pseudo-spectrally:
 //              u_x by a c2r transform of (i k c_k), products on the grid, r2c transforms,
 //              and i k for the flux form. The derivative of the Nyquist mode is zero.
+//              Optional further terms (ExtraTerms): -(B(x) u^2/2)_x (Burgers),
+//              R(x) (r0 + r1 u + r2 u^2 + r3 u^3) (reaction), S(x) (source). The first two are
+//              evaluated without aliasing on a padded grid of M > N points (see ExtraTerms).
 #pragma once
 
 #include <cstdint>
@@ -122,6 +125,9 @@ struct Field {
   double scale = 1.0;
   // samples: values on the grid (length N)
   std::vector<double> samples;
+  // a sum of forms: when not empty the field is the sum of these (form and the parameters
+  // above are then unused)
+  std::vector<Field> summands;
 
   static const char *formName(Form f);
   // A field of form f with its defaults: every parameter 0 or empty (a series term left out is
@@ -129,7 +135,8 @@ struct Field {
   // exp_ratio scale 1 and denominator offset 1.
   static Field ofForm(Form f);
   // Values at x_j, j = 0..N-1. Throws std::invalid_argument for inconsistent parameters,
-  // a non-positive exp_ratio denominator or non-finite values.
+  // a non-positive exp_ratio denominator or non-finite values (for a sum: naming the summand,
+  // "summand 1 (expsin): ...", counted from 0).
   std::vector<double> sample(int N) const;
   std::string         describe() const;
 };
@@ -164,7 +171,31 @@ private:
 std::vector<double> coefficientMagnitudes(const std::vector<double> &u);
 
 // ---------------------------------------------------------------------------------------------
-// The operator F(u) = (D u_x)_x + A u_x on the retained coefficients of a Layout.
+// Terms beside the linear ones (each field: values on the grid, size N, or empty when absent):
+//   burgers   -(B(x) u^2 / 2)_x
+//   reaction  R(x) (r0 + r1 u + r2 u^2 + r3 u^3)
+//   source    S(x)
+// Dealiasing: B and R stand for their trigonometric interpolants on the N grid (bandwidth kB,
+// kR: their highest wavenumber above 1e-14 of their largest coefficient), u for its retained
+// modes (highest ku). Their products are formed on a padded grid of M points,
+// M > p ku + kf + kout and M > 2 ku (p the degree in u, kout = ku the highest retained
+// wavenumber; in sparse mode M may be below N), so that the
+// retained coefficients of the products are exact (no aliasing): the operator returns the
+// projection of the term onto the retained modes. The source is added as its N-grid
+// coefficients.
+struct ExtraTerms {
+  std::vector<double> burgers, rate, source;
+  double              reaction[4] = {0, 0, 0, 0}; // r0..r3 (used when rate is given)
+  bool                empty() const { return burgers.empty() && rate.empty() && source.empty(); }
+  // Burgers, or a reaction of degree 2 or 3: the operator is not affine
+  bool nonlinear() const { return !burgers.empty() || (!rate.empty() && (reaction[2] != 0.0 || reaction[3] != 0.0)); }
+};
+
+// The smallest even M >= n whose only prime factors are 2, 3 and 5 (FFTW's fast sizes).
+int smoothSize(int n);
+
+// ---------------------------------------------------------------------------------------------
+// The operator F(u) = (D u_x)_x + A u_x (+ ExtraTerms) on the retained coefficients of a Layout.
 class SpectralOperator {
 public:
   struct Counters {
@@ -174,17 +205,23 @@ public:
   };
   // D, A: values on the grid (size N) or empty when the term is absent (at least one given).
   SpectralOperator(const Layout &layout, std::vector<double> D, std::vector<double> A, Planner planner);
+  // With the extra terms (Burgers, reaction, source); D and A may both be empty then.
+  SpectralOperator(const Layout &layout, std::vector<double> D, std::vector<double> A, const ExtraTerms &extra, Planner planner);
   const Layout &layout() const { return layout_; }
 
-  // Stage 1: u_x from the coefficients (one c2r), then W1 = D u_x and W0 = A u_x on the grid.
+  // Stage 1: u_x from the coefficients (one c2r), then W1 = D u_x and W0 = A u_x on the grid;
+  // with Burgers or reaction terms also u on the padded grid (one c2r of size M) and the
+  // products -B u^2/2, R (r0 + ... + r3 u^3) there.
   void computePhysical(const double *coef);
-  // Stage 2, full: the r2c transform(s) of W1, W0 (one per present term kind).
+  // Stage 2, full: the r2c transform(s) of W1, W0 and of the padded products (one per present
+  // term kind).
   void computeForward();
   // F on the modes [mb, me) of the layout from the forward transforms, into out at the modes'
   // offsets minus `base` (so a cluster may be written into its own array).
   void extractForward(int mb, int me, double *out, int base = 0) const;
   // F on the modes [mb, me) by direct sums over the grid (no forward transform): cost
-  // (me - mb) N per present term kind.
+  // (me - mb) N per present term kind. Not available with Burgers or reaction terms
+  // (hasPadded()): throws std::logic_error.
   void projectDirect(int mb, int me, double *out, int base = 0);
   // F on every retained mode: computePhysical + computeForward + extractForward.
   void apply(const double *coef, double *out);
@@ -196,6 +233,13 @@ public:
   Counters &counters() { return counters_; }
   bool      hasDiffusion() const { return !D_.empty(); }
   bool      hasAdvection() const { return !A_.empty(); }
+  bool      hasPadded() const { return padded_ > 0; } // Burgers or reaction terms
+  bool      isNonlinear() const { return extra_.nonlinear(); }
+  bool      hasSource() const { return !Sk_.empty(); }
+  int       paddedSize() const { return padded_; } // M (0 without Burgers or reaction)
+  // transforms per state: c2r in computePhysical(), r2c in computeForward()
+  int inversePerState() const { return (inv_ ? 1 : 0) + (invM_ ? 1 : 0); }
+  int forwardPerState() const { return (fw1_ ? 1 : 0) + (fw0_ ? 1 : 0) + (fwB_ ? 1 : 0) + (fwR_ ? 1 : 0); }
   // How many modes a direct projection can handle for the cost of one forward transform:
   // a flop-model estimate until setDirectModesPerForward() gives a measured value.
   double directModesPerForward() const { return directPerForward_; }
@@ -206,26 +250,32 @@ private:
   int                              N_;
   std::vector<double>              D_, A_;
   std::unique_ptr<RealFFT>         inv_, fw1_, fw0_; // c2r; r2c of W1; r2c of W0
-  std::vector<double>              W1_, W0_;
-  std::vector<std::vector<double>> twiddle_; // per layout mode, built on first use: cos, -sin interleaved by halves
+  ExtraTerms                       extra_;
+  int                              padded_ = 0;       // M
+  std::unique_ptr<RealFFT>         invM_, fwB_, fwR_; // size M: c2r of u; r2c of -B u^2/2; r2c of R p(u)
+  std::vector<double>              Bm_, Rm_, Sk_;     // B, R on the padded grid; the source's coefficients per layout mode (re, im)
+  std::vector<std::vector<double>> twiddle_;          // per layout mode, built on first use: cos, -sin interleaved by halves
   double                           directPerForward_ = 1.0;
   Counters                         counters_;
   const std::vector<double>       &twiddle(int i);
 };
 
-// A dense matrix of the (linear) operator restricted to the retained modes: rows and columns
-// in the layout. Built by applying the pseudo-spectral operator to unit vectors, so it gives
-// the same numbers up to round-off; a cluster's rows cost (rows x layout size) flops.
+// A dense matrix of the (affine) operator restricted to the retained modes: rows and columns
+// in the layout, F(c) = M c + b with b = F(0) (zero without source or reaction terms). Built by
+// applying the pseudo-spectral operator to 0 and to unit vectors, so it gives the same numbers
+// up to round-off; a cluster's rows cost (rows x layout size) flops. Throws
+// std::invalid_argument for a nonlinear operator (Burgers, reaction of degree 2 or 3).
 class DenseOperator {
 public:
   explicit DenseOperator(SpectralOperator &op);
-  // out[r - rb] = sum_c M[r][c] coef[c] for rows [rb, re)
+  // out[r - rb] = sum_c M[r][c] coef[c] (+ b[r]) for rows [rb, re)
   void applyRows(int rb, int re, const double *coef, double *out) const;
   int  size() const { return n_; }
 
 private:
   int                 n_;
-  std::vector<double> M_; // row-major
+  bool                affine_ = false;
+  std::vector<double> M_, b_; // row-major; b_ when affine_
 };
 
 } // namespace spectral
