@@ -37,6 +37,7 @@ static constexpr PetscReal kFloorFactor       = 0.7;  /* a refinement that lower
 static constexpr PetscReal kMinShare          = 1e-3; /* no error term is taken as less than this share of the estimate */
 static constexpr PetscReal kRatioCoarsening   = 4;    /* a calibration's coarser r_l - 1 */
 static constexpr PetscReal kMaxCheaper        = 8;    /* after an accepted step the work may fall by this factor at most */
+static constexpr PetscReal kNegligibleSavings = 0.05; /* a time ratio below 1 + this takes no savings */
 static constexpr PetscReal kWarn              = 2;    /* a step accepted with an estimate above this many shares is warned of */
 static constexpr PetscReal kFloorAccept       = 4;    /* an estimate above this many shares is never taken as a noise floor */
 static constexpr PetscReal kMaxDearer         = 4;    /* and rise by this factor at most per try (the estimate is noisy: refining in steps wastes less) */
@@ -117,6 +118,11 @@ static vshmm::AdaptBounds Bounds(TS ts, PetscReal DeltaT)
   b.maxMicroStep   = kStableFraction * vs->level_max_step.back();
   if (!std::isfinite(b.maxMicroStep) || b.maxMicroStep > DeltaT / kMinCycles) b.maxMicroStep = DeltaT / kMinCycles;
   b.maxCycle = DeltaT / kMinCycles;
+  for (size_t l = 0; l < vs->adapt_no_savings.size(); ++l)
+    if (vs->adapt_no_savings[l]) {
+      b.maxRatio.resize(vs->adapt_no_savings.size(), PETSC_INFINITY);
+      b.maxRatio[l] = 1.0;
+    }
   return b;
 }
 
@@ -182,7 +188,8 @@ PetscErrorCode TSVSHMMAdaptReset_Private(TS ts)
   vs->adapt_calibrated        = PETSC_FALSE;
   vs->adapt_calibrated_times  = 0;
   vs->no_separation           = PETSC_FALSE;
-  vs->floor_warned            = PETSC_FALSE;
+  vs->adapt_no_savings.clear();
+  vs->floor_warned = PETSC_FALSE;
   PetscFunctionReturn(0);
 }
 
@@ -288,6 +295,22 @@ static PetscReal Estimate(const vshmm::ErrorModel &model, const vshmm::AdaptPara
 
 /* The error model's split between the terms: one comparison run per parameter, the micro step
    doubled or r_l - 1 times kRatioCoarsening (vshmm::coarsened; each costs 1/2 or 1/4 of the step). A parameter whose coarser run is not finite stays where it is. */
+/* A level whose time ratio r saves less than kNegligibleSavings (r - 1 below it) saves almost no work
+   but still samples the faster scales: it takes no savings (r = 1, alpha = 0) for the rest of the
+   solve, which removes its error term. Without this, a problem whose slow quantities carry a part
+   of the fast phase (any savings shift it: the stiff-spring chain's I) drives r towards 1
+   geometrically, and the micro step down with it, without ever meeting the tolerance. */
+static void SnapNegligibleSavings(TS_VSHMM *vs, vshmm::AdaptParameters &p, const vshmm::AdaptBounds &bounds)
+{
+  if (bounds.fixedRatios) return;
+  vs->adapt_no_savings.resize(p.ratios.size(), PETSC_FALSE);
+  for (size_t l = 0; l < p.ratios.size(); ++l)
+    if (p.ratios[l] - 1.0 < kNegligibleSavings) {
+      p.ratios[l]             = 1.0;
+      vs->adapt_no_savings[l] = PETSC_TRUE;
+    }
+}
+
 static PetscErrorCode Calibrate(TS ts, const vshmm::AdaptParameters &p, PetscReal t0, PetscReal DeltaT, vshmm::AdaptBounds &bounds)
 {
   TS_VSHMM                           *vs = (TS_VSHMM *)ts->data;
@@ -367,6 +390,7 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
       if (!bounds.fixedMicroStep) p.microStep *= 0.5;
       if (!bounds.fixedRatios)
         for (double &r : p.ratios) r = 1.0 + (r - 1.0) / 4;
+      SnapNegligibleSavings(vs, p, bounds);
       continue;
     }
 
@@ -406,6 +430,7 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
       refinable = (next.microStep < p.microStep || vshmm::cycleLength(next) < vshmm::cycleLength(p)) ? PETSC_TRUE : PETSC_FALSE;
     }
     LimitToStableSteps(ts, next);
+    SnapNegligibleSavings(vs, next, bounds);
     PetscCall(PetscInfo(ts, "Adapt: macro step [%g, %g] try %" PetscInt_FMT ": dt %g, cycle %g, %" PetscInt64_FMT " cycles; estimate %g of its share %g\n", (double)t0, (double)t1, attempt, (double)p.microStep, (double)vshmm::cycleLength(p), counts.cycles, (double)E, (double)budget));
     /* a floor: twice, finer parameters did not lower an estimate that is near the share (or the
        savings cannot be taken back any further); far above it, the savings go on falling (their

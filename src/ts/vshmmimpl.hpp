@@ -77,7 +77,8 @@ struct TS_VSHMM {
   vshmm::AdaptParameters adapt_params; // micro step and time ratios for the next macro step
   vshmm::AdaptParameters adapt_used;   // those of the last accepted macro step
   vshmm::ErrorModel      adapt_model;
-  PetscBool              adapt_ready             = PETSC_FALSE; // initial parameters chosen
+  PetscBool              adapt_ready = PETSC_FALSE; // initial parameters chosen
+  std::vector<PetscBool> adapt_no_savings;          // per time ratio: no savings for the rest of the solve (they were negligible)
   PetscInt               adapt_since_calibration = 0;
   PetscBool              adapt_calibrated        = PETSC_FALSE; // the model's split between the terms was measured
   PetscInt               adapt_calibrated_times  = 0;           // calibrations in this solve
