@@ -89,6 +89,10 @@ PETSC_EXTERN PetscErrorCode VSHMMSpectralReadGridValues(VSHMMSpectral, const cha
 PETSC_EXTERN PetscErrorCode VSHMMSpectralRHSFunction(TS, PetscReal, Vec, Vec, void *);
 PETSC_EXTERN PetscErrorCode VSHMMSpectralSetUpTS(VSHMMSpectral, TS);
 PETSC_EXTERN PetscErrorCode VSHMMSpectralEstimateTimeStep(VSHMMSpectral, PetscReal *);
+PETSC_EXTERN PetscErrorCode VSHMMSpectralGetStableTimeStep(VSHMMSpectral, TSRKType, PetscReal *);
+PETSC_EXTERN PetscErrorCode VSHMMSpectralGetSpectralRadius(VSHMMSpectral, PetscReal *, PetscReal *);
+PETSC_EXTERN PetscErrorCode VSHMMSpectralSetGrowthBound(VSHMMSpectral, PetscReal);
+PETSC_EXTERN PetscErrorCode VSHMMSpectralGrowthMonitor(TS, PetscInt, PetscReal, Vec, void *);
 PETSC_EXTERN PetscErrorCode VSHMMSpectralGetStatistics(VSHMMSpectral, VSHMMSpectralStatistics *);
 
 #endif

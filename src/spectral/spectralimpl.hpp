@@ -19,6 +19,9 @@
 
 #include "detect.hpp"
 #include "spectral.hpp"
+#include "stable.hpp"
+
+#include <complex>
 
 #include <exception>
 #include <memory>
@@ -92,10 +95,11 @@ struct VSHMMSpectral_Data {
   spc::Normalization       norm = spc::Normalization::Unitary;
   std::vector<PetscReal>   detect_times;
   std::string              detect_file;
-  PetscReal                detect_dt  = 0;
-  VSHMMSpectralProjection  projection = VSHMMSPECTRAL_PROJECTION_AUTO;
-  VSHMMSpectralEvaluation  evaluation = VSHMMSPECTRAL_EVALUATION_FFT;
-  VSHMMSpectralPlanner     planner    = VSHMMSPECTRAL_PLANNER_MEASURE;
+  PetscReal                detect_dt     = 0;
+  VSHMMSpectralProjection  projection    = VSHMMSPECTRAL_PROJECTION_AUTO;
+  VSHMMSpectralEvaluation  evaluation    = VSHMMSPECTRAL_EVALUATION_FFT;
+  VSHMMSpectralPlanner     planner       = VSHMMSPECTRAL_PLANNER_ESTIMATE;
+  PetscReal                growth_factor = 10; /* -spectral_growth_bound (0: no check) */
 
   /* set-up */
   spc::ClusterSet                        clusters;
@@ -118,6 +122,15 @@ struct VSHMMSpectral_Data {
   double           direct_spent = 0;
 
   VSHMMSpectralStatistics stats = {};
+
+  /* stable steps and the growth check (spectralstable.cpp) */
+  PetscBool                         ritz_done = PETSC_FALSE; /* ritz holds the estimate of this set-up */
+  std::vector<std::complex<double>> ritz;                    /* Ritz values of the operator's Jacobian at u0 */
+  PetscReal                         radius_bound = 0;        /* max|D| kmax^2 + max|A| kmax */
+  std::vector<double>               weights;                 /* Parseval weights of the layout's reals */
+  PetscBool                         growth_started = PETSC_FALSE, growth_needs_max = PETSC_FALSE;
+  spc::GrowthBound                  growth;
+  PetscReal                         growth_max = 0; /* max|u| on the grid at the last check */
 };
 
 typedef struct _VSHMMSpectralOps *VSHMMSpectralOps;
@@ -132,7 +145,7 @@ struct _p_VSHMMSpectral {
 };
 
 /* log events (registered by VSHMMSpectralInitializePackage()) */
-PETSC_INTERN PetscLogEvent VSHMMSPECTRAL_SetUp, VSHMMSPECTRAL_RHS, VSHMMSPECTRAL_Split, VSHMMSPECTRAL_Physical, VSHMMSPECTRAL_ForwardFFT, VSHMMSPECTRAL_ProjDirect, VSHMMSPECTRAL_MatVec;
+PETSC_INTERN PetscLogEvent VSHMMSPECTRAL_SetUp, VSHMMSPECTRAL_RHS, VSHMMSPECTRAL_Split, VSHMMSPECTRAL_Physical, VSHMMSPECTRAL_ForwardFFT, VSHMMSPECTRAL_ProjDirect, VSHMMSPECTRAL_MatVec, VSHMMSPECTRAL_Eigen, VSHMMSPECTRAL_Growth;
 
 /* The options prefix of sp ("" without one), for error messages that name an option. */
 static inline const char *VSHMMSpectralPrefix(VSHMMSpectral sp)

@@ -276,38 +276,12 @@ PetscErrorCode VSHMMSpectralSetUp(VSHMMSpectral sp)
   s->modes.assign(s->layout->modes().begin(), s->layout->modes().end());
   s->out.assign(s->layout->size(), 0.0);
   PetscCall(CalibrateProjection(sp));
-  s->cache_valid  = PETSC_FALSE;
-  s->stats        = VSHMMSpectralStatistics();
-  sp->setupcalled = PETSC_TRUE;
+  s->cache_valid    = PETSC_FALSE;
+  s->stats          = VSHMMSpectralStatistics();
+  s->weights        = spc::parsevalWeights(*s->layout); /* spectralstable.cpp */
+  s->ritz_done      = PETSC_FALSE;
+  s->growth_started = PETSC_FALSE;
+  sp->setupcalled   = PETSC_TRUE;
   PetscCall(PetscLogEventEnd(VSHMMSPECTRAL_SetUp, sp, 0, 0, 0));
-  PetscFunctionReturn(0);
-}
-
-/*@C
-   VSHMMSpectralEstimateTimeStep - A stable step of a 3-stage explicit Runge-Kutta method for the
-   retained modes: 1 / (max|d| kmax^2 + max|a| kmax), rounded down to 1, 2 or 5 times a power of 10
-
-   Collective (sets the object up if needed)
-
-   Input Parameter:
-.  sp - the object
-
-   Output Parameter:
-.  dt - the step
-
-   Level: intermediate
-
-.seealso: `VSHMMSpectralSetUp()`
-@*/
-PetscErrorCode VSHMMSpectralEstimateTimeStep(VSHMMSpectral sp, PetscReal *dt)
-{
-  std::vector<double> D, A;
-
-  PetscFunctionBegin;
-  PetscValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
-  PetscValidRealPointer(dt, 2);
-  PetscCall(VSHMMSpectralSetUp(sp));
-  PetscCall(VSHMMSpectralBuildCoefficients_Private(sp, D, A));
-  *dt = VSHMMSpectralStableStep_Private(D, A, sp->data->layout->modes().back());
   PetscFunctionReturn(0);
 }
