@@ -6,7 +6,29 @@
 
 namespace vshmm {
 
-StabilityFunction::StabilityFunction(const Tableau &tableau) : a_(tableau.a), b_(tableau.b), s_(tableau.stages) {}
+StabilityFunction::StabilityFunction(const Tableau &tableau) : a_(tableau.a), b_(tableau.b), s_(tableau.stages)
+{
+  // R(z) = 1 + sum_{k>=1} gamma_k z^k with gamma_k = b^T A^(k-1) 1 (A strictly lower: k <= s).
+  std::vector<double> v(s_, 1.0), w(s_);
+  lipschitz_.assign(s_ + 1, 0.0);
+  for (int k = 1; k <= s_; ++k) {
+    double gamma = 0;
+    for (int i = 0; i < s_; ++i) gamma += b_[i] * v[i];
+    lipschitz_[k] = k * std::fabs(gamma);
+    for (int i = 0; i < s_; ++i) {
+      w[i] = 0;
+      for (int j = 0; j < i; ++j) w[i] += a_[i * s_ + j] * v[j];
+    }
+    v.swap(w);
+  }
+}
+
+double StabilityFunction::derivativeBound(double r) const
+{
+  double L = 0, p = 1;
+  for (size_t k = 1; k < lipschitz_.size(); ++k, p *= r) L += lipschitz_[k] * p;
+  return L;
+}
 
 std::complex<double> StabilityFunction::operator()(std::complex<double> z) const
 {
@@ -28,12 +50,23 @@ double StabilityFunction::rayLimit(std::complex<double> direction) const
   // A step is stable for the mode when it grows the mode no more than the exact flow does:
   // |R(z)| <= max(1, |exp(z)|). For Re z <= 0 that is the usual |R(z)| <= 1; a growing mode
   // (Re z > 0, e.g. a slightly unstable oscillation) may grow by its own exp(Re z).
-  auto stable = [&](double x) { return std::abs((*this)(x * d)) <= std::max(1.0, std::exp(x * d.real())) * (1.0 + tol); };
+  auto stable = [&](double x) { return std::abs((*this)(x * d)) <= (d.real() > 0 ? std::max(1.0, std::exp(x * d.real())) : 1.0) * (1.0 + tol); };
   // Scan outwards in steps small against the size of any stability region of an explicit method,
-  // then bisect the first crossing.
+  // then bisect the first crossing. Where |R| is below the bound by a margin m, |R| cannot reach
+  // it within m / L (L bounds |R'| on the next unit of the ray; the bound is at least 1):
+  // such a step is taken at once, so only the approach to the crossing costs fine steps.
   const double dx = 1e-3;
   double       x  = 0.0;
-  while (x < kMaxRadius && stable(x + dx)) x += dx;
+  while (x < kMaxRadius) {
+    const double margin = 1.0 - std::abs((*this)(x * d)); // the bound is at least 1
+    const double leap   = margin > 0 ? std::min(1.0, margin / derivativeBound(x + 1.0)) : 0.0;
+    if (leap > dx) {
+      x = std::min(x + leap, kMaxRadius);
+      continue;
+    }
+    if (!stable(x + dx)) break;
+    x += dx;
+  }
   if (x >= kMaxRadius) return kMaxRadius;
   double lo = x, hi = x + dx;
   for (int it = 0; it < 60; ++it) {

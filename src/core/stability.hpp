@@ -34,6 +34,8 @@ public:
 private:
   std::vector<double> a_, b_;
   int                 s_;
+  std::vector<double> lipschitz_; // |gamma_k| k: |R'(z)| <= sum_k lipschitz_[k] |z|^(k-1), R(z) = sum_k gamma_k z^k
+  double              derivativeBound(double r) const;
 };
 
 // What the steps of one level do to a linear mode y' = lambda y over one macro step of
