@@ -34,8 +34,7 @@ public:
 private:
   std::vector<double> a_, b_;
   int                 s_;
-  std::vector<double> lipschitz_; // |gamma_k| k: |R'(z)| <= sum_k lipschitz_[k] |z|^(k-1), R(z) = sum_k gamma_k z^k
-  double              derivativeBound(double r) const;
+  std::vector<double> gamma_; // R(z) = sum_k gamma_k z^k
 };
 
 // What the steps of one level do to a linear mode y' = lambda y over one macro step of
