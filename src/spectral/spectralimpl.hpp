@@ -161,8 +161,10 @@ PETSC_INTERN PetscErrorCode VSHMMSpectralSampleField_Private(VSHMMSpectral, cons
 PETSC_INTERN PetscErrorCode VSHMMSpectralReadGridFile_Private(MPI_Comm, const char[], std::vector<double> &);
 /* The fields D = sum of diffusion coefficients, A = - sum of velocities, on the grid. */
 PETSC_INTERN PetscErrorCode VSHMMSpectralBuildCoefficients_Private(VSHMMSpectral, std::vector<double> &, std::vector<double> &);
-/* A stable explicit RK3 step for the modes up to kmax. */
-PETSC_INTERN double VSHMMSpectralStableStep_Private(const std::vector<double> &, const std::vector<double> &, int);
+/* spectralstable.cpp: the Ritz values of op's Jacobian at the coefficients c0 (Arnoldi), and the
+   stable step of a TSRK type for them (0.9 times the largest; PETSC_INFINITY if none limits it). */
+PETSC_INTERN PetscErrorCode VSHMMSpectralRitzValues_Private(MPI_Comm, spc::SpectralOperator &, const std::vector<double> &, std::vector<std::complex<double>> &);
+PETSC_INTERN PetscErrorCode VSHMMSpectralStableStepOf_Private(MPI_Comm, const std::vector<std::complex<double>> &, TSRKType, PetscReal *);
 /* The whole state on every rank (the Vec's own array on one rank, a gathered copy otherwise). */
 PETSC_INTERN PetscErrorCode VSHMMSpectralGetCoefficients_Private(VSHMMSpectral, Vec, const PetscScalar **);
 PETSC_INTERN PetscErrorCode VSHMMSpectralRestoreCoefficients_Private(VSHMMSpectral, Vec, const PetscScalar **);

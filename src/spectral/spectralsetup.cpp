@@ -46,18 +46,6 @@ static PetscErrorCode DetectRHS(TS ts, PetscReal t, Vec U, Vec F, void *ctx)
   PetscFunctionReturn(0);
 }
 
-/* A stable explicit step for 3-stage Runge-Kutta: 1 / (max|d| kmax^2 + max|a| kmax), rounded down to 1, 2 or 5 times a power of ten. */
-double VSHMMSpectralStableStep_Private(const std::vector<double> &D, const std::vector<double> &A, int kmax)
-{
-  double md = 0, ma = 0;
-  for (double d : D) md = std::max(md, std::fabs(d));
-  for (double a : A) ma = std::max(ma, std::fabs(a));
-  const double rho = md * kmax * (double)kmax + ma * kmax;
-  if (!(rho > 0)) return 1e-2;
-  const double dt = 1.0 / rho, p = std::pow(10.0, std::floor(std::log10(dt))), m = dt / p;
-  return (m >= 5 ? 5 : m >= 2 ? 2 : 1) * p;
-}
-
 /* Snapshots |c_k| (k = 0..N/2) of a short direct simulation on every rank (PETSC_COMM_SELF), TS
    options prefix <prefix>spectral_cluster_detect_. */
 static PetscErrorCode DetectionDNS(VSHMMSpectral sp, const std::vector<double> &D, const std::vector<double> &A, const std::vector<double> &u0, std::vector<std::vector<double>> &mags)
@@ -68,13 +56,18 @@ static PetscErrorCode DetectionDNS(VSHMMSpectral sp, const std::vector<double> &
   Vec                   U;
   TS                    ts;
   PetscScalar          *u;
-  const double          dt = s->detect_dt > 0 ? s->detect_dt : VSHMMSpectralStableStep_Private(D, A, spc::maxWavenumber((int)s->N));
+  PetscReal             dt = s->detect_dt;
 
   PetscFunctionBegin;
   PetscCheck(!s->detect_times.empty(), PetscObjectComm((PetscObject)sp), PETSC_ERR_ARG_WRONGSTATE, "-%sspectral_cluster_detect dns needs -%sspectral_cluster_detect_times t1,t2,...: the snapshot times of the short direct simulation", VSHMMSpectralPrefix(sp), VSHMMSpectralPrefix(sp));
   PetscCall(VecCreateSeq(PETSC_COMM_SELF, full.size(), &U));
   PetscCall(VecGetArray(U, &u));
   op.analyze(u0.data(), u);
+  if (!(dt > 0)) { /* the operator's stable RK3 step (spectralstable.cpp) */
+    std::vector<std::complex<double>> ritz;
+    PetscCall(VSHMMSpectralRitzValues_Private(PETSC_COMM_SELF, op, std::vector<double>(u, u + full.size()), ritz));
+    PetscCall(VSHMMSpectralStableStepOf_Private(PETSC_COMM_SELF, ritz, TSRK3, &dt));
+  }
   PetscCall(VecRestoreArray(U, &u));
   PetscCall(TSCreate(PETSC_COMM_SELF, &ts));
   PetscCall(TSSetOptionsPrefix(ts, ((PetscObject)sp)->prefix));

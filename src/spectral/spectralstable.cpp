@@ -27,52 +27,59 @@ static constexpr PetscReal kSafety         = 0.9;
 static constexpr PetscReal kGrowingMode    = 0.1; /* Re lambda > this |lambda|: a growing mode, not limiting */
 static constexpr PetscInt  kGrowthInterval = 8;   /* the growth check looks at every 8th step */
 
-/* The Ritz values of the Jacobian of F at the initial state (cached until the next set-up). */
-static PetscErrorCode OperatorRitzValues(VSHMMSpectral sp)
+PetscErrorCode VSHMMSpectralRitzValues_Private(MPI_Comm comm, spc::SpectralOperator &op, const std::vector<double> &c0, std::vector<std::complex<double>> &ritz)
 {
-  VSHMMSpectral_Data *s = sp->data;
-  std::vector<double> D, A, u0, c0, F0, cp, Fp;
+  const int                 n       = op.layout().size();
+  const std::vector<double> weights = spc::parsevalWeights(op.layout());
+  std::vector<double>       F0(n), cp(n), Fp(n);
 
   PetscFunctionBegin;
-  PetscCall(VSHMMSpectralSetUp(sp));
-  if (s->ritz_done) PetscFunctionReturn(0);
-  PetscCall(PetscLogEventBegin(VSHMMSPECTRAL_Eigen, sp, 0, 0, 0));
-  const int n = s->layout->size();
-  PetscCall(VSHMMSpectralBuildCoefficients_Private(sp, D, A));
-  s->radius_bound = spc::spectralRadiusBound(D, A, s->layout->modes().back());
-  PetscCall(VSHMMSpectralSampleField_Private(sp, "u0", s->u0, u0));
-  c0.resize(n);
-  F0.resize(n);
-  cp.resize(n);
-  Fp.resize(n);
-  const spc::SpectralOperator::Counters saved = s->op->counters();
-  s->op->analyze(u0.data(), c0.data());
-  s->op->apply(c0.data(), F0.data());
+  const spc::SpectralOperator::Counters saved = op.counters();
+  op.apply(c0.data(), F0.data());
   double norm = 0;
-  for (int i = 0; i < n; ++i) norm += s->weights[i] * c0[i] * c0[i];
+  for (int i = 0; i < n; ++i) norm += weights[i] * c0[i] * c0[i];
   const double delta = std::sqrt(PETSC_MACHINE_EPSILON) * (1.0 + std::sqrt(norm)); /* the start and Krylov vectors have unit norm */
   /* J v ~ (F(c0 + delta v) - F(c0)) / delta */
   spc::ArnoldiResult ar = spc::arnoldi(
     [&](const double *v, double *w) {
       for (int i = 0; i < n; ++i) cp[i] = c0[i] + delta * v[i];
-      s->op->apply(cp.data(), Fp.data());
+      op.apply(cp.data(), Fp.data());
       for (int i = 0; i < n; ++i) w[i] = (Fp[i] - F0[i]) / delta;
     },
-    s->weights, kArnoldiSteps);
-  s->op->counters() = saved;
-  s->cache_valid    = PETSC_FALSE; /* the operator's buffers were used */
-  s->ritz.clear();
-  if (ar.finite && ar.k > 0) {
+    weights, kArnoldiSteps);
+  op.counters() = saved;
+  PetscCheck(ar.finite, comm, PETSC_ERR_FP, "The spectral operator is not finite near the initial state: no stable time step can be estimated");
+  ritz.clear();
+  if (ar.k > 0) {
     std::vector<PetscScalar> work(8 * ar.k + 8);
     std::vector<PetscReal>   wr(ar.k), wi(ar.k);
     PetscBLASInt             k, lwork = (PetscBLASInt)work.size(), one = 1, info;
     PetscCall(PetscBLASIntCast(ar.k, &k));
     PetscCallBLAS("LAPACKgeev", LAPACKgeev_("N", "N", &k, ar.H.data(), &k, wr.data(), wi.data(), nullptr, &one, nullptr, &one, work.data(), &lwork, &info));
-    PetscCheck(!info, PetscObjectComm((PetscObject)sp), PETSC_ERR_LIB, "LAPACK geev failed (info %d) on the Arnoldi matrix of the spectral operator", (int)info);
-    for (int i = 0; i < ar.k; ++i) s->ritz.emplace_back(wr[i], wi[i]);
+    PetscCheck(!info, comm, PETSC_ERR_LIB, "LAPACK geev failed (info %d) on the Arnoldi matrix of the spectral operator", (int)info);
+    for (int i = 0; i < ar.k; ++i) ritz.emplace_back(wr[i], wi[i]);
   }
-  PetscCheck(ar.finite, PetscObjectComm((PetscObject)sp), PETSC_ERR_FP, "The spectral operator is not finite near the initial state: no stable time step can be estimated");
-  s->ritz_done = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+/* The Ritz values of the Jacobian of F at the initial state (cached until the next set-up). */
+static PetscErrorCode OperatorRitzValues(VSHMMSpectral sp)
+{
+  VSHMMSpectral_Data *s = sp->data;
+  std::vector<double> D, A, u0, c0;
+
+  PetscFunctionBegin;
+  PetscCall(VSHMMSpectralSetUp(sp));
+  if (s->ritz_done) PetscFunctionReturn(0);
+  PetscCall(PetscLogEventBegin(VSHMMSPECTRAL_Eigen, sp, 0, 0, 0));
+  PetscCall(VSHMMSpectralBuildCoefficients_Private(sp, D, A));
+  s->radius_bound = spc::spectralRadiusBound(D, A, s->layout->modes().back());
+  PetscCall(VSHMMSpectralSampleField_Private(sp, "u0", s->u0, u0));
+  c0.resize(s->layout->size());
+  s->op->analyze(u0.data(), c0.data());
+  PetscCall(VSHMMSpectralRitzValues_Private(PetscObjectComm((PetscObject)sp), *s->op, c0, s->ritz));
+  s->cache_valid = PETSC_FALSE; /* the operator's buffers were used */
+  s->ritz_done   = PETSC_TRUE;
   PetscCall(PetscLogEventEnd(VSHMMSPECTRAL_Eigen, sp, 0, 0, 0));
   PetscFunctionReturn(0);
 }
@@ -97,6 +104,22 @@ static PetscErrorCode RKTableau(MPI_Comm comm, TSRKType type, std::unique_ptr<vs
     SETERRQ(comm, PETSC_ERR_ARG_WRONG, "TSRK type %s: %s", type, e.what());
   }
   PetscCall(TSDestroy(&rk));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode VSHMMSpectralStableStepOf_Private(MPI_Comm comm, const std::vector<std::complex<double>> &ritz, TSRKType type, PetscReal *dt)
+{
+  std::unique_ptr<vshmm::Tableau> tab;
+
+  PetscFunctionBegin;
+  PetscCall(RKTableau(comm, type, tab));
+  const vshmm::StabilityFunction R(*tab);
+  double                         h = PETSC_INFINITY;
+  for (const std::complex<double> &lambda : ritz) {
+    if (std::abs(lambda) == 0 || lambda.real() > kGrowingMode * std::abs(lambda)) continue;
+    h = std::min(h, R.largestStableStep(lambda));
+  }
+  *dt = std::isfinite(h) ? kSafety * h : PETSC_INFINITY;
   PetscFunctionReturn(0);
 }
 
@@ -130,21 +153,12 @@ static PetscErrorCode RKTableau(MPI_Comm comm, TSRKType type, std::unique_ptr<vs
 @*/
 PetscErrorCode VSHMMSpectralGetStableTimeStep(VSHMMSpectral sp, TSRKType type, PetscReal *dt)
 {
-  std::unique_ptr<vshmm::Tableau> tab;
-
   PetscFunctionBegin;
   PetscValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
   PetscValidCharPointer(type, 2);
   PetscValidRealPointer(dt, 3);
   PetscCall(OperatorRitzValues(sp));
-  PetscCall(RKTableau(PetscObjectComm((PetscObject)sp), type, tab));
-  const vshmm::StabilityFunction R(*tab);
-  double                         h = PETSC_INFINITY;
-  for (const std::complex<double> &lambda : sp->data->ritz) {
-    if (std::abs(lambda) == 0 || lambda.real() > kGrowingMode * std::abs(lambda)) continue;
-    h = std::min(h, R.largestStableStep(lambda));
-  }
-  *dt           = std::isfinite(h) ? kSafety * h : PETSC_INFINITY;
+  PetscCall(VSHMMSpectralStableStepOf_Private(PetscObjectComm((PetscObject)sp), sp->data->ritz, type, dt));
   double radius = 0;
   for (const std::complex<double> &lambda : sp->data->ritz) radius = std::max(radius, std::abs(lambda));
   PetscCall(PetscInfo(sp, "stable step of TSRK %s: %g (spectral radius estimate %g, bound %g)\n", type, (double)*dt, radius, (double)sp->data->radius_bound));
