@@ -206,7 +206,7 @@ static PetscErrorCode SolveToOutputTimes(SpectralRun *run, TS ts, Vec U)
     PetscCheck(fabs(t - ti) <= 1e-9 * PetscMax(1.0, fabs(ti)), PETSC_COMM_WORLD, PETSC_ERR_NOT_CONVERGED, "The TS stopped at t = %.12g, not at the output time %g (%s; raise -ts_max_steps?)", (double)t, (double)ti, TSConvergedReasons[reason]);
     PetscCall(PetscTime(&w1));
     PetscCall(VecNorm(U, NORM_2, &norm));
-    PetscCheck(isfinite(norm), PETSC_COMM_WORLD, PETSC_ERR_FP, "The solution at t = %g is not finite (Inf or NaN): the time step is probably too large for the fastest retained mode (see VSHMMSpectralEstimateTimeStep(); -ts_dt, -ts_vshmm_micro_dt, -ts_vshmm_savings_factors)", (double)ti);
+    PetscCheck(isfinite(norm), PETSC_COMM_WORLD, PETSC_ERR_FP, "The solution at t = %g is not finite (Inf or NaN): the time step is probably too large for the fastest retained mode (see VSHMMSpectralGetStableTimeStep(); -ts_dt, -ts_vshmm_micro_dt, -ts_vshmm_savings_factors)", (double)ti);
     if (run->grid_prefix[0]) PetscCall(WriteGridSolution(run, U, ti, file, sizeof(file)));
     PetscCall(PrintWork(run, ti, w1 - w0, file[0] ? file : NULL));
     if (run->compare_prefix[0]) PetscCall(CompareGridSolution(run, U, ti));
