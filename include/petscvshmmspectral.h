@@ -22,6 +22,10 @@
    -spectral_velocity, -spectral_u0, -spectral_mode, -spectral_clusters, -spectral_cluster_detect, ...
    (see VSHMMSpectralSetFromOptions() and docs/spectral.md). The library writes nothing itself:
    VSHMMSpectralView() shows the scene; the examples in examples/spectral write the solutions.
+
+   VSHMMSpectralGetStableTimeStep() estimates a stable explicit Runge-Kutta step from the
+   operator's eigenvalues; VSHMMSpectralSetUpTS() also sets a TS monitor that stops a solve whose
+   solution grows beyond what the scene's terms allow (-spectral_growth_bound).
 */
 #ifndef PETSCVSHMMSPECTRAL_H
 #define PETSCVSHMMSPECTRAL_H
