@@ -348,8 +348,8 @@ static PetscErrorCode SplitRHS(TS ts, PetscReal t, Vec U, Vec F, void *ctx)
    full-size vector (zeros outside cluster j): the splits add up to the full right-hand side.
    The physical-space field of a state is computed once and shared by the splits called with
    that state (same Vec, object state and time), as TSVSHMM does on each level.
-   Unless -spectral_growth_bound is 0, it also sets the TS monitor `VSHMMSpectralGrowthMonitor()`,
-   which stops the solve with an error when the solution grows beyond what the scene's terms allow.
+   It also sets the TS monitor `VSHMMSpectralGrowthMonitor()`, which stops the solve with an error
+   when the solution grows beyond what the scene's terms allow (-spectral_growth_bound; 0: never).
 
    Level: beginner
 
@@ -367,7 +367,7 @@ PetscErrorCode VSHMMSpectralSetUpTS(VSHMMSpectral sp, TS ts)
   PetscCall(VSHMMSpectralSetUp(sp));
   s = sp->data;
   PetscCall(TSSetRHSFunction(ts, NULL, VSHMMSpectralRHSFunction, sp));
-  if (s->growth_factor > 0) PetscCall(TSMonitorSet(ts, VSHMMSpectralGrowthMonitor, sp, NULL)); /* spectralstable.cpp */
+  PetscCall(TSMonitorSet(ts, VSHMMSpectralGrowthMonitor, sp, NULL)); /* the growth check, spectralstable.cpp */
   if (s->mode != VSHMMSPECTRAL_MODE_SPARSE) PetscFunctionReturn(0);
   PetscCall(TSGetSolution(ts, &U));
   PetscCheck(U, PetscObjectComm((PetscObject)sp), PETSC_ERR_ARG_WRONGSTATE, "VSHMMSpectralSetUpTS(): call TSSetSolution() first");

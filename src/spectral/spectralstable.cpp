@@ -11,8 +11,9 @@
   every call.
 
   Growth check: a TS monitor (set by VSHMMSpectralSetUpTS()) compares, every kGrowthInterval
-  steps and at the final time, the mean-square norm of the state (Parseval) with growth_factor times the a-priori bound of the scene's terms
-  (GrowthModel in src/core/spectral/stable.hpp) and stops the solve with an error above it.
+  steps and at the final time, the root-mean-square norm of the state (Parseval) with
+  growth_factor times the a-priori bound of the scene's terms (GrowthModel in
+  src/core/spectral/stable.hpp) and stops the solve with an error above it.
 */
 #include "spectralimpl.hpp"
 
@@ -236,7 +237,7 @@ static PetscErrorCode SceneGrowthModel(VSHMMSpectral sp, spc::GrowthModel &model
   PetscFunctionReturn(0);
 }
 
-/* The mean-square norm of a state (Parseval) and, if wanted, max|u| on the grid. */
+/* The root-mean-square norm of a state (Parseval) and, if wanted, max|u| on the grid. */
 static PetscErrorCode StateNorms(VSHMMSpectral sp, Vec U, PetscReal *norm, PetscReal *maxu)
 {
   VSHMMSpectral_Data *s = sp->data;
@@ -261,9 +262,9 @@ static PetscErrorCode StateNorms(VSHMMSpectral sp, Vec U, PetscReal *norm, Petsc
 }
 
 /*@C
-   VSHMMSpectralGrowthMonitor - The TS monitor of the growth check (set by `VSHMMSpectralSetUpTS()`
-   unless -spectral_growth_bound is 0): stops the solve with an error when the solution's norm
-   exceeds the bound of the scene's terms times the growth factor
+   VSHMMSpectralGrowthMonitor - The TS monitor of the growth check (set by `VSHMMSpectralSetUpTS()`):
+   stops the solve with an error when the solution's norm exceeds the bound of the scene's terms
+   times the growth factor
 
    Collective
 
@@ -275,10 +276,12 @@ static PetscErrorCode StateNorms(VSHMMSpectral sp, Vec U, PetscReal *norm, Petsc
 -  ctx - the VSHMMSpectral
 
    Notes:
-   The norm is the mean square of u over the grid (Parseval on the retained coefficients),
+   The norm is the root mean square of u over the grid (Parseval on the retained coefficients),
    checked at every 8th step and at the TS's final time (a blow-up grows geometrically, so a few
-   steps later is as good; the check costs one pass over the state). The first call (and any call at a time before the last one checked, a new run) takes the state as
-   the initial one. See docs/spectral.md for the bound of each term.
+   steps later is as good; the check costs one pass over the state). The first call (and any
+   call at a time before the last one checked, a new run) takes the state as the initial one.
+   With the factor 0 (-spectral_growth_bound 0, `VSHMMSpectralSetGrowthBound()`) it does
+   nothing. See docs/spectral.md for the bound of each term.
 
    Level: developer
 
