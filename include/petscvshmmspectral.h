@@ -25,6 +25,10 @@
    -spectral_velocity, -spectral_u0, -spectral_mode, -spectral_clusters, -spectral_cluster_detect, ...
    (see VSHMMSpectralSetFromOptions() and docs/spectral.md). The library writes nothing itself:
    VSHMMSpectralView() shows the scene; the examples in examples/spectral write the solutions.
+
+   VSHMMSpectralGetStableTimeStep() estimates a stable explicit Runge-Kutta step from the
+   operator's eigenvalues; VSHMMSpectralSetUpTS() also sets a TS monitor that stops a solve whose
+   solution grows beyond what the scene's terms allow (-spectral_growth_bound).
 */
 #ifndef PETSCVSHMMSPECTRAL_H
 #define PETSCVSHMMSPECTRAL_H
@@ -92,6 +96,10 @@ PETSC_EXTERN PetscErrorCode VSHMMSpectralReadGridValues(VSHMMSpectral, const cha
 PETSC_EXTERN PetscErrorCode VSHMMSpectralRHSFunction(TS, PetscReal, Vec, Vec, void *);
 PETSC_EXTERN PetscErrorCode VSHMMSpectralSetUpTS(VSHMMSpectral, TS);
 PETSC_EXTERN PetscErrorCode VSHMMSpectralEstimateTimeStep(VSHMMSpectral, PetscReal *);
+PETSC_EXTERN PetscErrorCode VSHMMSpectralGetStableTimeStep(VSHMMSpectral, TSRKType, PetscReal *);
+PETSC_EXTERN PetscErrorCode VSHMMSpectralGetSpectralRadius(VSHMMSpectral, PetscReal *, PetscReal *);
+PETSC_EXTERN PetscErrorCode VSHMMSpectralSetGrowthBound(VSHMMSpectral, PetscReal);
+PETSC_EXTERN PetscErrorCode VSHMMSpectralGrowthMonitor(TS, PetscInt, PetscReal, Vec, void *);
 PETSC_EXTERN PetscErrorCode VSHMMSpectralGetStatistics(VSHMMSpectral, VSHMMSpectralStatistics *);
 
 #endif

@@ -153,6 +153,33 @@ vshmm_example_test(NAME spectral_nonlinear_vshmm_small_vs_sparse EXE diffusion
                    REGEX "compare t 0.25 relative_l2_error")
 set_tests_properties(spectral_nonlinear_vshmm_small_vs_dns spectral_nonlinear_vshmm_small_vs_sparse PROPERTIES FIXTURES_REQUIRED spectral_nonlinear_refs)
 
+# --- stable steps from the operator (VSHMMSpectralGetStableTimeStep()) and the growth check ----
+# Without -ts_dt the examples step by 0.9 times the stable step of an Arnoldi estimate of the
+# operator's eigenvalues: reduced diffusion DNS 1.7465e-4 (largest stable RK3 step by bisection
+# 1.939e-4; the old estimate max|d| kmax^2 gave 2e-5), reduced advection sparse 3.7032e-2 (bisection
+# 4.324e-2; old 5e-3). Run to the reference times at that step: stable, and within the stated
+# tolerance of the references (measured: 9.5e-13, 8.9e-13 against the DNS at dt = 2e-5; 5.5e-3,
+# 5.4e-3, 6.2e-3 against the sparse method at dt = 1e-3).
+vshmm_example_test(NAME spectral_stable_step_diffusion_dns EXE diffusion
+                   ARGS ${_sp_diff} -compare_grid_solution ${_sp_dir}/spectral_diffusion_dns_small/dns -compare_tolerance 1e-10 -no_timing
+                   REGEX "ts_type rk 3: time step 0.00017465[0-9]*\n.*compare t 0.25 relative_l2_error")
+vshmm_example_test(NAME spectral_stable_step_advection_sparse EXE advection
+                   ARGS ${_sp_adv} ${_sp_adv_sparse} -compare_grid_solution ${_sp_dir}/spectral_advection_sparse_small/sparse -compare_tolerance 1e-2 -no_timing
+                   REGEX "ts_type rk 3: time step 0.037032[0-9]*\n.*compare t 8 relative_l2_error")
+set_tests_properties(spectral_stable_step_advection_sparse PROPERTIES FIXTURES_REQUIRED spectral_advection_refs)
+# TSVSHMM without -ts_vshmm_micro_dt: the micro step is the stable step of its inner RK3 for the
+# whole operator on the clusters (7.5395e-4; TSVSHMM's own estimate of the top level's spectral
+# radius, 2999.49, is the operator's). With the paper's savings factors 150,18,1.5 TSVSHMM's stability
+# check refuses the larger micro step and names the savings factors to lower; with 150,7,1 the error
+# against the explicit sparse method is 3.8e-3, 2.0e-3 (micro step 1e-4 and 150,18,1.5: 3.9e-3,
+# 3.5e-3) for 108 field evaluations instead of 228.
+vshmm_example_test(NAME spectral_stable_step_vshmm_micro EXE diffusion
+                   ARGS ${_sp_diff} ${_sp_diff_sparse} -ts_type vshmm -ts_dt 0.125 -ts_vshmm_savings_factors 150,7,1 -ts_vshmm_rk_type 3 -ts_vshmm_check_separation off
+                        -compare_grid_solution ${_sp_dir}/spectral_diffusion_sparse_small/sparse -compare_tolerance 6e-3 -no_timing
+                   REGEX "micro step 0.000753952,.*output t 0.25 rhs_evaluations 108 ")
+set_tests_properties(spectral_stable_step_diffusion_dns spectral_stable_step_vshmm_micro PROPERTIES FIXTURES_REQUIRED spectral_diffusion_refs)
+set_tests_properties(spectral_stable_step_diffusion_dns spectral_stable_step_advection_sparse spectral_stable_step_vshmm_micro PROPERTIES LABELS "example;spectral")
+
 # --- cluster detection (soft thresholding, lambda = 10^-2.5, unitary normalisation) ----------
 vshmm_example_test(NAME spectral_detect_dns_small EXE diffusion
                    ARGS -spectral_grid_points 256 -spectral_diffusion_coefficient_wavenumbers 16,64 -spectral_mode sparse -spectral_cluster_detect dns
@@ -208,6 +235,17 @@ _spectral_error_test(matrix_nonlinear "-spectral_evaluation matrix is for linear
 _spectral_error_test(reaction_coefficients "The term reaction needs -spectral_reaction_coefficients" -spectral_grid_points 64 -spectral_terms diffusion,reaction)
 _spectral_error_test(field_sum_unknown_form "Unknown form 'wavelet' in summand 1 of -spectral_diffusion_coefficient fourier[+]wavelet" -spectral_grid_points 64 -spectral_diffusion_coefficient fourier+wavelet)
 _spectral_error_test(output_times_order "-output_times must be increasing" -spectral_grid_points 64 -output_times 0.2,0.1)
+# a solution that grows beyond what the scene's terms allow stops the solve (issue 10): the explicit
+# RK3 step above the largest stable one (diffusion DNS 2.2e-4 > 1.939e-4; advection sparse 0.05 >
+# 4.324e-2) and TSVSHMM with an unstable micro step and its stability check off (with
+# -spectral_growth_bound 0 all three exit 0 with solutions of norm 1e1 to 1e2 and growing)
+_spectral_error_test(growth_diffusion_dns "The solution blew up at t = .* exceeds .* -spectral_growth_bound 10.? times the bound 0.446622 .*initial norm 0.446622.*stable step is 0.000174654 for TSRK3"
+                     -spectral_grid_points 256 -spectral_diffusion_coefficient_wavenumbers 16,64 -output_times 0.25 -ts_dt 2.2e-4)
+add_test(NAME spectral_error_growth_advection_sparse COMMAND ${_sp_launch} $<TARGET_FILE:advection> ${_sp_adv} ${_sp_adv_sparse} -ts_dt 0.05)
+add_test(NAME spectral_error_growth_vshmm COMMAND ${_sp_launch} $<TARGET_FILE:advection> ${_sp_adv} ${_sp_adv_sparse} ${_sp_adv_vshmm} -ts_vshmm_micro_dt 0.05 -ts_vshmm_check_stability false)
+set_tests_properties(spectral_error_growth_advection_sparse spectral_error_growth_vshmm PROPERTIES
+  PASS_REGULAR_EXPRESSION "The solution blew up at t = .* times the bound 0.999995 that the scene's terms allow" LABELS "example;spectral" TIMEOUT 60)
+_spectral_error_test(growth_bound_option "-spectral_growth_bound must be 0 \\(no check\\) or a finite factor >= 1, got 0.5" -spectral_growth_bound 0.5)
 # issue 9 (fuzzing): checked against N before anything is built; a ',' or '+' at an end refused
 _spectral_error_test(cluster_range_huge "cluster item '0:999999999' has wavenumber 999999999, outside 0..128" -spectral_grid_points 256 -spectral_mode sparse -spectral_clusters 0:999999999)
 _spectral_error_test(cluster_trailing_comma "-spectral_clusters 0:3,: .*empty cluster" -spectral_mode sparse -spectral_clusters 0:3,)

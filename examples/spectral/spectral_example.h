@@ -206,7 +206,7 @@ static PetscErrorCode SolveToOutputTimes(SpectralRun *run, TS ts, Vec U)
     PetscCheck(fabs(t - ti) <= 1e-9 * PetscMax(1.0, fabs(ti)), PETSC_COMM_WORLD, PETSC_ERR_NOT_CONVERGED, "The TS stopped at t = %.12g, not at the output time %g (%s; raise -ts_max_steps?)", (double)t, (double)ti, TSConvergedReasons[reason]);
     PetscCall(PetscTime(&w1));
     PetscCall(VecNorm(U, NORM_2, &norm));
-    PetscCheck(isfinite(norm), PETSC_COMM_WORLD, PETSC_ERR_FP, "The solution at t = %g is not finite (Inf or NaN): the time step is probably too large for the fastest retained mode (see VSHMMSpectralEstimateTimeStep(); -ts_dt, -ts_vshmm_micro_dt, -ts_vshmm_savings_factors)", (double)ti);
+    PetscCheck(isfinite(norm), PETSC_COMM_WORLD, PETSC_ERR_FP, "The solution at t = %g is not finite (Inf or NaN): the time step is probably too large for the fastest retained mode (see VSHMMSpectralGetStableTimeStep(); -ts_dt, -ts_vshmm_micro_dt, -ts_vshmm_savings_factors)", (double)ti);
     if (run->grid_prefix[0]) PetscCall(WriteGridSolution(run, U, ti, file, sizeof(file)));
     PetscCall(PrintWork(run, ti, w1 - w0, file[0] ? file : NULL));
     if (run->compare_prefix[0]) PetscCall(CompareGridSolution(run, U, ti));
@@ -257,13 +257,52 @@ static PetscErrorCode PrintStepper(TS ts)
   PetscFunctionReturn(0);
 }
 
+/* The steps the options leave open, from the operator's stable step (VSHMMSpectralGetStableTimeStep()):
+   without -ts_dt, an explicit TS steps by the stable step of its method (TSRK's type; TSRK1FE for
+   euler; TSRK3 for any other type); TSVSHMM without -ts_vshmm_micro_dt and -ts_vshmm_adapt takes
+   the stable step of its inner method as the micro step (the fastest level evaluates the whole
+   field), and without -ts_dt 100 micro steps as the sampling interval. */
+static PetscErrorCode SetDefaultSteps(SpectralRun *run, TS ts)
+{
+  PetscBool   dt_given, isvshmm, isrk, iseuler;
+  PetscReal   h, DeltaT;
+  TSRKType    rk = TSRK3;
+  const char *prefix;
+
+  PetscFunctionBeginUser;
+  PetscCall(TSGetOptionsPrefix(ts, &prefix));
+  PetscCall(PetscOptionsHasName(NULL, prefix, "-ts_dt", &dt_given));
+  PetscCall(PetscObjectTypeCompare((PetscObject)ts, TSVSHMM, &isvshmm));
+  PetscCall(PetscObjectTypeCompare((PetscObject)ts, TSRK, &isrk));
+  PetscCall(PetscObjectTypeCompare((PetscObject)ts, TSEULER, &iseuler));
+  if (isvshmm) {
+    PetscBool adapt, micro_given;
+
+    PetscCall(PetscOptionsHasName(NULL, prefix, "-ts_vshmm_micro_dt", &micro_given));
+    PetscCall(TSVSHMMGetAdapt(ts, &adapt));
+    if (micro_given || adapt) PetscFunctionReturn(0);
+    PetscCall(TSVSHMMGetRKType(ts, &rk));
+    PetscCall(VSHMMSpectralGetStableTimeStep(run->sp, rk, &h));
+    PetscCall(TSGetTimeStep(ts, &DeltaT));
+    if (!dt_given) PetscCall(TSSetTimeStep(ts, DeltaT = 100 * h));
+    PetscCall(TSVSHMMSetMicroStep(ts, PetscMin(h, DeltaT / 100)));
+    PetscFunctionReturn(0);
+  }
+  if (dt_given) PetscFunctionReturn(0);
+  if (isrk) PetscCall(TSRKGetType(ts, &rk));
+  if (iseuler) rk = TSRK1FE;
+  PetscCall(VSHMMSpectralGetStableTimeStep(run->sp, rk, &h));
+  if (PetscIsInfReal(h)) PetscFunctionReturn(0); /* no eigenvalue limits it: keep tfinal / 100 */
+  PetscCall(TSSetTimeStep(ts, h));
+  PetscFunctionReturn(0);
+}
+
 /* Runs the scene `scene` ("diffusion" or "advection") with default final time tfinal. */
 static PetscErrorCode RunSpectralExample(const char *scene, PetscReal tfinal)
 {
   SpectralRun run;
   TS          ts;
   Vec         U;
-  PetscReal   dt;
 
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(&run, sizeof(run)));
@@ -287,12 +326,12 @@ static PetscErrorCode RunSpectralExample(const char *scene, PetscReal tfinal)
   PetscCall(VSHMMSpectralSetUpTS(run.sp, ts));
   PetscCall(TSSetType(ts, TSRK));
   PetscCall(TSRKSetType(ts, TSRK3));
-  PetscCall(VSHMMSpectralEstimateTimeStep(run.sp, &dt)); /* stable for RK3; set -ts_dt for accuracy */
-  PetscCall(TSSetTimeStep(ts, dt));
+  PetscCall(TSSetTimeStep(ts, tfinal / 100)); /* replaced below unless -ts_dt is given */
   PetscCall(TSSetMaxTime(ts, tfinal));
   PetscCall(TSSetMaxSteps(ts, PETSC_MAX_INT));
   PetscCall(TSSetExactFinalTime(ts, TS_EXACTFINALTIME_MATCHSTEP));
   PetscCall(TSSetFromOptions(ts));
+  PetscCall(SetDefaultSteps(&run, ts));
   PetscCall(PrintStepper(ts));
 
   PetscCall(SolveToOutputTimes(&run, ts, U));

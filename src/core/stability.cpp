@@ -6,7 +6,21 @@
 
 namespace vshmm {
 
-StabilityFunction::StabilityFunction(const Tableau &tableau) : a_(tableau.a), b_(tableau.b), s_(tableau.stages) {}
+StabilityFunction::StabilityFunction(const Tableau &tableau) : a_(tableau.a), b_(tableau.b), s_(tableau.stages)
+{
+  // R(z) = sum_k gamma_k z^k with gamma_0 = 1, gamma_k = b^T A^(k-1) 1 (A strictly lower: k <= s).
+  std::vector<double> v(s_, 1.0), w(s_);
+  gamma_.assign(s_ + 1, 0.0);
+  gamma_[0] = 1.0;
+  for (int k = 1; k <= s_; ++k) {
+    for (int i = 0; i < s_; ++i) gamma_[k] += b_[i] * v[i];
+    for (int i = 0; i < s_; ++i) {
+      w[i] = 0;
+      for (int j = 0; j < i; ++j) w[i] += a_[i * s_ + j] * v[j];
+    }
+    v.swap(w);
+  }
+}
 
 std::complex<double> StabilityFunction::operator()(std::complex<double> z) const
 {
@@ -28,12 +42,44 @@ double StabilityFunction::rayLimit(std::complex<double> direction) const
   // A step is stable for the mode when it grows the mode no more than the exact flow does:
   // |R(z)| <= max(1, |exp(z)|). For Re z <= 0 that is the usual |R(z)| <= 1; a growing mode
   // (Re z > 0, e.g. a slightly unstable oscillation) may grow by its own exp(Re z).
-  auto stable = [&](double x) { return std::abs((*this)(x * d)) <= std::max(1.0, std::exp(x * d.real())) * (1.0 + tol); };
+  auto stable = [&](double x) { return std::abs((*this)(x * d)) <= (d.real() > 0 ? std::max(1.0, std::exp(x * d.real())) : 1.0) * (1.0 + tol); };
   // Scan outwards in steps small against the size of any stability region of an explicit method,
-  // then bisect the first crossing.
+  // then bisect the first crossing. |R(x d)|^2 = sum_n c_n x^n is a polynomial in x: where it is
+  // below the bound (at least its value at x, the bound does not decrease) by a margin m, it cannot
+  // reach it within m / L, L = sum_n n |c_n| (x + c)^(n-1) bounding its derivative on [x, x + c];
+  // such a step is taken at once, so only the approach to the crossing costs fine steps.
+  std::vector<double> c(2 * gamma_.size() - 1, 0.0);
+  {
+    std::vector<std::complex<double>> a(gamma_.size());
+    std::complex<double>              dk = 1.0;
+    for (size_t k = 0; k < gamma_.size(); ++k, dk *= d) a[k] = gamma_[k] * dk;
+    for (size_t j = 0; j < a.size(); ++j)
+      for (size_t k = 0; k < a.size(); ++k) c[j + k] += (a[j] * std::conj(a[k])).real();
+  }
+  auto square = [&](double x) { // |R(x d)|^2 - 1 by Horner, c_0 = 1 left out
+    double p = 0;
+    for (size_t n = c.size() - 1; n >= 1; --n) p = (p + c[n]) * x;
+    return p;
+  };
+  auto slope = [&](double r) {
+    double L = 0, q = 1;
+    for (size_t n = 1; n < c.size(); ++n, q *= r) L += n * std::fabs(c[n]) * q;
+    return L;
+  };
   const double dx = 1e-3;
   double       x  = 0.0;
-  while (x < kMaxRadius && stable(x + dx)) x += dx;
+  while (x < kMaxRadius) {
+    const double margin = (d.real() > 0 ? std::exp(2 * x * d.real()) : 1.0) - 1.0 - square(x);
+    double       leap   = 0;
+    if (margin > 0)
+      for (double cap : {0.25 * x + dx, x + dx, 1.0}) leap = std::max(leap, std::min(cap, margin / slope(x + cap)));
+    if (leap > dx) {
+      x = std::min(x + leap, kMaxRadius);
+      continue;
+    }
+    if (!stable(x + dx)) break;
+    x += dx;
+  }
   if (x >= kMaxRadius) return kMaxRadius;
   double lo = x, hi = x + dx;
   for (int it = 0; it < 60; ++it) {

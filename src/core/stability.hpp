@@ -34,6 +34,7 @@ public:
 private:
   std::vector<double> a_, b_;
   int                 s_;
+  std::vector<double> gamma_; // R(z) = sum_k gamma_k z^k
 };
 
 // What the steps of one level do to a linear mode y' = lambda y over one macro step of

@@ -10,7 +10,7 @@
 #include <sstream>
 
 PetscClassId  VSHMMSPECTRAL_CLASSID = 0;
-PetscLogEvent VSHMMSPECTRAL_SetUp, VSHMMSPECTRAL_RHS, VSHMMSPECTRAL_Split, VSHMMSPECTRAL_Physical, VSHMMSPECTRAL_ForwardFFT, VSHMMSPECTRAL_ProjDirect, VSHMMSPECTRAL_MatVec;
+PetscLogEvent VSHMMSPECTRAL_SetUp, VSHMMSPECTRAL_RHS, VSHMMSPECTRAL_Split, VSHMMSPECTRAL_Physical, VSHMMSPECTRAL_ForwardFFT, VSHMMSPECTRAL_ProjDirect, VSHMMSPECTRAL_MatVec, VSHMMSPECTRAL_Eigen, VSHMMSPECTRAL_Growth;
 
 const char *const VSHMMSpectralModes[]          = {"dns", "sparse", "VSHMMSpectralMode", "VSHMMSPECTRAL_MODE_", nullptr};
 const char *const VSHMMSpectralDetects[]        = {"none", "initial", "dns", "file", "VSHMMSpectralDetect", "VSHMMSPECTRAL_DETECT_", nullptr};
@@ -67,6 +67,8 @@ PetscErrorCode VSHMMSpectralInitializePackage(void)
   PetscCall(PetscLogEventRegister("SpecForwardFFT", VSHMMSPECTRAL_CLASSID, &VSHMMSPECTRAL_ForwardFFT));
   PetscCall(PetscLogEventRegister("SpecProjDirect", VSHMMSPECTRAL_CLASSID, &VSHMMSPECTRAL_ProjDirect));
   PetscCall(PetscLogEventRegister("SpecMatVec", VSHMMSPECTRAL_CLASSID, &VSHMMSPECTRAL_MatVec));
+  PetscCall(PetscLogEventRegister("SpecEigen", VSHMMSPECTRAL_CLASSID, &VSHMMSPECTRAL_Eigen));
+  PetscCall(PetscLogEventRegister("SpecGrowth", VSHMMSPECTRAL_CLASSID, &VSHMMSPECTRAL_Growth));
   PetscCall(PetscRegisterFinalize(VSHMMSpectralFinalizePackage));
   PetscFunctionReturn(0);
 }

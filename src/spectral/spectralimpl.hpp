@@ -19,6 +19,9 @@
 
 #include "detect.hpp"
 #include "spectral.hpp"
+#include "stable.hpp"
+
+#include <complex>
 
 #include <exception>
 #include <memory>
@@ -103,10 +106,11 @@ struct VSHMMSpectral_Data {
   spc::Normalization       norm = spc::Normalization::Unitary;
   std::vector<PetscReal>   detect_times;
   std::string              detect_file;
-  PetscReal                detect_dt  = 0;
-  VSHMMSpectralProjection  projection = VSHMMSPECTRAL_PROJECTION_AUTO;
-  VSHMMSpectralEvaluation  evaluation = VSHMMSPECTRAL_EVALUATION_FFT;
-  VSHMMSpectralPlanner     planner    = VSHMMSPECTRAL_PLANNER_MEASURE;
+  PetscReal                detect_dt     = 0;
+  VSHMMSpectralProjection  projection    = VSHMMSPECTRAL_PROJECTION_AUTO;
+  VSHMMSpectralEvaluation  evaluation    = VSHMMSPECTRAL_EVALUATION_FFT;
+  VSHMMSpectralPlanner     planner       = VSHMMSPECTRAL_PLANNER_ESTIMATE;
+  PetscReal                growth_factor = 10; /* -spectral_growth_bound (0: no check) */
 
   /* set-up */
   spc::ClusterSet                        clusters;
@@ -129,6 +133,15 @@ struct VSHMMSpectral_Data {
   double           direct_spent = 0;
 
   VSHMMSpectralStatistics stats = {};
+
+  /* stable steps and the growth check (spectralstable.cpp) */
+  PetscBool                         ritz_done = PETSC_FALSE; /* ritz holds the estimate of this set-up */
+  std::vector<std::complex<double>> ritz;                    /* Ritz values of the operator's Jacobian at u0 */
+  PetscReal                         radius_bound = 0;        /* max|D| kmax^2 + max|A| kmax */
+  std::vector<double>               weights;                 /* Parseval weights of the layout's reals */
+  PetscBool                         growth_started = PETSC_FALSE, growth_needs_max = PETSC_FALSE;
+  spc::GrowthBound                  growth;
+  PetscReal                         growth_max = 0; /* max|u| on the grid at the last check */
 };
 
 typedef struct _VSHMMSpectralOps *VSHMMSpectralOps;
@@ -143,7 +156,7 @@ struct _p_VSHMMSpectral {
 };
 
 /* log events (registered by VSHMMSpectralInitializePackage()) */
-PETSC_INTERN PetscLogEvent VSHMMSPECTRAL_SetUp, VSHMMSPECTRAL_RHS, VSHMMSPECTRAL_Split, VSHMMSPECTRAL_Physical, VSHMMSPECTRAL_ForwardFFT, VSHMMSPECTRAL_ProjDirect, VSHMMSPECTRAL_MatVec;
+PETSC_INTERN PetscLogEvent VSHMMSPECTRAL_SetUp, VSHMMSPECTRAL_RHS, VSHMMSPECTRAL_Split, VSHMMSPECTRAL_Physical, VSHMMSPECTRAL_ForwardFFT, VSHMMSPECTRAL_ProjDirect, VSHMMSPECTRAL_MatVec, VSHMMSPECTRAL_Eigen, VSHMMSPECTRAL_Growth;
 
 /* The options prefix of sp ("" without one), for error messages that name an option. */
 static inline const char *VSHMMSpectralPrefix(VSHMMSpectral sp)
@@ -161,8 +174,10 @@ PETSC_INTERN PetscErrorCode VSHMMSpectralReadGridFile_Private(MPI_Comm, const ch
 PETSC_INTERN PetscErrorCode VSHMMSpectralBuildCoefficients_Private(VSHMMSpectral, std::vector<double> &, std::vector<double> &);
 /* The terms burgers, reaction and source of the scene on the grid (empty fields for absent terms). */
 PETSC_INTERN PetscErrorCode VSHMMSpectralBuildExtraTerms_Private(VSHMMSpectral, spc::ExtraTerms &);
-/* A stable explicit RK3 step for the modes up to kmax. */
-PETSC_INTERN double VSHMMSpectralStableStep_Private(const std::vector<double> &, const std::vector<double> &, int);
+/* spectralstable.cpp: the Ritz values of op's Jacobian at the coefficients c0 (Arnoldi), and the
+   stable step of a TSRK type for them (0.9 times the largest; PETSC_INFINITY if none limits it). */
+PETSC_INTERN PetscErrorCode VSHMMSpectralRitzValues_Private(MPI_Comm, spc::SpectralOperator &, const std::vector<double> &, std::vector<std::complex<double>> &);
+PETSC_INTERN PetscErrorCode VSHMMSpectralStableStepOf_Private(MPI_Comm, const std::vector<std::complex<double>> &, TSRKType, PetscReal *);
 /* The whole state on every rank (the Vec's own array on one rank, a gathered copy otherwise). */
 PETSC_INTERN PetscErrorCode VSHMMSpectralGetCoefficients_Private(VSHMMSpectral, Vec, const PetscScalar **);
 PETSC_INTERN PetscErrorCode VSHMMSpectralRestoreCoefficients_Private(VSHMMSpectral, Vec, const PetscScalar **);

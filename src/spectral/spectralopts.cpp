@@ -249,7 +249,8 @@ static PetscErrorCode CheckOptions(VSHMMSpectral sp)
 .  -spectral_cluster_detect_file <file> - grid file to threshold (-spectral_cluster_detect file)
 .  -spectral_evaluation <fft,matrix> - pseudo-spectral with FFTW, or the dense operator on the retained modes
 .  -spectral_projection <auto,fft,direct> - how a split gets its cluster's coefficients
--  -spectral_fftw_planner <estimate,measure,patient> - FFTW planning
+.  -spectral_fftw_planner <estimate,measure,patient> - FFTW planning (default estimate)
+-  -spectral_growth_bound <factor> - stop a solve whose solution grows beyond factor times what the scene's terms allow (default 10; 0: no check)
 
    Notes:
    Naming a field's form starts the field from that form's defaults: every parameter left out is
@@ -300,6 +301,9 @@ PetscErrorCode VSHMMSpectralSetFromOptions(VSHMMSpectral sp)
   PetscCall(OptionsEnum(PetscOptionsObject, sp, "-spectral_evaluation", "fft or matrix", VSHMMSpectralEvaluations, &s->evaluation, &set));
   PetscCall(OptionsEnum(PetscOptionsObject, sp, "-spectral_projection", "auto, fft or direct", VSHMMSpectralProjections, &s->projection, &set));
   PetscCall(OptionsEnum(PetscOptionsObject, sp, "-spectral_fftw_planner", "FFTW planning rigour", VSHMMSpectralPlanners, &s->planner, &set));
+  PetscCall(OptionsReal(PetscOptionsObject, sp, "-spectral_growth_bound", "stop a solve whose solution norm exceeds this factor times the bound of the scene's terms (0: no check)", &s->growth_factor));
+  PetscCheck(std::isfinite(s->growth_factor) && (s->growth_factor == 0 || s->growth_factor >= 1), PetscObjectComm((PetscObject)sp), PETSC_ERR_ARG_OUTOFRANGE, "-%sspectral_growth_bound must be 0 (no check) or a finite factor >= 1, got %g", VSHMMSpectralPrefix(sp),
+             (double)s->growth_factor);
   PetscCall(PetscObjectProcessOptionsHandlers((PetscObject)sp, PetscOptionsObject));
   PetscOptionsEnd();
   PetscCall(CheckOptions(sp));

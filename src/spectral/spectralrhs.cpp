@@ -87,6 +87,7 @@ PetscErrorCode VSHMMSpectralSetInitialCondition(VSHMMSpectral sp, Vec U)
   PetscCall(VecGetArray(U, &x));
   for (PetscInt i = lo; i < hi; ++i) x[i - lo] = c[i];
   PetscCall(VecRestoreArray(U, &x));
+  sp->data->growth_started = PETSC_FALSE; /* the growth check starts from this state */
   PetscFunctionReturn(0);
 }
 
@@ -349,6 +350,8 @@ static PetscErrorCode SplitRHS(TS ts, PetscReal t, Vec U, Vec F, void *ctx)
    full-size vector (zeros outside cluster j): the splits add up to the full right-hand side.
    The physical-space field of a state is computed once and shared by the splits called with
    that state (same Vec, object state and time), as TSVSHMM does on each level.
+   It also sets the TS monitor `VSHMMSpectralGrowthMonitor()`, which stops the solve with an error
+   when the solution grows beyond what the scene's terms allow (-spectral_growth_bound; 0: never).
 
    Level: beginner
 
@@ -366,6 +369,7 @@ PetscErrorCode VSHMMSpectralSetUpTS(VSHMMSpectral sp, TS ts)
   PetscCall(VSHMMSpectralSetUp(sp));
   s = sp->data;
   PetscCall(TSSetRHSFunction(ts, NULL, VSHMMSpectralRHSFunction, sp));
+  PetscCall(TSMonitorSet(ts, VSHMMSpectralGrowthMonitor, sp, NULL)); /* the growth check, spectralstable.cpp */
   if (s->mode != VSHMMSPECTRAL_MODE_SPARSE) PetscFunctionReturn(0);
   PetscCall(TSGetSolution(ts, &U));
   PetscCheck(U, PetscObjectComm((PetscObject)sp), PETSC_ERR_ARG_WRONGSTATE, "VSHMMSpectralSetUpTS(): call TSSetSolution() first");

@@ -62,18 +62,6 @@ static PetscErrorCode DetectRHS(TS ts, PetscReal t, Vec U, Vec F, void *ctx)
   PetscFunctionReturn(0);
 }
 
-/* A stable explicit step for 3-stage Runge-Kutta: 1 / (max|d| kmax^2 + max|a| kmax), rounded down to 1, 2 or 5 times a power of ten. */
-double VSHMMSpectralStableStep_Private(const std::vector<double> &D, const std::vector<double> &A, int kmax)
-{
-  double md = 0, ma = 0;
-  for (double d : D) md = std::max(md, std::fabs(d));
-  for (double a : A) ma = std::max(ma, std::fabs(a));
-  const double rho = md * kmax * (double)kmax + ma * kmax;
-  if (!(rho > 0)) return 1e-2;
-  const double dt = 1.0 / rho, p = std::pow(10.0, std::floor(std::log10(dt))), m = dt / p;
-  return (m >= 5 ? 5 : m >= 2 ? 2 : 1) * p;
-}
-
 /* Snapshots |c_k| (k = 0..N/2) of a short direct simulation on every rank (PETSC_COMM_SELF), TS
    options prefix <prefix>spectral_cluster_detect_. */
 static PetscErrorCode DetectionDNS(VSHMMSpectral sp, const std::vector<double> &D, const std::vector<double> &A, const std::vector<double> &u0, std::vector<std::vector<double>> &mags)
@@ -84,7 +72,7 @@ static PetscErrorCode DetectionDNS(VSHMMSpectral sp, const std::vector<double> &
   Vec                 U;
   TS                  ts;
   PetscScalar        *u;
-  const double        dt = s->detect_dt > 0 ? s->detect_dt : VSHMMSpectralStableStep_Private(D, A, spc::maxWavenumber((int)s->N));
+  PetscReal           dt = s->detect_dt;
 
   PetscFunctionBegin;
   PetscCheck(!s->detect_times.empty(), PetscObjectComm((PetscObject)sp), PETSC_ERR_ARG_WRONGSTATE, "-%sspectral_cluster_detect dns needs -%sspectral_cluster_detect_times t1,t2,...: the snapshot times of the short direct simulation", VSHMMSpectralPrefix(sp), VSHMMSpectralPrefix(sp));
@@ -93,6 +81,11 @@ static PetscErrorCode DetectionDNS(VSHMMSpectral sp, const std::vector<double> &
   PetscCall(VecCreateSeq(PETSC_COMM_SELF, full.size(), &U));
   PetscCall(VecGetArray(U, &u));
   op.analyze(u0.data(), u);
+  if (!(dt > 0)) { /* the operator's stable RK3 step (spectralstable.cpp) */
+    std::vector<std::complex<double>> ritz;
+    PetscCall(VSHMMSpectralRitzValues_Private(PETSC_COMM_SELF, op, std::vector<double>(u, u + full.size()), ritz));
+    PetscCall(VSHMMSpectralStableStepOf_Private(PETSC_COMM_SELF, ritz, TSRK3, &dt));
+  }
   PetscCall(VecRestoreArray(U, &u));
   PetscCall(TSCreate(PETSC_COMM_SELF, &ts));
   PetscCall(TSSetOptionsPrefix(ts, ((PetscObject)sp)->prefix));
@@ -301,38 +294,12 @@ PetscErrorCode VSHMMSpectralSetUp(VSHMMSpectral sp)
   s->modes.assign(s->layout->modes().begin(), s->layout->modes().end());
   s->out.assign(s->layout->size(), 0.0);
   PetscCall(CalibrateProjection(sp));
-  s->cache_valid  = PETSC_FALSE;
-  s->stats        = VSHMMSpectralStatistics();
-  sp->setupcalled = PETSC_TRUE;
+  s->cache_valid    = PETSC_FALSE;
+  s->stats          = VSHMMSpectralStatistics();
+  s->weights        = spc::parsevalWeights(*s->layout); /* spectralstable.cpp */
+  s->ritz_done      = PETSC_FALSE;
+  s->growth_started = PETSC_FALSE;
+  sp->setupcalled   = PETSC_TRUE;
   PetscCall(PetscLogEventEnd(VSHMMSPECTRAL_SetUp, sp, 0, 0, 0));
-  PetscFunctionReturn(0);
-}
-
-/*@C
-   VSHMMSpectralEstimateTimeStep - A stable step of a 3-stage explicit Runge-Kutta method for the
-   retained modes: 1 / (max|d| kmax^2 + max|a| kmax), rounded down to 1, 2 or 5 times a power of 10
-
-   Collective (sets the object up if needed)
-
-   Input Parameter:
-.  sp - the object
-
-   Output Parameter:
-.  dt - the step
-
-   Level: intermediate
-
-.seealso: `VSHMMSpectralSetUp()`
-@*/
-PetscErrorCode VSHMMSpectralEstimateTimeStep(VSHMMSpectral sp, PetscReal *dt)
-{
-  std::vector<double> D, A;
-
-  PetscFunctionBegin;
-  PetscValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
-  PetscValidRealPointer(dt, 2);
-  PetscCall(VSHMMSpectralSetUp(sp));
-  PetscCall(VSHMMSpectralBuildCoefficients_Private(sp, D, A));
-  *dt = VSHMMSpectralStableStep_Private(D, A, sp->data->layout->modes().back());
   PetscFunctionReturn(0);
 }

@@ -344,3 +344,25 @@ TEST(VSHMMSpectralObject, IsAPetscObject)
   EXPECT_EQ(id, VSHMMSPECTRAL_CLASSID);
   EXPECT_CONTAINS(s.view(), "scene: N = 32 grid points");
 }
+
+// Constant d = 0.5 on every mode of N = 64: the eigenvalues are -0.5 k^2, k = 0..31 (the Nyquist
+// mode's derivative is zero), so the spectral radius is 480.5 and the bound max|d| kmax^2 = 512;
+// RK3's real-axis limit is 2.5127453266, RK4's 2.7852935634: the step is 0.9 of that / 480.5.
+TEST(VSHMMSpectralStableStep, ConstantDiffusionHasItsExactStep)
+{
+  Scene     s("-spectral_grid_points 64 -spectral_diffusion_coefficient constant -spectral_diffusion_coefficient_value 0.5");
+  PetscReal radius = 0, bound = 0, dt3 = 0, dt4 = 0, dtold = 0;
+  ASSERT_EQ(s.error(), "");
+  ASSERT_EQ(VSHMMSpectralGetSpectralRadius(s.sp, &radius, &bound), 0);
+  EXPECT_NEAR(radius, 480.5, 1e-6 * 480.5);
+  EXPECT_NEAR(bound, 512.0, 1e-12);
+  ASSERT_EQ(VSHMMSpectralGetStableTimeStep(s.sp, TSRK3, &dt3), 0);
+  ASSERT_EQ(VSHMMSpectralGetStableTimeStep(s.sp, TSRK4, &dt4), 0);
+  ASSERT_EQ(VSHMMSpectralEstimateTimeStep(s.sp, &dtold), 0);
+  EXPECT_NEAR(dt3, 0.9 * 2.5127453266 / 480.5, 1e-6 * dt3);
+  EXPECT_NEAR(dt4, 0.9 * 2.7852935634 / 480.5, 1e-6 * dt4);
+  EXPECT_EQ(dtold, dt3);
+  PetscPushErrorHandler(PetscReturnErrorHandler, nullptr);
+  EXPECT_EQ(VSHMMSpectralSetGrowthBound(s.sp, 0.5), PETSC_ERR_ARG_OUTOFRANGE); // 0 or >= 1
+  PetscPopErrorHandler();
+}

@@ -1,0 +1,359 @@
+/*
+  VSHMMSpectral: stable time steps from the operator's eigenvalues and the growth check.
+
+  Stable steps: kArnoldiSteps Arnoldi steps on the Jacobian of F at the initial state (applied
+  by finite differences of the operator, so a nonlinear term is linearised there; for the linear
+  terms it is the operator itself) in the Parseval inner product, in which the diffusion
+  operator is symmetric. The Ritz values approximate the extreme eigenvalues from inside, so the
+  step for a Runge-Kutta method, the largest h with h lambda in its stability region for every
+  Ritz value lambda (growing modes, Re lambda > 0.1 |lambda|, left out as TSVSHMM does), is
+  scaled by kSafety. Computed once per set-up (a few dozen operator applications) and shared by
+  every call.
+
+  Growth check: a TS monitor (set by VSHMMSpectralSetUpTS()) compares, every kGrowthInterval
+  steps and at the final time, the root-mean-square norm of the state (Parseval) with
+  growth_factor times the a-priori bound of the scene's terms (GrowthModel in
+  src/core/spectral/stable.hpp) and stops the solve with an error above it.
+*/
+#include "spectralimpl.hpp"
+
+#include <petscblaslapack.h>
+
+#include "stability.hpp"
+
+#include <cmath>
+
+static constexpr int       kArnoldiSteps   = 40;
+static constexpr PetscReal kSafety         = 0.9;
+static constexpr PetscReal kGrowingMode    = 0.1; /* Re lambda > this |lambda|: a growing mode, not limiting */
+static constexpr PetscInt  kGrowthInterval = 8;   /* the growth check looks at every 8th step */
+
+PetscErrorCode VSHMMSpectralRitzValues_Private(MPI_Comm comm, spc::SpectralOperator &op, const std::vector<double> &c0, std::vector<std::complex<double>> &ritz)
+{
+  const int                 n       = op.layout().size();
+  const std::vector<double> weights = spc::parsevalWeights(op.layout());
+  std::vector<double>       F0(n), cp(n), Fp(n);
+
+  PetscFunctionBegin;
+  const spc::SpectralOperator::Counters saved = op.counters();
+  op.apply(c0.data(), F0.data());
+  double norm = 0;
+  for (int i = 0; i < n; ++i) norm += weights[i] * c0[i] * c0[i];
+  const double delta = std::sqrt(PETSC_MACHINE_EPSILON) * (1.0 + std::sqrt(norm)); /* the start and Krylov vectors have unit norm */
+  /* J v ~ (F(c0 + delta v) - F(c0)) / delta */
+  spc::ArnoldiResult ar = spc::arnoldi(
+    [&](const double *v, double *w) {
+      for (int i = 0; i < n; ++i) cp[i] = c0[i] + delta * v[i];
+      op.apply(cp.data(), Fp.data());
+      for (int i = 0; i < n; ++i) w[i] = (Fp[i] - F0[i]) / delta;
+    },
+    weights, kArnoldiSteps);
+  op.counters() = saved;
+  PetscCheck(ar.finite, comm, PETSC_ERR_FP, "The spectral operator is not finite near the initial state: no stable time step can be estimated");
+  ritz.clear();
+  if (ar.k > 0) {
+    std::vector<PetscScalar> work(8 * ar.k + 8);
+    std::vector<PetscReal>   wr(ar.k), wi(ar.k);
+    PetscBLASInt             k, lwork = (PetscBLASInt)work.size(), one = 1, info;
+    PetscCall(PetscBLASIntCast(ar.k, &k));
+    PetscCallBLAS("LAPACKgeev", LAPACKgeev_("N", "N", &k, ar.H.data(), &k, wr.data(), wi.data(), nullptr, &one, nullptr, &one, work.data(), &lwork, &info));
+    PetscCheck(!info, comm, PETSC_ERR_LIB, "LAPACK geev failed (info %d) on the Arnoldi matrix of the spectral operator", (int)info);
+    for (int i = 0; i < ar.k; ++i) ritz.emplace_back(wr[i], wi[i]);
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The Ritz values of the Jacobian of F at the initial state (cached until the next set-up). */
+static PetscErrorCode OperatorRitzValues(VSHMMSpectral sp)
+{
+  VSHMMSpectral_Data *s = sp->data;
+  std::vector<double> D, A, u0, c0;
+
+  PetscFunctionBegin;
+  PetscCall(VSHMMSpectralSetUp(sp));
+  if (s->ritz_done) PetscFunctionReturn(0);
+  PetscCall(PetscLogEventBegin(VSHMMSPECTRAL_Eigen, sp, 0, 0, 0));
+  PetscCall(VSHMMSpectralBuildCoefficients_Private(sp, D, A));
+  s->radius_bound = spc::spectralRadiusBound(D, A, s->layout->modes().back());
+  PetscCall(VSHMMSpectralSampleField_Private(sp, "u0", s->u0, u0));
+  c0.resize(s->layout->size());
+  s->op->analyze(u0.data(), c0.data());
+  PetscCall(VSHMMSpectralRitzValues_Private(PetscObjectComm((PetscObject)sp), *s->op, c0, s->ritz));
+  s->cache_valid = PETSC_FALSE; /* the operator's buffers were used */
+  s->ritz_done   = PETSC_TRUE;
+  PetscCall(PetscLogEventEnd(VSHMMSPECTRAL_Eigen, sp, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/* The Butcher tableau of a TSRK type. */
+static PetscErrorCode RKTableau(MPI_Comm comm, TSRKType type, std::unique_ptr<vshmm::Tableau> &tab)
+{
+  TS               rk;
+  PetscInt         s, p;
+  const PetscReal *a, *b, *c;
+
+  PetscFunctionBegin;
+  PetscCall(TSCreate(PETSC_COMM_SELF, &rk));
+  PetscCall(TSSetType(rk, TSRK));
+  PetscCall(TSRKSetType(rk, type));
+  PetscCall(TSRKGetTableau(rk, &s, &a, &b, &c, nullptr, nullptr, nullptr, nullptr));
+  PetscCall(TSRKGetOrder(rk, &p));
+  try {
+    tab = std::make_unique<vshmm::Tableau>(type, (int)p, (int)s, std::vector<double>(a, a + s * s), std::vector<double>(b, b + s), std::vector<double>(c, c + s));
+  } catch (const std::exception &e) {
+    PetscCall(TSDestroy(&rk));
+    SETERRQ(comm, PETSC_ERR_ARG_WRONG, "TSRK type %s: %s", type, e.what());
+  }
+  PetscCall(TSDestroy(&rk));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode VSHMMSpectralStableStepOf_Private(MPI_Comm comm, const std::vector<std::complex<double>> &ritz, TSRKType type, PetscReal *dt)
+{
+  std::unique_ptr<vshmm::Tableau> tab;
+
+  PetscFunctionBegin;
+  PetscCall(RKTableau(comm, type, tab));
+  const vshmm::StabilityFunction R(*tab);
+  double                         h = PETSC_INFINITY;
+  for (const std::complex<double> &lambda : ritz) {
+    if (std::abs(lambda) == 0 || lambda.real() > kGrowingMode * std::abs(lambda)) continue;
+    h = std::min(h, R.largestStableStep(lambda));
+  }
+  *dt = std::isfinite(h) ? kSafety * h : PETSC_INFINITY;
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   VSHMMSpectralGetStableTimeStep - A stable step of an explicit Runge-Kutta method for the
+   scene's operator on the retained modes (every mode in mode dns), from an estimate of its
+   extreme eigenvalues
+
+   Collective (sets the object up if needed)
+
+   Input Parameters:
++  sp - the object
+-  type - a TSRK type (TSRK3, TSRK4, ...)
+
+   Output Parameter:
+.  dt - the step (PETSC_INFINITY if no eigenvalue limits it)
+
+   Notes:
+   Forty Arnoldi steps on the operator's Jacobian at the initial state (finite differences of the
+   operator; the linear terms are exact) give Ritz values lambda; dt is 0.9 times the largest h
+   with h lambda in the method's stability region for every Ritz value that does not grow
+   (Re lambda <= 0.1 |lambda|). The estimate is made once per set-up (about 40 operator
+   evaluations) and shared by later calls for any type. On the paper's scenes and the reduced test
+   scenes dt lies between 0.7 and 0.9 times the largest stable RK3 step found by bisection
+   (docs/spectral.md). The step of the whole operator is also the bound of TSVSHMM's micro step
+   (the fastest level evaluates the whole field).
+
+   Level: intermediate
+
+.seealso: `VSHMMSpectralGetSpectralRadius()`, `VSHMMSpectralSetUp()`, `TSVSHMMSetMicroStep()`
+@*/
+PetscErrorCode VSHMMSpectralGetStableTimeStep(VSHMMSpectral sp, TSRKType type, PetscReal *dt)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
+  PetscValidCharPointer(type, 2);
+  PetscValidRealPointer(dt, 3);
+  PetscCall(OperatorRitzValues(sp));
+  PetscCall(VSHMMSpectralStableStepOf_Private(PetscObjectComm((PetscObject)sp), sp->data->ritz, type, dt));
+  double radius = 0;
+  for (const std::complex<double> &lambda : sp->data->ritz) radius = std::max(radius, std::abs(lambda));
+  PetscCall(PetscInfo(sp, "stable step of TSRK %s: %g (spectral radius estimate %g, bound %g)\n", type, (double)*dt, radius, (double)sp->data->radius_bound));
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   VSHMMSpectralGetSpectralRadius - The estimated spectral radius of the operator on the retained
+   modes (the largest Ritz value of `VSHMMSpectralGetStableTimeStep()`) and an upper bound of it
+
+   Collective (sets the object up if needed)
+
+   Input Parameter:
+.  sp - the object
+
+   Output Parameters:
++  radius - the estimate (from inside: at most the true spectral radius), or NULL
+-  bound - max|d| kmax^2 + max|a| kmax, kmax the largest retained wavenumber: a bound on the
+           operator's norm, so on every eigenvalue, or NULL
+
+   Level: intermediate
+
+.seealso: `VSHMMSpectralGetStableTimeStep()`
+@*/
+PetscErrorCode VSHMMSpectralGetSpectralRadius(VSHMMSpectral sp, PetscReal *radius, PetscReal *bound)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
+  PetscCall(OperatorRitzValues(sp));
+  if (radius) {
+    *radius = 0;
+    for (const std::complex<double> &l : sp->data->ritz) *radius = PetscMax(*radius, std::abs(l));
+  }
+  if (bound) *bound = sp->data->radius_bound;
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   VSHMMSpectralEstimateTimeStep - A stable step of the 3-stage Runge-Kutta method TSRK3 for the
+   retained modes: `VSHMMSpectralGetStableTimeStep()` with TSRK3
+
+   Collective (sets the object up if needed)
+
+   Input Parameter:
+.  sp - the object
+
+   Output Parameter:
+.  dt - the step
+
+   Level: intermediate
+
+.seealso: `VSHMMSpectralGetStableTimeStep()`
+@*/
+PetscErrorCode VSHMMSpectralEstimateTimeStep(VSHMMSpectral sp, PetscReal *dt)
+{
+  PetscFunctionBegin;
+  PetscCall(VSHMMSpectralGetStableTimeStep(sp, TSRK3, dt));
+  PetscFunctionReturn(0);
+}
+
+/* The growth model of the scene's terms. */
+static PetscErrorCode SceneGrowthModel(VSHMMSpectral sp, spc::GrowthModel &model)
+{
+  VSHMMSpectral_Data *s = sp->data;
+  std::vector<double> D, A;
+
+  PetscFunctionBegin;
+  PetscCall(VSHMMSpectralBuildCoefficients_Private(sp, D, A));
+  model = spc::GrowthModel();
+  if (!D.empty()) model.addDiffusion(D, s->layout->modes().back());
+  if (!A.empty()) {
+    for (double &a : A) a = -a; /* the velocity */
+    model.addAdvection(A);
+  }
+  spc::ExtraTerms extra;
+  PetscCall(VSHMMSpectralBuildExtraTerms_Private(sp, extra));
+  if (!extra.burgers.empty()) model.addBurgers(extra.burgers);
+  if (!extra.rate.empty()) model.addReaction(extra.rate, extra.reaction);
+  if (!extra.source.empty()) model.addSource(extra.source);
+  PetscFunctionReturn(0);
+}
+
+/* The root-mean-square norm of a state (Parseval) and, if wanted, max|u| on the grid. */
+static PetscErrorCode StateNorms(VSHMMSpectral sp, Vec U, PetscReal *norm, PetscReal *maxu)
+{
+  VSHMMSpectral_Data *s = sp->data;
+  const PetscScalar  *x;
+  PetscInt            lo, hi;
+  PetscReal           sum = 0;
+
+  PetscFunctionBegin;
+  PetscCall(VecGetOwnershipRange(U, &lo, &hi));
+  PetscCall(VecGetArrayRead(U, &x));
+  for (PetscInt i = lo; i < hi; ++i) sum += s->weights[i] * PetscRealPart(x[i - lo] * x[i - lo]);
+  PetscCall(VecRestoreArrayRead(U, &x));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &sum, 1, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)sp)));
+  *norm = std::sqrt(sum);
+  if (maxu) {
+    std::vector<PetscReal> u(s->N);
+    PetscCall(VSHMMSpectralGetGridValues(sp, U, u.data()));
+    *maxu = 0;
+    for (PetscReal v : u) *maxu = PetscMax(*maxu, PetscAbsReal(v)); /* NaN stays out: the norm catches it */
+  }
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   VSHMMSpectralGrowthMonitor - The TS monitor of the growth check (set by `VSHMMSpectralSetUpTS()`):
+   stops the solve with an error when the solution's norm exceeds the bound of the scene's terms
+   times the growth factor
+
+   Collective
+
+   Input Parameters:
++  ts - the TS
+.  step - the step number
+.  t - the time
+.  U - the state
+-  ctx - the VSHMMSpectral
+
+   Notes:
+   The norm is the root mean square of u over the grid (Parseval on the retained coefficients),
+   checked at every 8th step and at the TS's final time (a blow-up grows geometrically, so a few
+   steps later is as good; the check costs one pass over the state). The first call (and any
+   call at a time before the last one checked, a new run) takes the state as the initial one.
+   With the factor 0 (-spectral_growth_bound 0, `VSHMMSpectralSetGrowthBound()`) it does
+   nothing. See docs/spectral.md for the bound of each term.
+
+   Level: developer
+
+.seealso: `VSHMMSpectralSetGrowthBound()`, `VSHMMSpectralSetUpTS()`
+@*/
+PetscErrorCode VSHMMSpectralGrowthMonitor(TS ts, PetscInt step, PetscReal t, Vec U, void *ctx)
+{
+  VSHMMSpectral       sp = (VSHMMSpectral)ctx;
+  VSHMMSpectral_Data *s;
+  spc::GrowthModel    model;
+  PetscReal           norm, maxu = 0;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 5);
+  s = sp->data;
+  if (s->growth_factor <= 0) PetscFunctionReturn(0);
+  if (s->growth_started && t >= s->growth.time() && step % kGrowthInterval) { /* checked every few steps, and at the end of a solve */
+    PetscReal tmax;
+    PetscCall(TSGetMaxTime(ts, &tmax));
+    if (t < tmax - 1e-12 * PetscMax(1.0, PetscAbsReal(tmax))) PetscFunctionReturn(0);
+  }
+  if (!s->growth_started || t < s->growth.time()) {
+    PetscCall(SceneGrowthModel(sp, model));
+    PetscCall(StateNorms(sp, U, &norm, &maxu));
+    s->growth           = spc::GrowthBound(model, t, norm, maxu);
+    s->growth_needs_max = model.needsMax() ? PETSC_TRUE : PETSC_FALSE;
+    s->growth_max       = maxu;
+    s->growth_started   = PETSC_TRUE;
+    PetscFunctionReturn(0);
+  }
+  PetscCall(PetscLogEventBegin(VSHMMSPECTRAL_Growth, sp, 0, 0, 0));
+  PetscCall(StateNorms(sp, U, &norm, s->growth_needs_max ? &maxu : nullptr));
+  s->growth.advance(t, PetscMax(maxu, s->growth_max));
+  s->growth_max           = maxu;
+  const PetscReal allowed = s->growth_factor * s->growth.bound();
+  PetscCall(PetscLogEventEnd(VSHMMSPECTRAL_Growth, sp, 0, 0, 0));
+  if (!(norm <= allowed)) {
+    PetscReal dt = 0;
+    PetscCall(VSHMMSpectralGetStableTimeStep(sp, TSRK3, &dt));
+    SETERRQ(PetscObjectComm((PetscObject)sp), PETSC_ERR_NOT_CONVERGED, "The solution blew up at t = %g: its L2 norm (RMS over the grid, Parseval) %g exceeds %g, -%sspectral_growth_bound %g times the bound %g that the scene's terms allow (initial norm %g). The time step is probably unstable: the operator's stable step is %g for TSRK3 (VSHMMSpectralGetStableTimeStep()); lower -ts_dt, or for TSVSHMM -ts_vshmm_micro_dt or the savings factors. -%sspectral_growth_bound 0 switches the check off", (double)t, (double)norm, (double)allowed, VSHMMSpectralPrefix(sp),
+            (double)s->growth_factor, (double)s->growth.bound(), (double)s->growth.initialNorm(), (double)dt, VSHMMSpectralPrefix(sp));
+  }
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   VSHMMSpectralSetGrowthBound - Sets the factor of the growth check: a solve stops with an error
+   when the solution's L2 norm exceeds factor times the bound the scene's terms allow
+
+   Logically collective
+
+   Input Parameters:
++  sp - the object
+-  factor - 0 (no check) or at least 1; default 10
+
+   Options Database Key:
+.  -spectral_growth_bound <factor> - the factor
+
+   Level: intermediate
+
+.seealso: `VSHMMSpectralGrowthMonitor()`, `VSHMMSpectralSetUpTS()`
+@*/
+PetscErrorCode VSHMMSpectralSetGrowthBound(VSHMMSpectral sp, PetscReal factor)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
+  PetscCheck(std::isfinite(factor) && (factor == 0 || factor >= 1), PetscObjectComm((PetscObject)sp), PETSC_ERR_ARG_OUTOFRANGE, "The growth bound factor (-%sspectral_growth_bound) must be 0 (no check) or a finite factor >= 1, got %g", VSHMMSpectralPrefix(sp), (double)factor);
+  sp->data->growth_factor = factor;
+  PetscFunctionReturn(0);
+}
