@@ -105,6 +105,56 @@ TEST(Coupling, OscillatorWithKinematicsInTheSlowLevelAgainstVectorStepping)
   }
 }
 
+// Two oscillators (omega 50 and 35) with a soft coupling, the kinematics in the slow level: a 4 x 4
+// case where the order of the steps in the product matters (the 2 x 2 one above is symmetric under
+// reversal). The analysis against plain vector stepping over 4,000 macro steps.
+TEST(Coupling, TwoCoupledOscillatorsAgainstVectorStepping)
+{
+  const double        dt = 2e-3, DeltaT = 0.1;
+  const Tableau       tab    = RK4();
+  auto                kernel = vshmm::Kernel::create(vshmm::KernelType::Cosine);
+  const int           n      = 4; // (x1, x2, v1, v2)
+  std::vector<double> J0(n * n, 0.0), J1;
+  J0[0 + 2 * n] = J0[1 + 3 * n] = 1.0;       // x' = v
+  J0[2 + 0 * n] = -0.7, J0[2 + 1 * n] = 0.4; // soft forces on v1
+  J0[3 + 0 * n] = 0.3, J0[3 + 1 * n] = -0.9; // and on v2 (not symmetric)
+  J1 = J0;
+  J1[2 + 0 * n] += -50.0 * 50.0;
+  J1[3 + 1 * n] += -35.0 * 35.0;
+  vshmm::CoupledLevels      levels{n, {J0, J1}};
+  vshmm::MesoscopicSchedule schedule(*kernel, dt, {1.0}, {1});
+  const auto                g    = vshmm::couplingGrowth(tab, levels, schedule, DeltaT);
+  double                    y[4] = {0.02, -0.01, 1.0, 0.5}, logNorm = 0;
+  const int                 macroSteps = 4000;
+  for (int m = 0; m < macroSteps; ++m) {
+    vshmm::runMacroStep(schedule, DeltaT, [&](int level, double, double h) {
+      const std::vector<double> &J = level ? J1 : J0;
+      double                     k[4][4], Y[4];
+      for (int i = 0; i < 4; ++i) {
+        for (int d = 0; d < n; ++d) {
+          Y[d] = y[d];
+          for (int j = 0; j < i; ++j) Y[d] += h * tab.a[i * 4 + j] * k[j][d];
+        }
+        for (int d = 0; d < n; ++d) {
+          k[i][d] = 0;
+          for (int e = 0; e < n; ++e) k[i][d] += J[d + e * n] * Y[e];
+        }
+      }
+      for (int i = 0; i < 4; ++i)
+        for (int d = 0; d < n; ++d) y[d] += h * tab.b[i] * k[i][d];
+      return 0;
+    });
+    double nrm = 0;
+    for (int d = 0; d < n; ++d) nrm += (d < 2 ? 2500.0 : 1.0) * y[d] * y[d];
+    nrm = std::sqrt(nrm);
+    logNorm += std::log(nrm);
+    for (double &v : y) v /= nrm;
+  }
+  const double rate = logNorm / macroSteps;
+  EXPECT_GT(g.logGrowth, 0.05);
+  EXPECT_NEAR(g.logGrowth, rate, 0.01 * rate + 1e-3);
+}
+
 TEST(Coupling, LargestStableScalingPassesAndTheNextDoesNot)
 {
   const double              w = 50, dt = 2e-3, DeltaT = 0.1;
