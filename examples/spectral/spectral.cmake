@@ -128,14 +128,41 @@ set_tests_properties(spectral_diffusion_vshmm_small_vs_dns spectral_diffusion_vs
 set_tests_properties(spectral_advection_vshmm_small_vs_dns spectral_advection_vshmm_small_rk4_np1 spectral_advection_vshmm_small_rk4_np2
   PROPERTIES FIXTURES_REQUIRED spectral_advection_refs)
 
-# --- cluster detection (soft thresholding, lambda = 10^-2.5, unitary normalisation) ----------
+# --- cluster detection ------------------------------------------------------------------------
+# the former rule (unitary normalisation, lambda = 10^-2.5, fixed gap, no hole filling, one
+# cluster per band) from a DNS at t = 0.25
 vshmm_example_test(NAME spectral_detect_dns_small EXE diffusion
                    ARGS -spectral_grid_points 256 -spectral_diffusion_coefficient_wavenumbers 16,64 -spectral_mode sparse -spectral_cluster_detect dns
-                        -spectral_cluster_detect_times 0.25 -spectral_cluster_gap 2 -output_times 0.001 -no_timing
+                        -spectral_cluster_detect_times 0.25 -spectral_cluster_gap 2 -spectral_cluster_normalization unitary -spectral_cluster_lambda 3.1622776601683794e-3
+                        -spectral_cluster_fill_holes false -spectral_cluster_scale_separation 1 -output_times 0.001 -no_timing
                    REGEX "K0 = {0..4}: 5 wavenumbers.*K1 = {13..15,17..19}.*K4 = {79,81}")
 vshmm_example_test(NAME spectral_detect_initial_buffers EXE diffusion
                    ARGS -spectral_grid_points 256 -spectral_mode sparse -spectral_cluster_detect initial -spectral_cluster_buffers 2 -output_times 0.001 -no_timing
-                   REGEX "6 wavenumbers retained in 1 clusters.*K0 = {0..7}: 8 wavenumbers")
+                   REGEX "6 wavenumbers above lambda in 1 bands.*K0 = {0..7}: 8 wavenumbers")
+# the default (sparse mode without clusters: -spectral_cluster_detect auto) on a scene with
+# d = (exp(sin 32x) + exp(sin 96x))/4: F(u0) reaches modes u0 does not show, so a short DNS runs
+# until its clusters stop changing; five bands without holes, grouped into two time scales; its
+# cost is printed. The same clusters on N = 512 and N = 1024 (threshold relative to the norm).
+set(_sp_auto -spectral_diffusion_coefficient_wavenumbers 32,96 -spectral_mode sparse -spectral_fftw_planner estimate)
+foreach(_n 512 1024)
+  vshmm_example_test(NAME spectral_detect_auto_N${_n} EXE diffusion
+                     ARGS -spectral_grid_points ${_n} ${_sp_auto} -output_times 0.001 -no_timing
+                     REGEX "cluster detection auto: F\\(u0\\) reaches [0-9]+ clusters.*short direct simulation.*34 wavenumbers above lambda in 5 bands, 2 clusters.*K0 = {0..5}: 6 wavenumbers.*K1 = {28..36,61..67,92..100,125..131}: 32 wavenumbers.*detection dns_steps [0-9]+ evaluations [0-9]+\n")
+  set_tests_properties(spectral_detect_auto_N${_n} PROPERTIES LABELS "example;spectral")
+endforeach()
+# The zero-tuning path on that scene (N = 512): clusters detected, two scales, micro step and
+# savings factor from -ts_vshmm_adapt with tolerance 1e-2 (grid values as observables); against
+# the DNS (RK3 dt = 1e-5; dt = 5e-6 differs by < 1e-13) the relative L2 error was 8.4e-3 and
+# 7.9e-3 at t = 0.125, 0.25 (tolerance 1.2e-2). With tolerance 1e-3: 4.3e-3, 3.2e-3.
+vshmm_example_test(NAME spectral_auto_dns_ref EXE diffusion
+                   ARGS -spectral_grid_points 512 -spectral_diffusion_coefficient_wavenumbers 32,96 -spectral_fftw_planner estimate -output_times 0.125,0.25 -ts_dt 1e-5 -grid_solution_file dns -no_timing
+                   REGEX "output t 0.25 rhs_evaluations 75000 ")
+vshmm_example_test(NAME spectral_auto_zero_tuning EXE diffusion
+                   ARGS -spectral_grid_points 512 ${_sp_auto} -output_times 0.125,0.25 -ts_type vshmm -ts_vshmm_adapt -ts_rtol 1e-2 -ts_atol 1e-2
+                        -compare_grid_solution ${_sp_dir}/spectral_auto_dns_ref/dns -compare_tolerance 1.2e-2 -no_timing
+                   REGEX "K1 = {28..36,61..67,92..100,125..131}.*ts_type vshmm: sampling interval 0.125.*compare t 0.25 relative_l2_error")
+set_tests_properties(spectral_auto_dns_ref PROPERTIES FIXTURES_SETUP spectral_auto_ref LABELS "example;spectral")
+set_tests_properties(spectral_auto_zero_tuning PROPERTIES FIXTURES_REQUIRED spectral_auto_ref LABELS "example;spectral")
 set_tests_properties(spectral_detect_dns_small spectral_detect_initial_buffers PROPERTIES LABELS "example;spectral")
 
 # --- the paper's scenes parse and run (a short time: the full runs are in docs/spectral.md) ----
@@ -169,7 +196,6 @@ function(_spectral_error_test name regex)
 endfunction()
 _spectral_error_test(unknown_term "Unknown term 'reaction' in -spectral_terms: the known terms are diffusion" -spectral_terms diffusion,reaction)
 _spectral_error_test(empty_clusters "-spectral_clusters is given without a value" -spectral_mode sparse -spectral_clusters "")
-_spectral_error_test(no_clusters "-spectral_mode sparse needs clusters" -spectral_mode sparse)
 _spectral_error_test(overlapping_clusters "clusters K0 and K1 overlap: both contain wavenumber 2" -spectral_mode sparse -spectral_clusters 0:3,2:5)
 _spectral_error_test(cluster_above_nyquist "has wavenumber 300, outside 0..128" -spectral_grid_points 256 -spectral_mode sparse -spectral_clusters 0:3,300)
 _spectral_error_test(bad_cluster_item "'6x' is not a wavenumber" -spectral_mode sparse -spectral_clusters 0:3,6x)

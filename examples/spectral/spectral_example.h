@@ -13,6 +13,8 @@
      -compare_tolerance TOL         and stop with an error if a relative L2 error exceeds TOL
      -spectrum_file FILE            a TS monitor writing "t k |c_k|" blocks every -spectrum_interval
      -no_timing                     leave the wall times out
+     -observe_state                 with -ts_vshmm_adapt: weigh the Fourier coefficients of the state,
+                                    not u on the grid (the default observables)
 */
 #include <petscvshmm.h>
 #include <petscvshmmspectral.h>
@@ -159,6 +161,22 @@ static PetscErrorCode PrintWork(SpectralRun *run, PetscReal t, double wall, cons
   PetscFunctionReturn(0);
 }
 
+/* "detection ...": the cluster detection's work (set-up, not in the output lines' counts). */
+static PetscErrorCode PrintDetectionCost(SpectralRun *run)
+{
+  VSHMMSpectralStatistics st;
+  char                    line[256];
+  int                     len;
+
+  PetscFunctionBeginUser;
+  PetscCall(VSHMMSpectralGetStatistics(run->sp, &st));
+  if (!st.detection_evaluations) PetscFunctionReturn(0);
+  len = snprintf(line, sizeof(line), "detection dns_steps %lld evaluations %lld", (long long)st.detection_steps, (long long)st.detection_evaluations);
+  if (run->timing && len > 0 && len < (int)sizeof(line)) snprintf(line + len, sizeof(line) - len, " wall_time %.4e", (double)st.detection_time);
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%s\n", line));
+  PetscFunctionReturn(0);
+}
+
 /* Runs the TS to each output time (the TS's time step restored before each segment). */
 static PetscErrorCode SolveToOutputTimes(SpectralRun *run, TS ts, Vec U)
 {
@@ -215,6 +233,55 @@ static PetscErrorCode SolveToOutputTimes(SpectralRun *run, TS ts, Vec U)
     fclose(run->spectrum_fp);
     run->spectrum_fp = NULL;
   }
+  PetscFunctionReturn(0);
+}
+
+/* TSVSHMM without -ts_dt: the sampling interval DeltaT is the smallest spacing of the output
+   times (the final time without them), not the stable step of an explicit method. */
+static PetscErrorCode DefaultSamplingInterval(SpectralRun *run, TS ts)
+{
+  PetscBool   isvshmm, set;
+  PetscReal   t0, dt;
+  PetscInt    i;
+  const char *prefix;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectTypeCompare((PetscObject)ts, TSVSHMM, &isvshmm));
+  PetscCall(TSGetOptionsPrefix(ts, &prefix));
+  PetscCall(PetscOptionsHasName(NULL, prefix, "-ts_dt", &set));
+  if (!isvshmm || set) PetscFunctionReturn(0);
+  PetscCall(TSGetTime(ts, &t0));
+  PetscCall(TSGetMaxTime(ts, &dt));
+  dt -= t0;
+  for (i = 0; i < run->ntimes; i++) dt = PetscMin(dt, run->times[i] - (i ? run->times[i - 1] : t0));
+  if (dt > 0) PetscCall(TSSetTimeStep(ts, dt));
+  PetscFunctionReturn(0);
+}
+
+/* -ts_vshmm_adapt's observables: u at the N grid points, so that the tolerance applies to the
+   solution's values (weighed by atol + rtol |u(x_j)|, RMS over the grid, i.e. in the L2 norm).
+   Without them TSVSHMM would weigh the Fourier coefficients of the state, whose RMS over the
+   n retained reals is the L2 norm divided by sqrt(n): the error would look sqrt(n) times smaller. */
+static PetscErrorCode GridObservable(TS ts, PetscReal t, Vec X, PetscReal q[], void *ctx)
+{
+  SpectralRun *run = (SpectralRun *)ctx;
+
+  PetscFunctionBeginUser;
+  (void)ts;
+  (void)t;
+  PetscCall(VSHMMSpectralGetGridValues(run->sp, X, q));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SetGridObservables(SpectralRun *run, TS ts)
+{
+  PetscBool isvshmm, adapt = PETSC_FALSE, state = PETSC_FALSE;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectTypeCompare((PetscObject)ts, TSVSHMM, &isvshmm));
+  if (isvshmm) PetscCall(TSVSHMMGetAdapt(ts, &adapt));
+  PetscCall(PetscOptionsGetBool(NULL, NULL, "-observe_state", &state, NULL));
+  if (adapt && !state) PetscCall(TSVSHMMSetObservables(ts, run->N, GridObservable, run));
   PetscFunctionReturn(0);
 }
 
@@ -275,6 +342,7 @@ static PetscErrorCode RunSpectralExample(const char *scene, PetscReal tfinal)
   PetscCall(VSHMMSpectralSetFromOptions(run.sp));
   PetscCall(VSHMMSpectralSetUp(run.sp));
   PetscCall(VSHMMSpectralView(run.sp, PETSC_VIEWER_STDOUT_WORLD));
+  PetscCall(PrintDetectionCost(&run));
   PetscCall(VSHMMSpectralGetSizes(run.sp, &run.N, NULL, NULL));
   PetscCall(VSHMMSpectralGetModes(run.sp, &run.nmodes, &run.modes));
   PetscCall(PetscMalloc2(run.N, &run.u, run.nmodes, &run.mags));
@@ -293,6 +361,8 @@ static PetscErrorCode RunSpectralExample(const char *scene, PetscReal tfinal)
   PetscCall(TSSetMaxSteps(ts, PETSC_MAX_INT));
   PetscCall(TSSetExactFinalTime(ts, TS_EXACTFINALTIME_MATCHSTEP));
   PetscCall(TSSetFromOptions(ts));
+  PetscCall(DefaultSamplingInterval(&run, ts));
+  PetscCall(SetGridObservables(&run, ts));
   PetscCall(PrintStepper(ts));
 
   PetscCall(SolveToOutputTimes(&run, ts, U));
