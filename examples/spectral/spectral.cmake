@@ -205,6 +205,7 @@ _spectral_error_test(unknown_form "Unknown option wavelet for -spectral_velocity
 _spectral_error_test(bad_denominator "exp_ratio: the denominator is .* <= 0" -spectral_grid_points 64 -spectral_terms advection -spectral_velocity_denominator_sin 0.6,0.6 -spectral_velocity_denominator_wavenumbers 1,2)
 _spectral_error_test(small_grid "-spectral_grid_points 2 is too small" -spectral_grid_points 2)
 _spectral_error_test(both_cluster_sources "Give either -spectral_clusters \\(explicit\\) or -spectral_cluster_detect initial" -spectral_grid_points 256 -spectral_mode sparse -spectral_clusters 0:3 -spectral_cluster_detect initial)
+_spectral_error_test(vshmm_one_cluster "-ts_type vshmm needs at least two clusters \\(time scales\\), but the scene has one" -spectral_grid_points 64 -spectral_diffusion_coefficient constant -spectral_diffusion_coefficient_value 1 -spectral_mode sparse -ts_type vshmm -output_times 0.001)
 _spectral_error_test(output_times_order "-output_times must be increasing" -spectral_grid_points 64 -output_times 0.2,0.1)
 # issue 9 (fuzzing): checked against N before anything is built; a ',' or '+' at an end refused
 _spectral_error_test(cluster_range_huge "cluster item '0:999999999' has wavenumber 999999999, outside 0..128" -spectral_grid_points 256 -spectral_mode sparse -spectral_clusters 0:999999999)

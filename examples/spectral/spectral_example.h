@@ -33,6 +33,7 @@ typedef struct {
   const PetscInt *modes;
   PetscReal      *u, *mags; /* N grid values; one magnitude per retained mode */
   PetscMPIInt     rank;
+  PetscBool       detected; /* the clusters were detected */
 } SpectralRun;
 
 /* -output_times: any number of values. PETSc's array reader stops silently at the capacity it is
@@ -279,7 +280,14 @@ static PetscErrorCode SetGridObservables(SpectralRun *run, TS ts)
 
   PetscFunctionBeginUser;
   PetscCall(PetscObjectTypeCompare((PetscObject)ts, TSVSHMM, &isvshmm));
-  if (isvshmm) PetscCall(TSVSHMMGetAdapt(ts, &adapt));
+  if (isvshmm) {
+    PetscInt nclusters;
+
+    PetscCall(VSHMMSpectralGetSizes(run->sp, NULL, NULL, &nclusters));
+    PetscCheck(nclusters != 1, PETSC_COMM_WORLD, PETSC_ERR_ARG_INCOMP, "-ts_type vshmm needs at least two clusters (time scales), but the scene has one%s: there is nothing to separate. Use -ts_type rk (the explicit sparse method, or -spectral_mode dns) or give -spectral_clusters",
+               nclusters == 1 && run->detected ? " (the detection found one band of wavenumbers)" : "");
+    PetscCall(TSVSHMMGetAdapt(ts, &adapt));
+  }
   PetscCall(PetscOptionsGetBool(NULL, NULL, "-observe_state", &state, NULL));
   if (adapt && !state) PetscCall(TSVSHMMSetObservables(ts, run->N, GridObservable, run));
   PetscFunctionReturn(0);
@@ -343,6 +351,12 @@ static PetscErrorCode RunSpectralExample(const char *scene, PetscReal tfinal)
   PetscCall(VSHMMSpectralSetUp(run.sp));
   PetscCall(VSHMMSpectralView(run.sp, PETSC_VIEWER_STDOUT_WORLD));
   PetscCall(PrintDetectionCost(&run));
+  {
+    VSHMMSpectralStatistics st;
+
+    PetscCall(VSHMMSpectralGetStatistics(run.sp, &st));
+    run.detected = st.detection_evaluations > 0 ? PETSC_TRUE : PETSC_FALSE;
+  }
   PetscCall(VSHMMSpectralGetSizes(run.sp, &run.N, NULL, NULL));
   PetscCall(VSHMMSpectralGetModes(run.sp, &run.nmodes, &run.modes));
   PetscCall(PetscMalloc2(run.N, &run.u, run.nmodes, &run.mags));
