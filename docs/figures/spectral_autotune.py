@@ -133,9 +133,10 @@ def measure(name, build, scenes_dir, work, tols):
         out["conv_N"] = [l2diff(os.path.join(cwd, "ref2N_%s.txt" % t), os.path.join(cwd, "ref_%s.txt" % t), 2) for t in times] if fine["ok"] else []
     cmp = ["-compare_grid_solution", "ref"]
     # 2. zero tuning
-    out["auto"] = {}
+    out["auto"], out["auto_adapt_dt"] = {}, {}
     for tol in tols:
         out["auto"][tol] = run(exe, y + cmp + ["-ts_rtol", str(tol), "-ts_atol", str(tol)], cwd)
+        out["auto_adapt_dt"][tol] = run(exe, y + cmp + ["-ts_rtol", str(tol), "-ts_atol", str(tol), "-micro_step_from_stability", "false"], cwd)
     clusters = spec_of(out["auto"][tols[0]]["clusters"])
     out["clusters"] = out["auto"][tols[0]]["clusters"]
     K = len(out["clusters"])
@@ -175,6 +176,9 @@ def report(o, tols):
     for tol in tols:
         r = o["auto"][tol]
         L.append("| **zero tuning**, tol %g | %s | %s + detection %s | %s + detection %s |" % (tol, errs(r), r["evals"], r["det_evals"], fmt(r["wall"] or 0), fmt(r["det_wall"])))
+    for tol in tols:
+        r = o["auto_adapt_dt"][tol]
+        L.append("| zero tuning, micro step by adapt (`-micro_step_from_stability false`), tol %g | %s | %s + detection %s | %s + detection %s |" % (tol, errs(r), r["evals"], r["det_evals"], fmt(r["wall"] or 0), fmt(r["det_wall"])))
     best = {}
     for tol in tols:
         target = maxerr(o["auto"][tol])

@@ -15,6 +15,8 @@
      -no_timing                     leave the wall times out
      -observe_state                 with -ts_vshmm_adapt: weigh the Fourier coefficients of the state,
                                     not u on the grid (the default observables)
+     -micro_step_from_stability 0   with -ts_vshmm_adapt: let adapt choose the micro step also where
+                                    the fast modes only decay (default: the stability limit there)
 */
 #include <petscvshmm.h>
 #include <petscvshmmspectral.h>
@@ -34,6 +36,7 @@ typedef struct {
   PetscReal      *u, *mags; /* N grid values; one magnitude per retained mode */
   PetscMPIInt     rank;
   PetscBool       detected; /* the clusters were detected */
+  PetscInt        nclusters;
 } SpectralRun;
 
 /* -output_times: any number of values. PETSc's array reader stops silently at the capacity it is
@@ -284,12 +287,59 @@ static PetscErrorCode SetGridObservables(SpectralRun *run, TS ts)
     PetscInt nclusters;
 
     PetscCall(VSHMMSpectralGetSizes(run->sp, NULL, NULL, &nclusters));
+    run->nclusters = nclusters;
     PetscCheck(nclusters != 1, PETSC_COMM_WORLD, PETSC_ERR_ARG_INCOMP, "-ts_type vshmm needs at least two clusters (time scales), but the scene has one%s: there is nothing to separate. Use -ts_type rk (the explicit sparse method, or -spectral_mode dns) or give -spectral_clusters",
                nclusters == 1 && run->detected ? " (the detection found one band of wavenumbers)" : "");
     PetscCall(TSVSHMMGetAdapt(ts, &adapt));
   }
   PetscCall(PetscOptionsGetBool(NULL, NULL, "-observe_state", &state, NULL));
   if (adapt && !state) PetscCall(TSVSHMMSetObservables(ts, run->N, GridObservable, run));
+  PetscFunctionReturn(0);
+}
+
+/* -ts_vshmm_adapt without -ts_vshmm_micro_dt: where the fastest modes only decay (diffusion
+   dominates; they are slaved to the slower ones and their error does not accumulate) the micro
+   step is set at the stability limit, 1.8 / rho (every explicit RK of order 1-4 is stable for
+   h |lambda| <= 2 on the negative real axis), with rho the spectral radius of the right-hand side
+   by 50 power iterations (counted in the evaluations); adapt then chooses the savings factors.
+   Its own choice, tol^(1/p) / rho, is made for oscillating fast scales (8x smaller at tol 1e-3).
+   Where the dominant eigenvalues are not mostly real and negative (advection), or with
+   -micro_step_from_stability false, adapt chooses. */
+static PetscErrorCode StableMicroStep(SpectralRun *run, TS ts, Vec U)
+{
+  PetscBool   isvshmm, adapt = PETSC_FALSE, set, use = PETSC_TRUE;
+  const char *prefix;
+  Vec         v, w;
+  PetscReal   rho = 0, nrm;
+  PetscScalar rq  = 0;
+  PetscRandom rnd;
+  PetscInt    i;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectTypeCompare((PetscObject)ts, TSVSHMM, &isvshmm));
+  if (isvshmm) PetscCall(TSVSHMMGetAdapt(ts, &adapt));
+  PetscCall(TSGetOptionsPrefix(ts, &prefix));
+  PetscCall(PetscOptionsHasName(NULL, prefix, "-ts_vshmm_micro_dt", &set));
+  PetscCall(PetscOptionsGetBool(NULL, NULL, "-micro_step_from_stability", &use, NULL));
+  if (!adapt || set || !use || run->nclusters < 2) PetscFunctionReturn(0);
+  PetscCall(VecDuplicate(U, &v));
+  PetscCall(VecDuplicate(U, &w));
+  PetscCall(PetscRandomCreate(PetscObjectComm((PetscObject)U), &rnd));
+  PetscCall(PetscRandomSetInterval(rnd, -1.0, 1.0));
+  PetscCall(VecSetRandom(v, rnd));
+  PetscCall(PetscRandomDestroy(&rnd));
+  PetscCall(VecNormalize(v, NULL));
+  for (i = 0; i < 50; i++) {
+    PetscCall(VSHMMSpectralRHSFunction(ts, 0.0, v, w, run->sp));
+    PetscCall(VecDot(w, v, &rq));
+    PetscCall(VecNorm(w, NORM_2, &nrm));
+    if (!(nrm > 0)) break;
+    rho = nrm;
+    PetscCall(VecAXPBY(v, 1.0 / nrm, 0.0, w));
+  }
+  PetscCall(VecDestroy(&v));
+  PetscCall(VecDestroy(&w));
+  if (rho > 0 && -PetscRealPart(rq) >= 0.8 * rho) PetscCall(TSVSHMMSetMicroStep(ts, 1.8 / rho));
   PetscFunctionReturn(0);
 }
 
@@ -377,6 +427,7 @@ static PetscErrorCode RunSpectralExample(const char *scene, PetscReal tfinal)
   PetscCall(TSSetFromOptions(ts));
   PetscCall(DefaultSamplingInterval(&run, ts));
   PetscCall(SetGridObservables(&run, ts));
+  PetscCall(StableMicroStep(&run, ts, U));
   PetscCall(PrintStepper(ts));
 
   PetscCall(SolveToOutputTimes(&run, ts, U));
