@@ -168,7 +168,7 @@ static PetscErrorCode DetectionDNS(VSHMMSpectral sp, const std::vector<double> &
     if (!automatic) {
       if (i == s->detect_times.size()) break;
       t = s->detect_times[i];
-    } else t = (PetscReal)PetscMin((PetscInt)64 << PetscMin(i, (size_t)40), s->detect_max_steps) * dt;
+    } else t = PetscMin(64.0 * std::ldexp(1.0, (int)PetscMin(i, (size_t)60)), (double)s->detect_max_steps) * dt;
     if (t > 0) {
       PetscCall(TSSetMaxTime(ts, t));
       PetscCall(TSSetTimeStep(ts, dt));
@@ -286,8 +286,9 @@ static PetscErrorCode FindClusters(VSHMMSpectral sp, const std::vector<double> &
   PetscFunctionBegin;
   s->detection = VSHMMSpectralDetection();
   PetscCheck(!(explicit_clusters && s->detect != VSHMMSPECTRAL_DETECT_NONE), comm, PETSC_ERR_ARG_INCOMP, "Give either -%sspectral_clusters (explicit) or -%sspectral_cluster_detect %s, not both", pre, pre, VSHMMSpectralDetects[s->detect]);
+  const VSHMMSpectralDetect given = s->detect;
   if (!explicit_clusters && s->detect == VSHMMSPECTRAL_DETECT_NONE) {
-    s->detect = VSHMMSPECTRAL_DETECT_AUTO; /* sparse mode without clusters: find them */
+    s->detect = VSHMMSPECTRAL_DETECT_AUTO; /* sparse mode without clusters: find them (restored below) */
     PetscCall(PetscInfo(sp, "-%sspectral_mode sparse without -%sspectral_clusters: -%sspectral_cluster_detect auto\n", pre, pre, pre));
   }
   if (explicit_clusters) {
@@ -305,6 +306,7 @@ static PetscErrorCode FindClusters(VSHMMSpectral sp, const std::vector<double> &
 
     PetscCall(PetscTime(&w0));
     PetscCall(DetectionSnapshots(sp, D, A, mags));
+    s->detect = given; /* the option as given: a later -spectral_clusters is not "both" */
     try {
       found = ClustersOf(s, mags, s->norm, VSHMMSpectralLambda(s), support);
     } catch (const std::exception &e) {
