@@ -58,20 +58,26 @@ PETSC_EXTERN PetscClassId VSHMMSPECTRAL_CLASSID;
 .  inverse_ffts     - c2r transforms (one per state seen, shared by the splits of a level)
 .  forward_ffts     - r2c transforms
 .  direct_modes     - modes projected by direct sums over the grid instead of a transform
--  cache_hits       - split calls that reused the physical-space field of the same state
+.  cache_hits       - split calls that reused the physical-space field of the same state
+.  detection_steps  - time steps of the cluster detection's direct simulation (set-up work, not in the counts above)
+.  detection_evaluations - operator evaluations of the cluster detection (its direct simulation and the auto rule's F(u0)), each on every mode
+-  detection_time   - wall time of the cluster detection, seconds
 
    Level: intermediate
 
 .seealso: `VSHMMSpectralGetStatistics()`
 S*/
 typedef struct {
-  PetscInt64 rhs_calls;
-  PetscInt64 split_calls;
-  PetscInt64 field_evaluations;
-  PetscInt64 inverse_ffts;
-  PetscInt64 forward_ffts;
-  PetscInt64 direct_modes;
-  PetscInt64 cache_hits;
+  PetscInt64     rhs_calls;
+  PetscInt64     split_calls;
+  PetscInt64     field_evaluations;
+  PetscInt64     inverse_ffts;
+  PetscInt64     forward_ffts;
+  PetscInt64     direct_modes;
+  PetscInt64     cache_hits;
+  PetscInt64     detection_steps;
+  PetscInt64     detection_evaluations;
+  PetscLogDouble detection_time;
 } VSHMMSpectralStatistics;
 
 PETSC_EXTERN PetscErrorCode VSHMMSpectralInitializePackage(void);

@@ -69,7 +69,8 @@ run diff_sparse_dt5e-5 "$diff" -options_file_yaml "$yd" -ts_type rk -ts_rk_type 
 run diff_sparse_dt1e-5_matrix "$diff" -options_file_yaml "$yd" -spectral_evaluation matrix -ts_type rk -ts_rk_type 3 -ts_dt 1e-5 -compare_grid_solution diffusion_dns
 run diff_sparse9_dt5e-6 "$diff" -options_file_yaml "$yd" -spectral_clusters 0:6,58:70,122:134,186:198,250:262,314:326,378:390,506:518 \
   -ts_type rk -ts_rk_type 3 -ts_dt 5e-6 -compare_grid_solution diffusion_dns
-run diff_detect "$diff" -options_file_yaml "$yd" -spectral_clusters none -spectral_cluster_detect file -spectral_cluster_detect_file diffusion_dns_1.txt -spectral_cluster_gap 2 -output_times 0.001
+run diff_detect "$diff" -options_file_yaml "$yd" -spectral_clusters none -spectral_cluster_detect file -spectral_cluster_detect_file diffusion_dns_1.txt -spectral_cluster_gap 2 \
+  -spectral_cluster_normalization unitary -spectral_cluster_lambda 3.1622776601683794e-3 -spectral_cluster_fill_holes false -spectral_cluster_scale_separation 1 -output_times 0.001
 
 echo "2. multiscale advection (N = 1024)"
 ya=$scenes/advection.yaml

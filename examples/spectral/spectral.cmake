@@ -180,14 +180,43 @@ vshmm_example_test(NAME spectral_stable_step_vshmm_micro EXE diffusion
 set_tests_properties(spectral_stable_step_diffusion_dns spectral_stable_step_vshmm_micro PROPERTIES FIXTURES_REQUIRED spectral_diffusion_refs)
 set_tests_properties(spectral_stable_step_diffusion_dns spectral_stable_step_advection_sparse spectral_stable_step_vshmm_micro PROPERTIES LABELS "example;spectral")
 
-# --- cluster detection (soft thresholding, lambda = 10^-2.5, unitary normalisation) ----------
+# --- cluster detection ------------------------------------------------------------------------
+# the former rule (unitary normalisation, lambda = 10^-2.5, fixed gap, no hole filling, one
+# cluster per band) from a DNS at t = 0.25
 vshmm_example_test(NAME spectral_detect_dns_small EXE diffusion
                    ARGS -spectral_grid_points 256 -spectral_diffusion_coefficient_wavenumbers 16,64 -spectral_mode sparse -spectral_cluster_detect dns
-                        -spectral_cluster_detect_times 0.25 -spectral_cluster_gap 2 -output_times 0.001 -no_timing
+                        -spectral_cluster_detect_times 0.25 -spectral_cluster_gap 2 -spectral_cluster_normalization unitary -spectral_cluster_lambda 3.1622776601683794e-3
+                        -spectral_cluster_fill_holes false -spectral_cluster_scale_separation 1 -output_times 0.001 -no_timing
                    REGEX "K0 = {0..4}: 5 wavenumbers.*K1 = {13..15,17..19}.*K4 = {79,81}")
 vshmm_example_test(NAME spectral_detect_initial_buffers EXE diffusion
                    ARGS -spectral_grid_points 256 -spectral_mode sparse -spectral_cluster_detect initial -spectral_cluster_buffers 2 -output_times 0.001 -no_timing
-                   REGEX "6 wavenumbers retained in 1 clusters.*K0 = {0..7}: 8 wavenumbers")
+                   REGEX "6 wavenumbers above lambda in 1 bands.*K0 = {0..7}: 8 wavenumbers")
+# the default (sparse mode without clusters: -spectral_cluster_detect auto) on a scene with
+# d = (exp(sin 32x) + exp(sin 96x))/4: F(u0) reaches modes u0 does not show, so a short DNS runs
+# until its clusters stop changing; five bands without holes, grouped into two time scales; its
+# cost is printed. The same clusters on N = 512 and N = 1024 (threshold relative to the norm).
+set(_sp_auto -spectral_diffusion_coefficient_wavenumbers 32,96 -spectral_mode sparse -spectral_fftw_planner estimate)
+foreach(_n 512 1024)
+  vshmm_example_test(NAME spectral_detect_auto_N${_n} EXE diffusion
+                     ARGS -spectral_grid_points ${_n} ${_sp_auto} -output_times 0.001 -no_timing
+                     REGEX "cluster detection auto: F\\(u0\\) reaches [0-9]+ clusters.*short direct simulation.*34 wavenumbers above lambda in 5 bands, 2 clusters.*K0 = {0..5}: 6 wavenumbers.*K1 = {28..36,61..67,92..100,125..131}: 32 wavenumbers.*detection dns_steps [0-9]+ evaluations [0-9]+\n")
+  set_tests_properties(spectral_detect_auto_N${_n} PROPERTIES LABELS "example;spectral")
+endforeach()
+# The zero-tuning path on that scene (N = 512): clusters detected, two scales, the micro step at
+# the stability limit (1.8 / rho, rho by power iteration: 1.56e-4; the fast modes only decay) and
+# the savings factor from -ts_vshmm_adapt with tolerance 1e-2 (grid values as observables);
+# against the DNS (RK3 dt = 1e-5; dt = 5e-6 differs by < 1e-13) the relative L2 error was 4.4e-3
+# and 3.4e-3 at t = 0.125, 0.25 with 480 evaluations (tolerance 6e-3). (Hand-set savings 50 at
+# micro step 4e-5: 6.3e-3, 5.3e-3 with 926 evaluations.)
+vshmm_example_test(NAME spectral_auto_dns_ref EXE diffusion
+                   ARGS -spectral_grid_points 512 -spectral_diffusion_coefficient_wavenumbers 32,96 -spectral_fftw_planner estimate -output_times 0.125,0.25 -ts_dt 1e-5 -grid_solution_file dns -no_timing
+                   REGEX "output t 0.25 rhs_evaluations 75000 ")
+vshmm_example_test(NAME spectral_auto_zero_tuning EXE diffusion
+                   ARGS -spectral_grid_points 512 ${_sp_auto} -output_times 0.125,0.25 -ts_type vshmm -ts_vshmm_adapt -ts_rtol 1e-2 -ts_atol 1e-2
+                        -compare_grid_solution ${_sp_dir}/spectral_auto_dns_ref/dns -compare_tolerance 6e-3 -no_timing
+                   REGEX "K1 = {28..36,61..67,92..100,125..131}.*ts_type vshmm: sampling interval 0.125, micro step 0.0001[0-9]*, .*compare t 0.25 relative_l2_error")
+set_tests_properties(spectral_auto_dns_ref PROPERTIES FIXTURES_SETUP spectral_auto_ref LABELS "example;spectral")
+set_tests_properties(spectral_auto_zero_tuning PROPERTIES FIXTURES_REQUIRED spectral_auto_ref LABELS "example;spectral")
 set_tests_properties(spectral_detect_dns_small spectral_detect_initial_buffers PROPERTIES LABELS "example;spectral")
 
 # --- the paper's scenes parse and run (a short time: the full runs are in docs/spectral.md) ----
@@ -221,7 +250,6 @@ function(_spectral_error_test name regex)
 endfunction()
 _spectral_error_test(unknown_term "Unknown term 'convection' in -spectral_terms: the known terms are diffusion" -spectral_terms diffusion,convection)
 _spectral_error_test(empty_clusters "-spectral_clusters is given without a value" -spectral_mode sparse -spectral_clusters "")
-_spectral_error_test(no_clusters "-spectral_mode sparse needs clusters" -spectral_mode sparse)
 _spectral_error_test(overlapping_clusters "clusters K0 and K1 overlap: both contain wavenumber 2" -spectral_mode sparse -spectral_clusters 0:3,2:5)
 _spectral_error_test(cluster_above_nyquist "has wavenumber 300, outside 0..128" -spectral_grid_points 256 -spectral_mode sparse -spectral_clusters 0:3,300)
 _spectral_error_test(bad_cluster_item "'6x' is not a wavenumber" -spectral_mode sparse -spectral_clusters 0:3,6x)
@@ -234,6 +262,7 @@ _spectral_error_test(both_cluster_sources "Give either -spectral_clusters \\(exp
 _spectral_error_test(matrix_nonlinear "-spectral_evaluation matrix is for linear [(]and affine[)] scenes: the term burgers is nonlinear" -options_file_yaml ${PROJECT_SOURCE_DIR}/examples/scenes/nonlinear.yaml -spectral_grid_points 256 -spectral_evaluation matrix)
 _spectral_error_test(reaction_coefficients "The term reaction needs -spectral_reaction_coefficients" -spectral_grid_points 64 -spectral_terms diffusion,reaction)
 _spectral_error_test(field_sum_unknown_form "Unknown form 'wavelet' in summand 1 of -spectral_diffusion_coefficient fourier[+]wavelet" -spectral_grid_points 64 -spectral_diffusion_coefficient fourier+wavelet)
+_spectral_error_test(vshmm_one_cluster "-ts_type vshmm needs at least two clusters \\(time scales\\), but the scene has one" -spectral_grid_points 64 -spectral_diffusion_coefficient constant -spectral_diffusion_coefficient_value 1 -spectral_mode sparse -ts_type vshmm -output_times 0.001)
 _spectral_error_test(output_times_order "-output_times must be increasing" -spectral_grid_points 64 -output_times 0.2,0.1)
 # a solution that grows beyond what the scene's terms allow stops the solve (issue 10): the explicit
 # RK3 step above the largest stable one (diffusion DNS 2.2e-4 > 1.939e-4; advection sparse 0.05 >

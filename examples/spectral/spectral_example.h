@@ -13,6 +13,10 @@
      -compare_tolerance TOL         and stop with an error if a relative L2 error exceeds TOL
      -spectrum_file FILE            a TS monitor writing "t k |c_k|" blocks every -spectrum_interval
      -no_timing                     leave the wall times out
+     -observe_state                 with -ts_vshmm_adapt: weigh the Fourier coefficients of the state,
+                                    not u on the grid (the default observables)
+     -micro_step_from_stability 0   with -ts_vshmm_adapt: let adapt choose the micro step also where
+                                    the fast modes only decay (default: the stability limit there)
 */
 #include <petscvshmm.h>
 #include <petscvshmmspectral.h>
@@ -31,6 +35,8 @@ typedef struct {
   const PetscInt *modes;
   PetscReal      *u, *mags; /* N grid values; one magnitude per retained mode */
   PetscMPIInt     rank;
+  PetscBool       detected; /* the clusters were detected */
+  PetscInt        nclusters;
 } SpectralRun;
 
 /* -output_times: any number of values. PETSc's array reader stops silently at the capacity it is
@@ -159,6 +165,22 @@ static PetscErrorCode PrintWork(SpectralRun *run, PetscReal t, double wall, cons
   PetscFunctionReturn(0);
 }
 
+/* "detection ...": the cluster detection's work (set-up, not in the output lines' counts). */
+static PetscErrorCode PrintDetectionCost(SpectralRun *run)
+{
+  VSHMMSpectralStatistics st;
+  char                    line[256];
+  int                     len;
+
+  PetscFunctionBeginUser;
+  PetscCall(VSHMMSpectralGetStatistics(run->sp, &st));
+  if (!st.detection_evaluations) PetscFunctionReturn(0);
+  len = snprintf(line, sizeof(line), "detection dns_steps %lld evaluations %lld", (long long)st.detection_steps, (long long)st.detection_evaluations);
+  if (run->timing && len > 0 && len < (int)sizeof(line)) snprintf(line + len, sizeof(line) - len, " wall_time %.4e", (double)st.detection_time);
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%s\n", line));
+  PetscFunctionReturn(0);
+}
+
 /* Runs the TS to each output time (the TS's time step restored before each segment). */
 static PetscErrorCode SolveToOutputTimes(SpectralRun *run, TS ts, Vec U)
 {
@@ -215,6 +237,109 @@ static PetscErrorCode SolveToOutputTimes(SpectralRun *run, TS ts, Vec U)
     fclose(run->spectrum_fp);
     run->spectrum_fp = NULL;
   }
+  PetscFunctionReturn(0);
+}
+
+/* TSVSHMM without -ts_dt: the sampling interval DeltaT is the smallest spacing of the output
+   times (the final time without them), not the stable step of an explicit method. */
+static PetscErrorCode DefaultSamplingInterval(SpectralRun *run, TS ts)
+{
+  PetscBool   isvshmm, set;
+  PetscReal   t0, dt;
+  PetscInt    i;
+  const char *prefix;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectTypeCompare((PetscObject)ts, TSVSHMM, &isvshmm));
+  PetscCall(TSGetOptionsPrefix(ts, &prefix));
+  PetscCall(PetscOptionsHasName(NULL, prefix, "-ts_dt", &set));
+  if (!isvshmm || set) PetscFunctionReturn(0);
+  PetscCall(TSGetTime(ts, &t0));
+  PetscCall(TSGetMaxTime(ts, &dt));
+  dt -= t0;
+  for (i = 0; i < run->ntimes; i++) dt = PetscMin(dt, run->times[i] - (i ? run->times[i - 1] : t0));
+  if (dt > 0) PetscCall(TSSetTimeStep(ts, dt));
+  PetscFunctionReturn(0);
+}
+
+/* -ts_vshmm_adapt's observables: u at the N grid points, so that the tolerance applies to the
+   solution's values (weighed by atol + rtol |u(x_j)|, RMS over the grid, i.e. in the L2 norm).
+   Without them TSVSHMM would weigh the Fourier coefficients of the state, whose RMS over the
+   n retained reals is the L2 norm divided by sqrt(n): the error would look sqrt(n) times smaller. */
+static PetscErrorCode GridObservable(TS ts, PetscReal t, Vec X, PetscReal q[], void *ctx)
+{
+  SpectralRun *run = (SpectralRun *)ctx;
+
+  PetscFunctionBeginUser;
+  (void)ts;
+  (void)t;
+  PetscCall(VSHMMSpectralGetGridValues(run->sp, X, q));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SetGridObservables(SpectralRun *run, TS ts)
+{
+  PetscBool isvshmm, adapt = PETSC_FALSE, state = PETSC_FALSE;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectTypeCompare((PetscObject)ts, TSVSHMM, &isvshmm));
+  if (isvshmm) {
+    PetscInt nclusters;
+
+    PetscCall(VSHMMSpectralGetSizes(run->sp, NULL, NULL, &nclusters));
+    run->nclusters = nclusters;
+    PetscCheck(nclusters != 1, PETSC_COMM_WORLD, PETSC_ERR_ARG_INCOMP, "-ts_type vshmm needs at least two clusters (time scales), but the scene has one%s: there is nothing to separate. Use -ts_type rk (the explicit sparse method, or -spectral_mode dns) or give -spectral_clusters",
+               nclusters == 1 && run->detected ? " (the detection found one band of wavenumbers)" : "");
+    PetscCall(TSVSHMMGetAdapt(ts, &adapt));
+  }
+  PetscCall(PetscOptionsGetBool(NULL, NULL, "-observe_state", &state, NULL));
+  if (adapt && !state) PetscCall(TSVSHMMSetObservables(ts, run->N, GridObservable, run));
+  PetscFunctionReturn(0);
+}
+
+/* -ts_vshmm_adapt without -ts_vshmm_micro_dt: where the fastest modes only decay (diffusion
+   dominates; they are slaved to the slower ones and their error does not accumulate) the micro
+   step is set at the stability limit, 1.8 / rho (every explicit RK of order 1-4 is stable for
+   h |lambda| <= 2 on the negative real axis), with rho the spectral radius of the right-hand side
+   by 50 power iterations (counted in the evaluations); adapt then chooses the savings factors.
+   Its own choice, tol^(1/p) / rho, is made for oscillating fast scales (8x smaller at tol 1e-3).
+   Where the dominant eigenvalues are not mostly real and negative (advection), or with
+   -micro_step_from_stability false, adapt chooses. */
+static PetscErrorCode StableMicroStep(SpectralRun *run, TS ts, Vec U)
+{
+  PetscBool   isvshmm, adapt = PETSC_FALSE, set, use = PETSC_TRUE;
+  const char *prefix;
+  Vec         v, w;
+  PetscReal   rho = 0, nrm;
+  PetscScalar rq  = 0;
+  PetscRandom rnd;
+  PetscInt    i;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectTypeCompare((PetscObject)ts, TSVSHMM, &isvshmm));
+  if (isvshmm) PetscCall(TSVSHMMGetAdapt(ts, &adapt));
+  PetscCall(TSGetOptionsPrefix(ts, &prefix));
+  PetscCall(PetscOptionsHasName(NULL, prefix, "-ts_vshmm_micro_dt", &set));
+  PetscCall(PetscOptionsGetBool(NULL, NULL, "-micro_step_from_stability", &use, NULL));
+  if (!adapt || set || !use || run->nclusters < 2) PetscFunctionReturn(0);
+  PetscCall(VecDuplicate(U, &v));
+  PetscCall(VecDuplicate(U, &w));
+  PetscCall(PetscRandomCreate(PetscObjectComm((PetscObject)U), &rnd));
+  PetscCall(PetscRandomSetInterval(rnd, -1.0, 1.0));
+  PetscCall(VecSetRandom(v, rnd));
+  PetscCall(PetscRandomDestroy(&rnd));
+  PetscCall(VecNormalize(v, NULL));
+  for (i = 0; i < 50; i++) {
+    PetscCall(VSHMMSpectralRHSFunction(ts, 0.0, v, w, run->sp));
+    PetscCall(VecDot(w, v, &rq));
+    PetscCall(VecNorm(w, NORM_2, &nrm));
+    if (!(nrm > 0)) break;
+    rho = nrm;
+    PetscCall(VecAXPBY(v, 1.0 / nrm, 0.0, w));
+  }
+  PetscCall(VecDestroy(&v));
+  PetscCall(VecDestroy(&w));
+  if (rho > 0 && -PetscRealPart(rq) >= 0.8 * rho) PetscCall(TSVSHMMSetMicroStep(ts, 1.8 / rho));
   PetscFunctionReturn(0);
 }
 
@@ -283,8 +408,7 @@ static PetscErrorCode SetDefaultSteps(SpectralRun *run, TS ts)
     if (micro_given || adapt) PetscFunctionReturn(0);
     PetscCall(TSVSHMMGetRKType(ts, &rk));
     PetscCall(VSHMMSpectralGetStableTimeStep(run->sp, rk, &h));
-    PetscCall(TSGetTimeStep(ts, &DeltaT));
-    if (!dt_given) PetscCall(TSSetTimeStep(ts, DeltaT = 100 * h));
+    PetscCall(TSGetTimeStep(ts, &DeltaT)); /* given, or the output times' spacing (DefaultSamplingInterval()) */
     PetscCall(TSVSHMMSetMicroStep(ts, PetscMin(h, DeltaT / 100)));
     PetscFunctionReturn(0);
   }
@@ -314,6 +438,13 @@ static PetscErrorCode RunSpectralExample(const char *scene, PetscReal tfinal)
   PetscCall(VSHMMSpectralSetFromOptions(run.sp));
   PetscCall(VSHMMSpectralSetUp(run.sp));
   PetscCall(VSHMMSpectralView(run.sp, PETSC_VIEWER_STDOUT_WORLD));
+  PetscCall(PrintDetectionCost(&run));
+  {
+    VSHMMSpectralStatistics st;
+
+    PetscCall(VSHMMSpectralGetStatistics(run.sp, &st));
+    run.detected = st.detection_evaluations > 0 ? PETSC_TRUE : PETSC_FALSE;
+  }
   PetscCall(VSHMMSpectralGetSizes(run.sp, &run.N, NULL, NULL));
   PetscCall(VSHMMSpectralGetModes(run.sp, &run.nmodes, &run.modes));
   PetscCall(PetscMalloc2(run.N, &run.u, run.nmodes, &run.mags));
@@ -331,7 +462,10 @@ static PetscErrorCode RunSpectralExample(const char *scene, PetscReal tfinal)
   PetscCall(TSSetMaxSteps(ts, PETSC_MAX_INT));
   PetscCall(TSSetExactFinalTime(ts, TS_EXACTFINALTIME_MATCHSTEP));
   PetscCall(TSSetFromOptions(ts));
+  PetscCall(DefaultSamplingInterval(&run, ts)); /* TSVSHMM without -ts_dt: the output times' spacing */
   PetscCall(SetDefaultSteps(&run, ts));
+  PetscCall(SetGridObservables(&run, ts));
+  PetscCall(StableMicroStep(&run, ts, U));
   PetscCall(PrintStepper(ts));
 
   PetscCall(SolveToOutputTimes(&run, ts, U));

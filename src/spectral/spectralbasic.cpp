@@ -13,11 +13,11 @@ PetscClassId  VSHMMSPECTRAL_CLASSID = 0;
 PetscLogEvent VSHMMSPECTRAL_SetUp, VSHMMSPECTRAL_RHS, VSHMMSPECTRAL_Split, VSHMMSPECTRAL_Physical, VSHMMSPECTRAL_ForwardFFT, VSHMMSPECTRAL_ProjDirect, VSHMMSPECTRAL_MatVec, VSHMMSPECTRAL_Eigen, VSHMMSPECTRAL_Growth;
 
 const char *const VSHMMSpectralModes[]          = {"dns", "sparse", "VSHMMSpectralMode", "VSHMMSPECTRAL_MODE_", nullptr};
-const char *const VSHMMSpectralDetects[]        = {"none", "initial", "dns", "file", "VSHMMSpectralDetect", "VSHMMSPECTRAL_DETECT_", nullptr};
+const char *const VSHMMSpectralDetects[]        = {"none", "initial", "dns", "file", "auto", "VSHMMSpectralDetect", "VSHMMSPECTRAL_DETECT_", nullptr};
 const char *const VSHMMSpectralProjections[]    = {"auto", "fft", "direct", "VSHMMSpectralProjection", "VSHMMSPECTRAL_PROJECTION_", nullptr};
 const char *const VSHMMSpectralEvaluations[]    = {"fft", "matrix", "VSHMMSpectralEvaluation", "VSHMMSPECTRAL_EVALUATION_", nullptr};
 const char *const VSHMMSpectralPlanners[]       = {"estimate", "measure", "patient", "VSHMMSpectralPlanner", "VSHMMSPECTRAL_PLANNER_", nullptr};
-const char *const VSHMMSpectralNormalizations[] = {"unitary", "series", "dft", "Normalization", "", nullptr};
+const char *const VSHMMSpectralNormalizations[] = {"unitary", "series", "dft", "relative", "Normalization", "", nullptr};
 
 static PetscBool VSHMMSpectralPackageInitialized = PETSC_FALSE;
 

@@ -40,7 +40,8 @@ typedef enum {
   VSHMMSPECTRAL_DETECT_NONE,
   VSHMMSPECTRAL_DETECT_INITIAL,
   VSHMMSPECTRAL_DETECT_DNS,
-  VSHMMSPECTRAL_DETECT_FILE
+  VSHMMSPECTRAL_DETECT_FILE,
+  VSHMMSPECTRAL_DETECT_AUTO
 } VSHMMSpectralDetect;
 PETSC_INTERN const char *const VSHMMSpectralDetects[];
 
@@ -68,10 +69,16 @@ PETSC_INTERN const char *const VSHMMSpectralNormalizations[];
 
 /* The cluster detection's outcome, for VSHMMSpectralView() (the library prints nothing itself). */
 struct VSHMMSpectralDetection {
-  PetscReal              dt = 0;      /* time step of the detection DNS (0: no DNS) */
-  std::vector<PetscReal> times;       /* its snapshot times */
-  PetscInt               support = 0; /* wavenumbers above the threshold */
-  PetscInt               merged  = 0; /* clusters before buffers */
+  PetscReal              dt = 0;             /* time step of the detection DNS (0: no DNS) */
+  std::vector<PetscReal> times;              /* its snapshot times */
+  PetscInt               support     = 0;    /* wavenumbers above the threshold */
+  PetscInt               merged      = 0;    /* bands (groups of wavenumbers) found */
+  PetscInt               scales      = 0;    /* clusters (time scales) they were grouped into */
+  PetscInt               steps       = 0;    /* time steps of the detection DNS */
+  PetscInt               evaluations = 0;    /* operator evaluations of the detection (DNS and the auto rule's F(u0)) */
+  PetscLogDouble         wall        = 0;    /* wall time of the detection */
+  bool                   converged   = true; /* auto snapshots: the clusters stopped changing before the step limit */
+  std::string            rule;               /* -spectral_cluster_detect auto: what it decided and why */
 };
 
 struct SplitCtx {
@@ -99,18 +106,22 @@ struct VSHMMSpectral_Data {
   std::vector<PetscReal>   reaction;                     /* c0..c3 (fewer: the rest 0) */
   VSHMMSpectralMode        mode = VSHMMSPECTRAL_MODE_DNS;
   std::string              cluster_spec;
-  VSHMMSpectralDetect      detect = VSHMMSPECTRAL_DETECT_NONE;
-  PetscReal                lambda = 3.1622776601683794e-3; /* 10^-2.5 */
-  PetscInt                 gap    = 1;
+  VSHMMSpectralDetect      detect           = VSHMMSPECTRAL_DETECT_NONE; /* none in sparse mode without clusters: auto */
+  PetscReal                lambda           = -1;                        /* negative: spc::defaultLambda(norm) */
+  PetscInt                 gap              = -1;                        /* negative: spc::groupIntoClusters() with gap_ratio */
+  PetscReal                gap_ratio        = 1.0 / 3.0;
+  PetscBool                fill_holes       = PETSC_TRUE;
+  PetscReal                scale_separation = 10; /* detected bands closer than this in time scale share a cluster */
   std::vector<PetscInt>    buffers;
-  spc::Normalization       norm = spc::Normalization::Unitary;
+  spc::Normalization       norm = spc::Normalization::Relative;
   std::vector<PetscReal>   detect_times;
   std::string              detect_file;
-  PetscReal                detect_dt     = 0;
-  VSHMMSpectralProjection  projection    = VSHMMSPECTRAL_PROJECTION_AUTO;
-  VSHMMSpectralEvaluation  evaluation    = VSHMMSPECTRAL_EVALUATION_FFT;
-  VSHMMSpectralPlanner     planner       = VSHMMSPECTRAL_PLANNER_ESTIMATE;
-  PetscReal                growth_factor = 10; /* -spectral_growth_bound (0: no check) */
+  PetscReal                detect_dt        = 0;
+  PetscInt                 detect_max_steps = 32768;
+  VSHMMSpectralProjection  projection       = VSHMMSPECTRAL_PROJECTION_AUTO;
+  VSHMMSpectralEvaluation  evaluation       = VSHMMSPECTRAL_EVALUATION_FFT;
+  VSHMMSpectralPlanner     planner          = VSHMMSPECTRAL_PLANNER_ESTIMATE;
+  PetscReal                growth_factor    = 10; /* -spectral_growth_bound (0: no check) */
 
   /* set-up */
   spc::ClusterSet                        clusters;
@@ -162,6 +173,12 @@ PETSC_INTERN PetscLogEvent VSHMMSPECTRAL_SetUp, VSHMMSPECTRAL_RHS, VSHMMSPECTRAL
 static inline const char *VSHMMSpectralPrefix(VSHMMSpectral sp)
 {
   return ((PetscObject)sp)->prefix ? ((PetscObject)sp)->prefix : "";
+}
+
+/* The shrinkage value in use (-spectral_cluster_lambda or the normalisation's default). */
+static inline PetscReal VSHMMSpectralLambda(const VSHMMSpectral_Data *s)
+{
+  return s->lambda >= 0 ? s->lambda : spc::defaultLambda(s->norm);
 }
 
 /* An error of the numerical core (a std::exception) as a PETSc error naming the option. */

@@ -209,8 +209,10 @@ static PetscErrorCode CheckOptions(VSHMMSpectral sp)
     PetscCheck(s->reaction.size() <= 4, comm, PETSC_ERR_ARG_SIZ, "-%sspectral_reaction_coefficients takes at most 4 values c0,c1,c2,c3 (a cubic), got %d", pre, (int)s->reaction.size());
     for (PetscReal c : s->reaction) PetscCheck(std::isfinite(c), comm, PETSC_ERR_ARG_OUTOFRANGE, "-%sspectral_reaction_coefficients must be finite", pre);
   }
-  PetscCheck(std::isfinite(s->lambda) && s->lambda >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%sspectral_cluster_lambda must be finite and nonnegative, got %g", pre, (double)s->lambda);
-  PetscCheck(s->gap >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%sspectral_cluster_gap must be nonnegative, got %" PetscInt_FMT, pre, s->gap);
+  PetscCheck(std::isfinite(s->lambda), comm, PETSC_ERR_ARG_OUTOFRANGE, "-%sspectral_cluster_lambda must be finite (negative: the normalisation's default), got %g", pre, (double)s->lambda);
+  PetscCheck(std::isfinite(s->gap_ratio) && s->gap_ratio >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%sspectral_cluster_gap_ratio must be finite and nonnegative, got %g", pre, (double)s->gap_ratio);
+  PetscCheck(std::isfinite(s->scale_separation) && s->scale_separation >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%sspectral_cluster_scale_separation must be finite and nonnegative, got %g", pre, (double)s->scale_separation);
+  PetscCheck(s->detect_max_steps >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%sspectral_cluster_detect_max_steps must be positive, got %" PetscInt_FMT, pre, s->detect_max_steps);
   for (PetscInt b : s->buffers) PetscCheck(b >= 0 && b <= s->N / 2, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%sspectral_cluster_buffers: a buffer width must be in 0..N/2 = %" PetscInt_FMT ", got %" PetscInt_FMT, pre, s->N / 2, b);
   for (size_t i = 0; i < s->detect_times.size(); ++i)
     PetscCheck(std::isfinite(s->detect_times[i]) && s->detect_times[i] >= 0 && (i == 0 || s->detect_times[i] > s->detect_times[i - 1]), comm, PETSC_ERR_ARG_OUTOFRANGE, "-%sspectral_cluster_detect_times must be finite, nonnegative and increasing; item %d is %g", pre, (int)i + 1,
@@ -239,10 +241,14 @@ static PetscErrorCode CheckOptions(VSHMMSpectral sp)
 .  -spectral_u0 <form> - the initial data, same forms (+ -spectral_u0_* parameters)
 .  -spectral_mode <dns,sparse> - every mode, or the clusters' modes only
 .  -spectral_clusters <0:3,62:66,...> - explicit clusters: ranges lo:hi or single k, joined by + within a cluster ("none": no explicit clusters)
-.  -spectral_cluster_detect <none,initial,dns,file> - find the clusters by soft thresholding
-.  -spectral_cluster_lambda <l> - shrinkage value (default 10^-2.5)
-.  -spectral_cluster_normalization <unitary,series,dft> - scaling of the coefficients before thresholding
-.  -spectral_cluster_gap <g> - at most g missing wavenumbers inside a cluster
+.  -spectral_cluster_detect <none,initial,dns,file,auto> - find the clusters by soft thresholding (sparse mode without -spectral_clusters: auto)
+.  -spectral_cluster_lambda <l> - shrinkage value (default 1e-4 relative, 10^-2.5 for the other normalisations)
+.  -spectral_cluster_normalization <unitary,series,dft,relative> - scaling of the coefficients before thresholding (default relative: |c_k| / ||u||, independent of N)
+.  -spectral_cluster_gap <g> - at most g missing wavenumbers inside a cluster (default -1: grouping by -spectral_cluster_gap_ratio)
+.  -spectral_cluster_gap_ratio <r> - adjacent groups merge while their gap is at most r times the distance of their centres (default 1/3)
+.  -spectral_cluster_scale_separation <S> - detected bands whose time scales are less than S apart share a cluster (default 10; 1: one cluster per band)
+.  -spectral_cluster_fill_holes <bool> - a detected cluster holds every wavenumber between its lowest and highest (default true)
+.  -spectral_cluster_detect_max_steps <n> - step limit of the detection DNS with automatic snapshots (default 32768)
 .  -spectral_cluster_buffers <b0,b1,...> - buffer widths added around the clusters (one value or one per cluster)
 .  -spectral_cluster_detect_times <t1,...> - snapshot times of the short DNS (-spectral_cluster_detect dns)
 .  -spectral_cluster_detect_dt <dt> - its time step (0: a stable estimate)
@@ -291,9 +297,13 @@ PetscErrorCode VSHMMSpectralSetFromOptions(VSHMMSpectral sp)
   PetscCall(OptionsString(PetscOptionsObject, sp, "-spectral_clusters", "explicit clusters, e.g. 0:3,62:66,192:193,255:257 (none: no explicit clusters)", "clusters lo:hi or k, joined by + within a cluster and by commas between clusters, or none", clusters, &set));
   if (set) s->cluster_spec = clusters == "none" ? std::string() : clusters;
   PetscCall(OptionsEnum(PetscOptionsObject, sp, "-spectral_cluster_detect", "find the clusters by soft thresholding", VSHMMSpectralDetects, &s->detect, &set));
-  PetscCall(OptionsReal(PetscOptionsObject, sp, "-spectral_cluster_lambda", "shrinkage value of the soft thresholding", &s->lambda));
+  PetscCall(OptionsReal(PetscOptionsObject, sp, "-spectral_cluster_lambda", "shrinkage value of the soft thresholding (negative: 1e-4 relative, 10^-2.5 otherwise)", &s->lambda));
   PetscCall(OptionsEnum(PetscOptionsObject, sp, "-spectral_cluster_normalization", "scaling of the coefficients before thresholding", VSHMMSpectralNormalizations, &s->norm, &set));
-  PetscCall(OptionsInt(PetscOptionsObject, sp, "-spectral_cluster_gap", "at most this many missing wavenumbers inside a cluster", &s->gap));
+  PetscCall(OptionsInt(PetscOptionsObject, sp, "-spectral_cluster_gap", "at most this many missing wavenumbers inside a cluster (negative: by -spectral_cluster_gap_ratio)", &s->gap));
+  PetscCall(OptionsReal(PetscOptionsObject, sp, "-spectral_cluster_gap_ratio", "adjacent groups merge while gap <= ratio * distance of their centres", &s->gap_ratio));
+  PetscCall(OptionsReal(PetscOptionsObject, sp, "-spectral_cluster_scale_separation", "detected bands whose time scales are less than this apart share a cluster (1: one cluster per band)", &s->scale_separation));
+  PetscCall(PetscOptionsBool("-spectral_cluster_fill_holes", "a detected cluster holds every wavenumber between its ends", "VSHMMSpectralSetFromOptions", s->fill_holes, &s->fill_holes, NULL));
+  PetscCall(OptionsInt(PetscOptionsObject, sp, "-spectral_cluster_detect_max_steps", "step limit of the detection DNS with automatic snapshots", &s->detect_max_steps));
   PetscCall(OptionsIntList(PetscOptionsObject, sp, "-spectral_cluster_buffers", "buffer widths around the clusters (one, or one per cluster)", s->buffers, &set));
   PetscCall(OptionsRealList(PetscOptionsObject, sp, "-spectral_cluster_detect_times", "snapshot times of the detection DNS", s->detect_times, &set));
   PetscCall(OptionsReal(PetscOptionsObject, sp, "-spectral_cluster_detect_dt", "time step of the detection DNS (0: estimate)", &s->detect_dt));

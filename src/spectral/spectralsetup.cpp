@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 static spc::Planner CorePlanner(VSHMMSpectralPlanner p)
 {
@@ -45,78 +46,205 @@ PetscErrorCode VSHMMSpectralBuildExtraTerms_Private(VSHMMSpectral sp, spc::Extra
   PetscFunctionReturn(0);
 }
 
+/* |c_k|, k = 0..N/2, of coefficients in the full layout. */
+static std::vector<double> FullMagnitudes(const spc::Layout &full, int N, const double *c)
+{
+  std::vector<double> m(full.modeCount());
+  for (int i = 0; i < full.modeCount(); ++i) {
+    const int k = full.mode(i), o = full.offset(i);
+    m[k] = spc::isRealOnly(N, k) ? std::fabs(c[o]) : std::hypot(c[o], c[o + 1]);
+  }
+  return m;
+}
+
+/* The detection DNS's right-hand side, with its work counted. */
+struct DetectCtx {
+  spc::SpectralOperator *op;
+  PetscInt               evaluations = 0, steps = 0;
+  const spc::Layout     *full = nullptr; /* set: keep the largest |c_k| over every step in peak */
+  std::vector<double>    peak;
+};
+
 static PetscErrorCode DetectRHS(TS ts, PetscReal t, Vec U, Vec F, void *ctx)
 {
-  spc::SpectralOperator *op = (spc::SpectralOperator *)ctx;
-  const PetscScalar     *u;
-  PetscScalar           *f;
+  DetectCtx         *d = (DetectCtx *)ctx;
+  const PetscScalar *u;
+  PetscScalar       *f;
 
   PetscFunctionBeginUser;
   (void)ts;
   (void)t;
   PetscCall(VecGetArrayRead(U, &u));
   PetscCall(VecGetArray(F, &f));
-  op->apply(u, f);
+  d->op->apply(u, f);
+  d->evaluations++;
   PetscCall(VecRestoreArray(F, &f));
   PetscCall(VecRestoreArrayRead(U, &u));
   PetscFunctionReturn(0);
 }
 
+static PetscErrorCode DetectPostStep(TS ts)
+{
+  DetectCtx *d;
+
+  PetscFunctionBeginUser;
+  PetscCall(TSGetApplicationContext(ts, &d));
+  d->steps++;
+  if (d->full) {
+    Vec                U;
+    const PetscScalar *c;
+    PetscCall(TSGetSolution(ts, &U));
+    PetscCall(VecGetArrayRead(U, &c));
+    const std::vector<double> m = FullMagnitudes(*d->full, d->full->size(), c) /* full layout: N reals */;
+    PetscCall(VecRestoreArrayRead(U, &c));
+    for (size_t k = 0; k < m.size(); ++k) d->peak[k] = std::max(d->peak[k], m[k]);
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The snapshots thresholded and grouped into clusters (before buffers); support gets the
+   wavenumbers above the threshold (empty: no cluster). Throws std::invalid_argument. */
+static spc::ClusterSet ClustersOf(const VSHMMSpectral_Data *s, const std::vector<std::vector<double>> &mags, spc::Normalization norm, double lambda, std::vector<int> &support)
+{
+  spc::ClusterSet cs;
+  support = spc::thresholdSupport(mags, (int)s->N, lambda, norm);
+  if (support.empty()) return cs;
+  cs = s->gap >= 0 ? spc::mergeIntoClusters(support, (int)s->N, (int)s->gap) : spc::groupIntoClusters(support, (int)s->N, s->gap_ratio);
+  return s->fill_holes ? spc::fillHoles(cs) : cs;
+}
+
+/* The time scale of each band: max|d| k^2 + max|a| k at its highest wavenumber k. */
+static std::vector<double> BandRates(const spc::ClusterSet &bands, const std::vector<double> &D, const std::vector<double> &A)
+{
+  double              md = 0, ma = 0;
+  std::vector<double> r;
+  for (double d : D) md = std::max(md, std::fabs(d));
+  for (double a : A) ma = std::max(ma, std::fabs(a));
+  for (const auto &c : bands.clusters) r.push_back(md * c.back() * (double)c.back() + ma * c.back());
+  return r;
+}
+
 /* Snapshots |c_k| (k = 0..N/2) of a short direct simulation on every rank (PETSC_COMM_SELF), TS
-   options prefix <prefix>spectral_cluster_detect_. */
-static PetscErrorCode DetectionDNS(VSHMMSpectral sp, const std::vector<double> &D, const std::vector<double> &A, const std::vector<double> &u0, std::vector<std::vector<double>> &mags)
+   options prefix <prefix>spectral_cluster_detect_: at -spectral_cluster_detect_times, or (none
+   given) the largest |c_k| over every step, looked at after 64, 128, 256, ... steps until its
+   clusters are the same three times in a row (two doublings of the time bring nothing new) or
+   -spectral_cluster_detect_max_steps is reached. */
+static PetscErrorCode DetectionDNS(VSHMMSpectral sp, const std::vector<double> &D, const std::vector<double> &A, DetectCtx *dctx, const std::vector<double> &u0, std::vector<std::vector<double>> &mags)
 {
   VSHMMSpectral_Data *s    = sp->data;
   spc::Layout         full = spc::Layout::full((int)s->N);
-  spc::ExtraTerms     extra;
   Vec                 U;
   TS                  ts;
   PetscScalar        *u;
   PetscReal           dt = s->detect_dt;
 
   PetscFunctionBegin;
-  PetscCheck(!s->detect_times.empty(), PetscObjectComm((PetscObject)sp), PETSC_ERR_ARG_WRONGSTATE, "-%sspectral_cluster_detect dns needs -%sspectral_cluster_detect_times t1,t2,...: the snapshot times of the short direct simulation", VSHMMSpectralPrefix(sp), VSHMMSpectralPrefix(sp));
-  PetscCall(VSHMMSpectralBuildExtraTerms_Private(sp, extra));
-  spc::SpectralOperator op(full, D, A, extra, spc::Planner::Estimate);
+  PetscCheck(s->detect == VSHMMSPECTRAL_DETECT_AUTO || !s->detect_times.empty(), PetscObjectComm((PetscObject)sp), PETSC_ERR_ARG_WRONGSTATE, "-%sspectral_cluster_detect dns needs -%sspectral_cluster_detect_times t1,t2,...: the snapshot times of the short direct simulation (or use -%sspectral_cluster_detect auto)", VSHMMSpectralPrefix(sp), VSHMMSpectralPrefix(sp), VSHMMSpectralPrefix(sp));
   PetscCall(VecCreateSeq(PETSC_COMM_SELF, full.size(), &U));
   PetscCall(VecGetArray(U, &u));
-  op.analyze(u0.data(), u);
+  dctx->op->analyze(u0.data(), u);
   if (!(dt > 0)) { /* the operator's stable RK3 step (spectralstable.cpp) */
     std::vector<std::complex<double>> ritz;
-    PetscCall(VSHMMSpectralRitzValues_Private(PETSC_COMM_SELF, op, std::vector<double>(u, u + full.size()), ritz));
+    PetscCall(VSHMMSpectralRitzValues_Private(PETSC_COMM_SELF, *dctx->op, std::vector<double>(u, u + full.size()), ritz));
     PetscCall(VSHMMSpectralStableStepOf_Private(PETSC_COMM_SELF, ritz, TSRK3, &dt));
   }
   PetscCall(VecRestoreArray(U, &u));
   PetscCall(TSCreate(PETSC_COMM_SELF, &ts));
   PetscCall(TSSetOptionsPrefix(ts, ((PetscObject)sp)->prefix));
   PetscCall(TSAppendOptionsPrefix(ts, "spectral_cluster_detect_"));
-  PetscCall(TSSetRHSFunction(ts, NULL, DetectRHS, &op));
+  PetscCall(TSSetRHSFunction(ts, NULL, DetectRHS, dctx));
+  PetscCall(TSSetApplicationContext(ts, dctx));
+  PetscCall(TSSetPostStep(ts, DetectPostStep));
   PetscCall(TSSetType(ts, TSRK));
   PetscCall(TSRKSetType(ts, TSRK3));
   PetscCall(TSSetTimeStep(ts, dt));
   PetscCall(TSSetMaxSteps(ts, PETSC_MAX_INT));
   PetscCall(TSSetExactFinalTime(ts, TS_EXACTFINALTIME_MATCHSTEP));
   PetscCall(TSSetFromOptions(ts));
-  s->detection.dt    = dt;
-  s->detection.times = s->detect_times;
-  for (PetscReal t : s->detect_times) {
+  s->detection.dt      = dt;
+  const bool automatic = s->detect_times.empty();
+  if (automatic) {
+    const PetscScalar *c;
+    PetscCall(VecGetArrayRead(U, &c));
+    dctx->peak = FullMagnitudes(full, (int)s->N, c);
+    PetscCall(VecRestoreArrayRead(U, &c));
+    dctx->full = &full;
+  }
+  spc::ClusterSet last;
+  PetscInt        same = 0;
+  for (size_t i = 0;; ++i) {
+    PetscReal t;
+    if (!automatic) {
+      if (i == s->detect_times.size()) break;
+      t = s->detect_times[i];
+    } else t = PetscMin(64.0 * std::ldexp(1.0, (int)PetscMin(i, (size_t)60)), (double)s->detect_max_steps) * dt;
     if (t > 0) {
       PetscCall(TSSetMaxTime(ts, t));
       PetscCall(TSSetTimeStep(ts, dt));
       PetscCall(TSSolve(ts, U));
     }
-    const PetscScalar  *c;
-    std::vector<double> m(full.modeCount());
-    PetscCall(VecGetArrayRead(U, &c));
-    for (int i = 0; i < full.modeCount(); ++i) {
-      const int k = full.mode(i), o = full.offset(i);
-      m[k] = spc::isRealOnly((int)s->N, k) ? std::fabs(c[o]) : std::hypot(c[o], c[o + 1]);
+    if (automatic) mags.assign(1, dctx->peak); /* the largest |c_k| over every step so far */
+    else {
+      const PetscScalar *c;
+      PetscCall(VecGetArrayRead(U, &c));
+      mags.push_back(FullMagnitudes(full, (int)s->N, c));
+      PetscCall(VecRestoreArrayRead(U, &c));
     }
-    PetscCall(VecRestoreArrayRead(U, &c));
-    mags.push_back(m);
+    s->detection.times.push_back(t);
+    if (automatic) {
+      std::vector<int> support;
+      spc::ClusterSet  cs;
+      try {
+        cs = ClustersOf(s, mags, s->norm, VSHMMSpectralLambda(s), support);
+      } catch (const std::exception &e) {
+        SETERRQ(PetscObjectComm((PetscObject)sp), PETSC_ERR_ARG_WRONG, "cluster detection: %s", e.what());
+      }
+      same = (i > 0 && cs.clusters == last.clusters) ? same + 1 : 0;
+      last = cs;
+      PetscCall(PetscInfo(sp, "cluster detection DNS: t = %g (%" PetscInt_FMT " steps): %d clusters %s\n", (double)t, dctx->steps, (int)cs.size(), cs.format().c_str()));
+      if (same >= 2) break;
+      if (dctx->steps >= s->detect_max_steps || t >= s->detect_max_steps * dt * (1 - 1e-12)) {
+        s->detection.converged = false;
+        PetscCall(PetscInfo(sp, "cluster detection DNS: the clusters still changed at the step limit -spectral_cluster_detect_max_steps %" PetscInt_FMT "\n", s->detect_max_steps));
+        break;
+      }
+    }
   }
   PetscCall(TSDestroy(&ts));
   PetscCall(VecDestroy(&U));
+  PetscFunctionReturn(0);
+}
+
+/* -spectral_cluster_detect auto: does the initial data show every cluster? F(u0) is computed on
+   every mode; if the wavenumbers of u0 and F(u0) (each above lambda relative to its own norm)
+   form more clusters than those of u0 alone, the operator creates modes u0 does not show and a
+   short direct simulation is needed. */
+static PetscErrorCode AutoNeedsDNS(VSHMMSpectral sp, DetectCtx *dctx, const std::vector<double> &u0, bool *dns)
+{
+  VSHMMSpectral_Data *s    = sp->data;
+  const int           N    = (int)s->N;
+  spc::Layout         full = spc::Layout::full(N);
+  std::vector<double> c(full.size()), f(full.size());
+  std::vector<int>    s0, s1;
+  spc::ClusterSet     c0, c1;
+  const double        lambda = s->norm == spc::Normalization::Relative ? VSHMMSpectralLambda(s) : spc::defaultLambda(spc::Normalization::Relative);
+
+  PetscFunctionBegin;
+  dctx->op->analyze(u0.data(), c.data());
+  dctx->op->apply(c.data(), f.data());
+  dctx->evaluations++;
+  const std::vector<double> m0 = FullMagnitudes(full, N, c.data()), mf = FullMagnitudes(full, N, f.data());
+  try {
+    c0 = ClustersOf(s, {m0}, spc::Normalization::Relative, lambda, s0);
+    c1 = ClustersOf(s, {m0, mf}, spc::Normalization::Relative, lambda, s1);
+  } catch (const std::exception &e) {
+    SETERRQ(PetscObjectComm((PetscObject)sp), PETSC_ERR_ARG_WRONG, "cluster detection: %s", e.what());
+  }
+  *dns = c1.size() > c0.size();
+  std::ostringstream m;
+  if (*dns) m << "auto: F(u0) reaches " << c1.size() << " clusters (" << c1.format() << "), u0 shows " << c0.size() << ": short direct simulation";
+  else m << "auto: the initial data shows every cluster F(u0) reaches (" << c0.size() << "): initial data only";
+  s->detection.rule = m.str();
   PetscFunctionReturn(0);
 }
 
@@ -137,8 +265,24 @@ static PetscErrorCode DetectionSnapshots(VSHMMSpectral sp, const std::vector<dou
     PetscFunctionReturn(0);
   }
   PetscCall(VSHMMSpectralSampleField_Private(sp, "u0", s->u0, u));
-  if (s->detect == VSHMMSPECTRAL_DETECT_INITIAL) mags.push_back(spc::coefficientMagnitudes(u));
-  else PetscCall(DetectionDNS(sp, D, A, u, mags));
+  if (s->detect == VSHMMSPECTRAL_DETECT_INITIAL) {
+    mags.push_back(spc::coefficientMagnitudes(u));
+    PetscFunctionReturn(0);
+  }
+  spc::ExtraTerms extra;
+  PetscCall(VSHMMSpectralBuildExtraTerms_Private(sp, extra));
+  spc::SpectralOperator op(spc::Layout::full((int)s->N), D, A, extra, spc::Planner::Estimate);
+  DetectCtx             dctx;
+  bool                  dns = true;
+
+  dctx.op = &op;
+  if (s->detect == VSHMMSPECTRAL_DETECT_AUTO) {
+    PetscCall(AutoNeedsDNS(sp, &dctx, u, &dns));
+    if (!dns) mags.push_back(spc::coefficientMagnitudes(u));
+  }
+  if (dns) PetscCall(DetectionDNS(sp, D, A, &dctx, u, mags));
+  s->detection.steps       = dctx.steps;
+  s->detection.evaluations = dctx.evaluations;
   PetscFunctionReturn(0);
 }
 
@@ -153,7 +297,11 @@ static PetscErrorCode FindClusters(VSHMMSpectral sp, const std::vector<double> &
   PetscFunctionBegin;
   s->detection = VSHMMSpectralDetection();
   PetscCheck(!(explicit_clusters && s->detect != VSHMMSPECTRAL_DETECT_NONE), comm, PETSC_ERR_ARG_INCOMP, "Give either -%sspectral_clusters (explicit) or -%sspectral_cluster_detect %s, not both", pre, pre, VSHMMSpectralDetects[s->detect]);
-  PetscCheck(explicit_clusters || s->detect != VSHMMSPECTRAL_DETECT_NONE, comm, PETSC_ERR_ARG_WRONGSTATE, "-%sspectral_mode sparse needs clusters: give -%sspectral_clusters lo:hi,lo:hi,... (e.g. 0:3,62:66,192:193,255:257) or -%sspectral_cluster_detect initial|dns|file", pre, pre, pre);
+  const VSHMMSpectralDetect given = s->detect;
+  if (!explicit_clusters && s->detect == VSHMMSPECTRAL_DETECT_NONE) {
+    s->detect = VSHMMSPECTRAL_DETECT_AUTO; /* sparse mode without clusters: find them (restored below) */
+    PetscCall(PetscInfo(sp, "-%sspectral_mode sparse without -%sspectral_clusters: -%sspectral_cluster_detect auto\n", pre, pre, pre));
+  }
   if (explicit_clusters) {
     try {
       s->clusters = spc::ClusterSet::parse(s->cluster_spec, (int)s->N);
@@ -164,10 +312,14 @@ static PetscErrorCode FindClusters(VSHMMSpectral sp, const std::vector<double> &
   } else {
     std::vector<std::vector<double>> mags;
     std::vector<int>                 support;
+    spc::ClusterSet                  found;
+    PetscLogDouble                   w0, w1;
 
+    PetscCall(PetscTime(&w0));
     PetscCall(DetectionSnapshots(sp, D, A, mags));
+    s->detect = given; /* the option as given: a later -spectral_clusters is not "both" */
     try {
-      support = spc::thresholdSupport(mags, (int)s->N, s->lambda, s->norm);
+      found = ClustersOf(s, mags, s->norm, VSHMMSpectralLambda(s), support);
     } catch (const std::exception &e) {
       SETERRQ(comm, PETSC_ERR_ARG_WRONG, "cluster detection: %s", e.what());
     }
@@ -176,19 +328,21 @@ static PetscErrorCode FindClusters(VSHMMSpectral sp, const std::vector<double> &
       int    kbig = 0;
       for (const auto &m : mags)
         for (size_t k = 0; k < m.size(); ++k)
-          if (m[k] > big) big = m[k], kbig = (int)k;
-      SETERRQ(comm, PETSC_ERR_ARG_OUTOFRANGE, "Soft thresholding with -%sspectral_cluster_lambda %g leaves no mode: the largest %s-normalised coefficient is %g (k = %d); lower -%sspectral_cluster_lambda", pre, (double)s->lambda, spc::normalizationName(s->norm),
-              big * spc::normalizationFactor(s->norm, (int)s->N), kbig, pre);
+          if (m[k] * spc::normalizationFactor(s->norm, (int)s->N, m) > big) big = m[k] * spc::normalizationFactor(s->norm, (int)s->N, m), kbig = (int)k;
+      SETERRQ(comm, PETSC_ERR_ARG_OUTOFRANGE, "Soft thresholding with -%sspectral_cluster_lambda %g leaves no mode: the largest %s-normalised coefficient is %g (k = %d); lower -%sspectral_cluster_lambda", pre, (double)VSHMMSpectralLambda(s), spc::normalizationName(s->norm), big, kbig, pre);
     }
+    PetscCall(PetscTime(&w1));
+    s->detection.wall = w1 - w0;
     try {
-      s->clusters          = spc::mergeIntoClusters(support, (int)s->N, (int)s->gap);
       s->detection.support = (PetscInt)support.size();
-      s->detection.merged  = (PetscInt)s->clusters.size();
+      s->detection.merged  = (PetscInt)found.size();
+      s->clusters          = spc::groupIntoScales(found, BandRates(found, D, A), s->scale_separation);
+      s->detection.scales  = (PetscInt)s->clusters.size();
       s->clusters          = spc::addBuffers(s->clusters, buffers);
     } catch (const std::exception &e) {
       SETERRQ(comm, PETSC_ERR_ARG_WRONG, "cluster detection (-%sspectral_cluster_buffers): %s", pre, e.what());
     }
-    PetscCall(PetscInfo(sp, "cluster detection: %" PetscInt_FMT " wavenumbers above lambda %g in %" PetscInt_FMT " clusters\n", s->detection.support, (double)s->lambda, s->detection.merged));
+    PetscCall(PetscInfo(sp, "cluster detection: %" PetscInt_FMT " wavenumbers above lambda %g in %" PetscInt_FMT " clusters\n", s->detection.support, (double)VSHMMSpectralLambda(s), s->detection.merged));
   }
   if (s->clusters.sortByLowest()) PetscCall(PetscInfo(sp, "clusters reordered by their lowest wavenumber (slowest first)\n"));
   PetscFunctionReturn(0);
@@ -294,12 +448,15 @@ PetscErrorCode VSHMMSpectralSetUp(VSHMMSpectral sp)
   s->modes.assign(s->layout->modes().begin(), s->layout->modes().end());
   s->out.assign(s->layout->size(), 0.0);
   PetscCall(CalibrateProjection(sp));
-  s->cache_valid    = PETSC_FALSE;
-  s->stats          = VSHMMSpectralStatistics();
-  s->weights        = spc::parsevalWeights(*s->layout); /* spectralstable.cpp */
-  s->ritz_done      = PETSC_FALSE;
-  s->growth_started = PETSC_FALSE;
-  sp->setupcalled   = PETSC_TRUE;
+  s->cache_valid                 = PETSC_FALSE;
+  s->stats                       = VSHMMSpectralStatistics();
+  s->stats.detection_steps       = s->detection.steps;
+  s->stats.detection_evaluations = s->detection.evaluations;
+  s->stats.detection_time        = s->detection.wall;
+  s->weights                     = spc::parsevalWeights(*s->layout); /* spectralstable.cpp */
+  s->ritz_done                   = PETSC_FALSE;
+  s->growth_started              = PETSC_FALSE;
+  sp->setupcalled                = PETSC_TRUE;
   PetscCall(PetscLogEventEnd(VSHMMSPECTRAL_SetUp, sp, 0, 0, 0));
   PetscFunctionReturn(0);
 }

@@ -9,12 +9,18 @@
 static std::string DescribeDetection(const VSHMMSpectral_Data *s)
 {
   std::ostringstream m;
+  if (!s->detection.rule.empty()) m << "cluster detection " << s->detection.rule << "\n";
   if (s->detection.dt > 0) {
     m << "cluster detection: direct simulation with " << s->N << " modes, RK3 dt = " << s->detection.dt << ", snapshots at";
     for (PetscReal t : s->detection.times) m << " " << t;
+    if (!s->detection.converged) m << " (the clusters still changed at -spectral_cluster_detect_max_steps " << s->detect_max_steps << ")";
     m << "\n";
   }
-  m << "cluster detection: lambda " << s->lambda << " (" << spc::normalizationName(s->norm) << " normalisation), gap " << s->gap << ": " << s->detection.support << " wavenumbers retained in " << s->detection.merged << " clusters\n";
+  m << "cluster detection: lambda " << VSHMMSpectralLambda(s) << " (" << spc::normalizationName(s->norm) << " normalisation), ";
+  if (s->gap >= 0) m << "gap " << s->gap;
+  else m << "gap ratio " << s->gap_ratio;
+  m << (s->fill_holes ? ", holes filled" : "") << ": " << s->detection.support << " wavenumbers above lambda in " << s->detection.merged << " bands, " << s->detection.scales << " clusters (bands less than " << s->scale_separation << " apart in time scale share one)\n";
+  if (s->detection.evaluations > 0) m << "cluster detection cost: " << s->detection.steps << " DNS steps, " << s->detection.evaluations << " evaluations on " << s->N << " modes (wall time: VSHMMSpectralGetStatistics())\n";
   return m.str();
 }
 
@@ -22,7 +28,7 @@ static std::string DescribeDetection(const VSHMMSpectral_Data *s)
 static std::string DescribeScene(const VSHMMSpectral_Data *s)
 {
   std::ostringstream m;
-  if (s->mode == VSHMMSPECTRAL_MODE_SPARSE && s->detect != VSHMMSPECTRAL_DETECT_NONE) m << DescribeDetection(s);
+  if (s->mode == VSHMMSPECTRAL_MODE_SPARSE && s->detection.support > 0) m << DescribeDetection(s); /* the clusters were detected */
   m << "scene: N = " << s->N << " grid points on [0, 2 pi), wavenumbers 0.." << spc::maxWavenumber((int)s->N) << "\n";
   for (const std::string &t : s->terms) {
     if (t == "diffusion") m << "  term diffusion: u_t += (d u_x)_x, d = " << s->diff.describe() << "\n";

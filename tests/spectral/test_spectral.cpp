@@ -327,6 +327,76 @@ TEST(Detect, SoftThresholdAndMerge)
   EXPECT_THROW(mergeIntoClusters({}, N, 1), std::invalid_argument);
 }
 
+// One physical cluster whose thresholded support is fragmented (a near-zero centre, oscillating
+// edges with gaps of 3 and 4) stays one cluster, without holes; a fixed gap of 1 fragments it.
+TEST(Detect, NoFragmentation)
+{
+  const int        N = 1024;
+  std::vector<int> modes{0, 1, 2, 3, 4, 5, 232, 236, 240, 241, 242, 243, 244, 245, 246, 247, 248, 249, 250, 251, 252, 253, 254, 258, 259, 260, 261, 262, 263, 264, 265, 266, 267, 268, 269, 270, 274, 279};
+  EXPECT_GT(mergeIntoClusters(modes, N, 1).size(), 4u);
+  ClusterSet cs = fillHoles(groupIntoClusters(modes, N, 1.0 / 3.0));
+  EXPECT_EQ(cs.format(), "K0 = {0..5}, K1 = {232..279}");
+}
+
+// Separated clusters stay apart, also where a fixed gap large enough to join the fragments
+// above would merge them: 0..5 and 11..21 (gap 5, centres 13.5 apart), 40..52 (gap 18).
+TEST(Detect, NoMerging)
+{
+  const int        N = 256;
+  std::vector<int> modes;
+  for (int k = 0; k <= 5; ++k) modes.push_back(k);
+  for (int k = 11; k <= 21; ++k) modes.push_back(k);
+  for (int k = 40; k <= 52; ++k) modes.push_back(k);
+  EXPECT_EQ(mergeIntoClusters(modes, N, 5).size(), 2u); // a fixed gap of 5 merges 0..5 with 11..21
+  EXPECT_EQ(groupIntoClusters(modes, N, 1.0 / 3.0).format(), "K0 = {0..5}, K1 = {11..21}, K2 = {40..52}");
+  // the paper's diffusion scene, detected from the dynamics: six bands
+  std::vector<int> paper{0, 1, 2, 3, 4, 5, 60, 61, 62, 63, 65, 66, 67, 68, 126, 127, 129, 130, 189, 190, 191, 193, 194, 195, 253, 254, 255, 257, 258, 259, 318, 319, 321, 322};
+  EXPECT_EQ(fillHoles(groupIntoClusters(paper, 2048, 1.0 / 3.0)).format(), "K0 = {0..5}, K1 = {60..68}, K2 = {126..130}, K3 = {189..195}, K4 = {253..259}, K5 = {318..322}");
+  EXPECT_THROW(groupIntoClusters(paper, 2048, -1), std::invalid_argument);
+}
+
+// No holes: the near-zero centre k = 64 between 62,63 and 65,66 is kept.
+TEST(Detect, NoHoles)
+{
+  ClusterSet cs = groupIntoClusters({0, 1, 2, 3, 62, 63, 65, 66}, 512, 1.0 / 3.0);
+  EXPECT_EQ(cs.clusters[1], (std::vector<int>{62, 63, 65, 66}));
+  EXPECT_EQ(fillHoles(cs).clusters[1], (std::vector<int>{62, 63, 64, 65, 66}));
+}
+
+// The relative threshold does not depend on N: the same function sampled on N = 256 and 2048
+// keeps the same wavenumbers; the unitary one (sqrt(N) |c_k|) keeps more on the finer grid.
+TEST(Detect, ThresholdIndependentOfN)
+{
+  auto sample = [](int N) {
+    std::vector<double> u(N);
+    for (int j = 0; j < N; ++j) {
+      const double x = 2 * M_PI * j / N;
+      u[j]           = 1 + 0.5 * std::cos(x) + 2e-4 * std::cos(20 * x) + 5e-5 * std::cos(40 * x) + 1e-3 * std::sin(60 * x);
+    }
+    return coefficientMagnitudes(u);
+  };
+  const std::vector<double> m256 = sample(256), m2048 = sample(2048);
+  // ||u||^2 = 1 + 0.5^2/2 + ...: relative values 1e-4/1.06, 2.5e-5/1.06, 5e-4/1.06 for k = 20, 40, 60
+  const std::vector<int> expect{0, 1, 60};
+  EXPECT_EQ(thresholdSupport({m256}, 256, 2e-4, Normalization::Relative), expect);
+  EXPECT_EQ(thresholdSupport({m2048}, 2048, 2e-4, Normalization::Relative), expect);
+  EXPECT_EQ(thresholdSupport({m256}, 256, 2e-3, Normalization::Unitary).size(), 3u);
+  EXPECT_EQ(thresholdSupport({m2048}, 2048, 2e-3, Normalization::Unitary).size(), 4u); // k = 20 as well
+  EXPECT_DOUBLE_EQ(defaultLambda(Normalization::Relative), 1e-4);
+}
+
+// Bands grouped into time scales: rates 10, 2e3, 7e3, 1.5e4 with separation 10 give two scales.
+TEST(Detect, Scales)
+{
+  ClusterSet bands = ClusterSet::parse("0:5,60:68,126:130,189:195", 1024);
+  ClusterSet s     = groupIntoScales(bands, {10, 2e3, 7e3, 1.5e4}, 10);
+  EXPECT_EQ(s.format(), "K0 = {0..5}, K1 = {60..68,126..130,189..195}");
+  EXPECT_EQ(groupIntoScales(bands, {10, 2e3, 7e3, 1.5e4}, 1).size(), 4u); // separation 1: every band
+  // nothing 10 apart: split once, at the largest ratio (7e3 / 2e3)
+  EXPECT_EQ(groupIntoScales(bands, {1e3, 2e3, 7e3, 1.5e4}, 10).format(), "K0 = {0..5,60..68}, K1 = {126..130,189..195}");
+  EXPECT_THROW(groupIntoScales(bands, {1, 2}, 10), std::invalid_argument);
+}
+
 TEST(Detect, Buffers)
 {
   ClusterSet cs = ClusterSet::parse("0,64,138,256", 1024);

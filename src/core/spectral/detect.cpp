@@ -8,16 +8,26 @@
 namespace vshmm {
 namespace spectral {
 
-double normalizationFactor(Normalization n, int N)
+double normalizationFactor(Normalization n, int N, const std::vector<double> &mags)
 {
   switch (n) {
   case Normalization::Series:
     return 1.0;
   case Normalization::DFT:
     return (double)N;
+  case Normalization::Relative: {
+    double s = 0;
+    for (size_t k = 0; k < mags.size(); ++k) s += (isRealOnly(N, (int)k) ? 1.0 : 2.0) * mags[k] * mags[k];
+    return s > 0 ? 1.0 / std::sqrt(s) : 0.0;
+  }
   default:
     return std::sqrt((double)N);
   }
+}
+
+double defaultLambda(Normalization n)
+{
+  return n == Normalization::Relative ? 1e-4 : 3.1622776601683794e-3; /* 10^-2.5 */
 }
 
 const char *normalizationName(Normalization n)
@@ -27,6 +37,8 @@ const char *normalizationName(Normalization n)
     return "series";
   case Normalization::DFT:
     return "dft";
+  case Normalization::Relative:
+    return "relative";
   default:
     return "unitary";
   }
@@ -41,16 +53,16 @@ std::vector<int> thresholdSupport(const std::vector<std::vector<double>> &mags, 
 {
   if (!(lambda >= 0.0) || !std::isfinite(lambda)) throw std::invalid_argument("the shrinkage value lambda must be finite and nonnegative");
   if (mags.empty()) throw std::invalid_argument("cluster detection needs at least one snapshot");
-  const double     f = normalizationFactor(norm, N);
-  std::vector<int> modes;
-  for (int k = 0; k <= maxWavenumber(N); ++k) {
-    bool keep = false;
-    for (const auto &m : mags) {
-      if ((int)m.size() != maxWavenumber(N) + 1) throw std::invalid_argument("a snapshot has the wrong number of wavenumbers");
-      if (softThreshold(f * m[k], lambda) > 0.0) keep = true;
-    }
-    if (keep) modes.push_back(k);
+  std::vector<char> keep(maxWavenumber(N) + 1, 0);
+  for (const auto &m : mags) {
+    if ((int)m.size() != maxWavenumber(N) + 1) throw std::invalid_argument("a snapshot has the wrong number of wavenumbers");
+    const double f = normalizationFactor(norm, N, m);
+    for (int k = 0; k <= maxWavenumber(N); ++k)
+      if (softThreshold(f * m[k], lambda) > 0.0) keep[k] = 1;
   }
+  std::vector<int> modes;
+  for (int k = 0; k <= maxWavenumber(N); ++k)
+    if (keep[k]) modes.push_back(k);
   return modes;
 }
 
@@ -67,6 +79,67 @@ ClusterSet mergeIntoClusters(const std::vector<int> &modes, int N, int gap)
   }
   cs.validate();
   return cs;
+}
+
+ClusterSet groupIntoClusters(const std::vector<int> &modes, int N, double ratio)
+{
+  if (!(ratio >= 0) || !std::isfinite(ratio)) throw std::invalid_argument("the gap ratio must be finite and nonnegative");
+  ClusterSet cs = mergeIntoClusters(modes, N, 2);
+  auto      &g  = cs.clusters;
+  for (;;) {
+    size_t best = 0;
+    double f    = ratio;
+    for (size_t j = 0; j + 1 < g.size(); ++j) {
+      const double gap = g[j + 1].front() - g[j].back() - 1;
+      const double d   = 0.5 * (g[j + 1].front() + g[j + 1].back()) - 0.5 * (g[j].front() + g[j].back());
+      if (gap / d <= f) f = gap / d, best = j + 1;
+    }
+    if (!best) break;
+    g[best - 1].insert(g[best - 1].end(), g[best].begin(), g[best].end());
+    g.erase(g.begin() + best);
+  }
+  return cs;
+}
+
+ClusterSet fillHoles(const ClusterSet &clusters)
+{
+  ClusterSet out;
+  out.N = clusters.N;
+  for (const auto &c : clusters.clusters) {
+    std::vector<int> f;
+    if (!c.empty())
+      for (int k = c.front(); k <= c.back(); ++k) f.push_back(k);
+    out.clusters.push_back(f);
+  }
+  out.validate();
+  return out;
+}
+
+ClusterSet groupIntoScales(const ClusterSet &bands, const std::vector<double> &rates, double separation)
+{
+  if (rates.size() != bands.size()) throw std::invalid_argument("one rate per band is needed");
+  if (!std::isfinite(separation)) throw std::invalid_argument("the scale separation must be finite");
+  std::vector<size_t> starts; // first band of each scale
+  double              fastest = 0;
+  for (size_t j = 0; j < bands.size(); ++j) {
+    if (j == 0 || !(rates[j] < separation * fastest)) starts.push_back(j);
+    fastest = rates[j];
+  }
+  if (starts.size() == 1 && bands.size() >= 2) {
+    size_t best = 1;
+    for (size_t j = 2; j < bands.size(); ++j)
+      if (rates[j] * rates[best - 1] > rates[best] * rates[j - 1]) best = j;
+    starts.push_back(best);
+  }
+  ClusterSet out;
+  out.N = bands.N;
+  for (size_t i = 0; i < starts.size(); ++i) {
+    std::vector<int> c;
+    for (size_t j = starts[i]; j < (i + 1 < starts.size() ? starts[i + 1] : bands.size()); ++j) c.insert(c.end(), bands.clusters[j].begin(), bands.clusters[j].end());
+    out.clusters.push_back(c);
+  }
+  out.validate();
+  return out;
 }
 
 ClusterSet addBuffers(const ClusterSet &clusters, const std::vector<int> &buffers)

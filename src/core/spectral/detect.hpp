@@ -1,5 +1,5 @@
 // Cluster detection for the sparse spectral component (no PETSc): soft thresholding of Fourier
-// coefficients over snapshots, merging of adjacent wavenumbers, buffers.
+// coefficients over snapshots, grouping of the wavenumbers found into clusters, holes, buffers.
 #pragma once
 
 #include "spectral.hpp"
@@ -9,16 +9,23 @@ namespace spectral {
 
 // How the coefficients are scaled before thresholding. With series coefficients c_k
 // (u = sum c_k exp(ikx)), the thresholded value is factor |c_k|:
-//   unitary  factor sqrt(N)  (DFT with 1/sqrt(N): the default; gives the paper's clusters)
+//   relative factor 1/||u||  with ||u||^2 = sum over k = -N/2+1..N/2 of |c_k|^2, the mean square
+//                            of u on the grid (Parseval): independent of N (the default)
+//   unitary  factor sqrt(N)  (DFT with 1/sqrt(N), the paper's normalisation as we read it: the
+//                            same lambda keeps sqrt(2) times smaller coefficients when N doubles)
 //   series   factor 1        (Fourier series coefficients c_k)
 //   dft      factor N        (unnormalised DFT, as FFTW and numpy.fft.fft return it)
 enum class Normalization {
   Unitary,
   Series,
-  DFT
+  DFT,
+  Relative
 };
-double      normalizationFactor(Normalization n, int N);
+// The factor for a snapshot mags (|c_k|, k = 0..N/2; only Relative reads it).
+double      normalizationFactor(Normalization n, int N, const std::vector<double> &mags = {});
 const char *normalizationName(Normalization n);
+// The default shrinkage value of a normalisation: 1e-4 (relative), 10^-2.5 (the others).
+double defaultLambda(Normalization n);
 
 // Soft thresholding: v^s_k = max(|v_k| - lambda, 0) v_k / |v_k|. The support is the set of k
 // with |v_k| > lambda.
@@ -31,6 +38,27 @@ std::vector<int> thresholdSupport(const std::vector<std::vector<double>> &mags, 
 // Groups sorted wavenumbers into clusters: neighbours k < k' share a cluster when at most
 // `gap` wavenumbers lie strictly between them (k' - k - 1 <= gap). Throws if modes is empty.
 ClusterSet mergeIntoClusters(const std::vector<int> &modes, int N, int gap);
+
+// Groups sorted wavenumbers into clusters without a fixed gap (the default of the detection):
+//  1. neighbours with at most 2 missing wavenumbers between them share a group (the near-zero
+//     centre of a cluster, k = 64 between 62,63 and 65,66, and the oscillating edges);
+//  2. repeatedly, the two adjacent groups whose gap (missing wavenumbers between them) is the
+//     smallest fraction of the distance between their centres ((lo + hi)/2) are merged while
+//     that fraction is at most `ratio` (default 1/3): a fragment near a wide cluster joins it,
+//     two clusters whose gap is comparable to their spacing stay apart.
+// The outcome depends on the wavenumbers only, not on N. Throws if modes is empty or ratio < 0.
+ClusterSet groupIntoClusters(const std::vector<int> &modes, int N, double ratio);
+
+// Every wavenumber between the lowest and the highest of each cluster (no holes).
+ClusterSet fillHoles(const ClusterSet &clusters);
+
+// Groups adjacent clusters (bands, slowest first) into time scales: band j joins the current
+// scale while rates[j] is less than `separation` times the rate of the scale's fastest band so
+// far; otherwise it starts a new scale. rates[j] is the band's time scale (e.g. its spectral
+// radius), increasing with j. If everything would end up in one scale but there are at least two
+// bands, the scales split once, at the largest ratio of consecutive rates. separation <= 1 keeps
+// every band a scale of its own. The result's clusters may have holes between their bands.
+ClusterSet groupIntoScales(const ClusterSet &bands, const std::vector<double> &rates, double separation);
 
 // Adds every wavenumber within buffers[j] of a member of cluster j (clipped to 0..N/2). One
 // value for all clusters or one per cluster. Throws if two clusters then overlap.
