@@ -37,6 +37,7 @@ static constexpr PetscReal kFloorFactor       = 0.7;  /* a refinement that lower
 static constexpr PetscReal kMinShare          = 1e-3; /* no error term is taken as less than this share of the estimate */
 static constexpr PetscReal kRatioCoarsening   = 4;    /* a calibration's coarser r_l - 1 */
 static constexpr PetscReal kMaxCheaper        = 8;    /* after an accepted step the work may fall by this factor at most */
+static constexpr PetscInt  kCoherenceSteps    = 4;    /* accepted steps before the budget measures how the errors add */
 static constexpr PetscReal kNegligibleSavings = 0.05; /* a time ratio below 1 + this takes no savings */
 static constexpr PetscReal kWarn              = 2;    /* a step accepted with an estimate above this many shares is warned of */
 static constexpr PetscReal kFloorAccept       = 4;    /* an estimate above this many shares is never taken as a noise floor */
@@ -67,10 +68,12 @@ static PetscErrorCode ObservableDifference(TS ts, PetscReal t, Vec Xa, Vec Xb, P
   PetscCall(vs->observables(ts, t, Xa, vs->obs_a.data(), vs->observables_ctx));
   PetscCall(vs->observables(ts, t, Xb, vs->obs_b.data(), vs->observables_ctx));
   PetscReal sum = 0;
+  vs->obs_diff.assign(vs->nobservables, 0.0);
   for (PetscInt i = 0; i < vs->nobservables; ++i) {
     const PetscReal a = vs->obs_a[i], b = vs->obs_b[i];
     const PetscReal w = ts->atol + ts->rtol * PetscMax(PetscAbsReal(a), PetscAbsReal(b));
-    const PetscReal e = (a - b) / w;
+    const PetscReal e = (b - a) / w;
+    vs->obs_diff[i]   = std::isfinite(e) ? e : 0.0;
     sum += std::isfinite(e) ? e * e : PETSC_MAX_REAL / (10 * vs->nobservables);
   }
   *norm = std::sqrt(sum / vs->nobservables);
@@ -189,7 +192,9 @@ PetscErrorCode TSVSHMMAdaptReset_Private(TS ts)
   vs->adapt_calibrated_times  = 0;
   vs->no_separation           = PETSC_FALSE;
   vs->adapt_no_savings.clear();
-  vs->floor_warned = PETSC_FALSE;
+  vs->adapt_signed.clear();
+  vs->adapt_accepted = 0;
+  vs->floor_warned   = PETSC_FALSE;
   PetscFunctionReturn(0);
 }
 
@@ -231,18 +236,34 @@ PetscErrorCode TSVSHMMAdaptSetUp_Private(TS ts)
   vs->adapt_tstart   = ts->ptime;
   vs->adapt_ready    = PETSC_TRUE;
   vs->error_estimate = vs->error_estimate_total = 0;
+  vs->adapt_signed.clear();
+  vs->adapt_accepted = 0;
   PetscCall(PetscInfo(ts, "Adapt: first parameters dt = %g, cycle %g (DeltaT %g), tolerance %g\n", (double)p.microStep, (double)vshmm::cycleLength(p), (double)DeltaT, (double)tol));
   PetscFunctionReturn(0);
 }
 
 /* The share of the tolerance of a macro step of length DeltaT (the weighted norm's 1 over the run). */
+/* Each macro step's share of the tolerance, (DeltaT / span)^gamma: gamma = 1/2 where the steps'
+   errors add like a random walk (the sum of N of them grows like sqrt(N)), gamma = 1 where they add
+   coherently (like N: a drift, the stiff-spring chain's I, the dissipative example's xi at eps =
+   1e-4). With observables gamma is measured from the signed estimates of the accepted steps: their
+   sum S against their mean size e over k >= 4 steps, S ~ e k^gamma; without observables, and
+   before, 1/2. */
 static PetscReal StepBudget(TS ts, PetscReal DeltaT)
 {
   TS_VSHMM       *vs   = (TS_VSHMM *)ts->data;
   const PetscReal span = ts->max_time - vs->adapt_tstart;
 
   if (!(span > 0) || span >= PETSC_MAX_REAL / 2 || !std::isfinite(span)) return 1.0;
-  return PetscMin(1.0, PetscSqrtReal(DeltaT / span));
+  PetscReal gamma = 0.5;
+  if (vs->adapt_accepted >= kCoherenceSteps && !vs->adapt_signed.empty() && vs->error_estimate_total > 0) {
+    PetscReal S = 0;
+    for (PetscReal x : vs->adapt_signed) S += x * x;
+    S                    = std::sqrt(S / (PetscReal)vs->adapt_signed.size());
+    const PetscReal ebar = vs->error_estimate_total / (PetscReal)vs->adapt_accepted;
+    if (S > 0 && ebar > 0) gamma = PetscMin(1.0, PetscMax(0.5, std::log(S / ebar) / std::log((PetscReal)vs->adapt_accepted)));
+  }
+  return PetscMin(1.0, PetscPowReal(DeltaT / span, gamma));
 }
 
 /* The work of a try that is not kept goes to the estimation work; the solve's counters are restored. */
@@ -283,6 +304,7 @@ static PetscErrorCode Compare(TS ts, const vshmm::AdaptParameters &p, PetscReal 
     PetscCall(ObservableDifference(ts, t0 + DeltaT, vs->Xbase, vs->Xtrial, d));
   }
   PetscCall(PetscInfo(ts, "Adapt: comparison dt %g, cycle %g: difference %g\n", (double)q->microStep, (double)vshmm::cycleLength(*q), (double)*d));
+  vs->step_signed = vs->obs_diff;
   PetscFunctionReturn(0);
 }
 
@@ -297,7 +319,9 @@ static PetscReal Estimate(const vshmm::ErrorModel &model, const vshmm::AdaptPara
    doubled or r_l - 1 times kRatioCoarsening (vshmm::coarsened; each costs 1/2 or 1/4 of the step). A parameter whose coarser run is not finite stays where it is. */
 /* A level whose time ratio r saves less than kNegligibleSavings (r - 1 below it) saves almost no work
    but still samples the faster scales: it takes no savings (r = 1, alpha = 0) for the rest of the
-   solve, which removes its error term. Without this, a problem whose slow quantities carry a part
+   solve, which removes its error term. It is applied to the choice after an accepted step, not to
+   the retries of a step (an initial layer refines the ratios fast and must keep the way back open).
+   Without this, a problem whose slow quantities carry a part
    of the fast phase (any savings shift it: the stiff-spring chain's I) drives r towards 1
    geometrically, and the micro step down with it, without ever meeting the tolerance. */
 static void SnapNegligibleSavings(TS_VSHMM *vs, vshmm::AdaptParameters &p, const vshmm::AdaptBounds &bounds)
@@ -390,7 +414,6 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
       if (!bounds.fixedMicroStep) p.microStep *= 0.5;
       if (!bounds.fixedRatios)
         for (double &r : p.ratios) r = 1.0 + (r - 1.0) / 4;
-      SnapNegligibleSavings(vs, p, bounds);
       continue;
     }
 
@@ -430,7 +453,6 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
       refinable = (next.microStep < p.microStep || vshmm::cycleLength(next) < vshmm::cycleLength(p)) ? PETSC_TRUE : PETSC_FALSE;
     }
     LimitToStableSteps(ts, next);
-    SnapNegligibleSavings(vs, next, bounds);
     PetscCall(PetscInfo(ts, "Adapt: macro step [%g, %g] try %" PetscInt_FMT ": dt %g, cycle %g, %" PetscInt64_FMT " cycles; estimate %g of its share %g\n", (double)t0, (double)t1, attempt, (double)p.microStep, (double)vshmm::cycleLength(p), counts.cycles, (double)E, (double)budget));
     /* a floor: twice, finer parameters did not lower an estimate that is near the share (or the
        savings cannot be taken back any further); far above it, the savings go on falling (their
@@ -462,10 +484,16 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
     for (size_t l = 0; l < counts.levelSteps.size(); ++l) vs->level_steps[l] += counts.levelSteps[l];
     vs->error_estimate = E;
     vs->error_estimate_total += E;
+    vs->adapt_accepted++;
+    if (vs->observables && std::isfinite(E) && d > 0 && vs->step_signed.size() == (size_t)vs->nobservables) { /* the signed error, for the budget's gamma */
+      vs->adapt_signed.resize(vs->nobservables, 0.0);
+      for (PetscInt i = 0; i < vs->nobservables; ++i) vs->adapt_signed[i] += vs->step_signed[i] * E / d;
+    }
     vs->adapt_since_calibration++;
     vs->savings_used = vshmm::savingsFromTimeRatios(p.ratios); /* what this step used (for view and getters) */
     vs->adapt_used   = p;
-    p                = next;
+    SnapNegligibleSavings(vs, next, bounds); /* after an accepted step only: the retries of an initial layer take the savings down on their way to a start */
+    p = next;
     break;
   }
   PetscFunctionReturn(0);

@@ -87,6 +87,10 @@ struct TS_VSHMM {
   PetscBool              floor_warned            = PETSC_FALSE; // told that the estimate does not fall
   Vec                    Xtrial = nullptr, Xbase = nullptr;
   std::vector<PetscReal> obs_a, obs_b;
+  std::vector<PetscReal> obs_diff;           // the last ObservableDifference, signed and weighted, per observable
+  std::vector<PetscReal> step_signed;        // that of the last comparison of the step being taken
+  std::vector<PetscReal> adapt_signed;       // the accepted steps' estimated errors, signed, summed (tolerance units)
+  PetscInt               adapt_accepted = 0; // accepted macro steps of this solve
   PetscReal              error_estimate = 0, error_estimate_total = 0;
   PetscInt64             adapt_evaluations = 0, adapt_rejections = 0, adapt_calibrations = 0;
 
