@@ -215,8 +215,13 @@ PetscErrorCode TSVSHMMAdaptSetUp_Private(TS ts)
   vshmm::AdaptParameters &p = vs->adapt_params;
   if (vs->micro_dt > 0) p.microStep = vs->micro_dt;
   else {
-    p.microStep = DeltaT / kDefaultMicroStepsPerMacroStep;
-    if (rho > 0) p.microStep = PetscMin(p.microStep, std::pow(tol, 1.0 / vs->tableau->order) / rho);
+    /* an oscillating fastest mode must be followed accurately: dt |lambda| <= tol^(1/p); one that
+       only decays need not (its error decays with it), and the micro step starts at the
+       stability limit */
+    const std::complex<double> worst       = vs->level_worst.size() == (size_t)nscales ? vs->level_worst[K] : std::complex<double>(0.0);
+    const PetscBool            oscillating = (std::abs(worst.imag()) > std::abs(worst.real()) || vs->level_limiting[K].empty()) ? PETSC_TRUE : PETSC_FALSE;
+    p.microStep                            = DeltaT / kDefaultMicroStepsPerMacroStep;
+    if (rho > 0 && oscillating) p.microStep = PetscMin(p.microStep, std::pow(tol, 1.0 / vs->tableau->order) / rho);
     p.microStep = PetscMin(p.microStep, kStableFraction * vs->level_max_step[K]);
   }
   if (!vs->savings.empty()) p.ratios = vshmm::timeRatiosFromSavings(vs->savings);
