@@ -43,7 +43,7 @@ ROOT = os.path.dirname(HERE)
 # that a rename (e.g. a prefix) is one edit.
 SPECTRAL_OPTS = {
     'scene': '-options_file_yaml',          # PETSc's, the scene file comes first
-    'mode': '-mode',                        # dns | sparse
+    'mode': '-spectral_mode',               # dns | sparse
     'output_times': '-output_times',
     'grid_file': '-grid_solution_file',
     'compare': '-compare_grid_solution',
