@@ -91,12 +91,19 @@ class Bench:
         self.log.write('$ ' + ' '.join(cmd) + '\n')
         self.log.flush()
         try:
+            # -options_left: PETSc lists the options no object read, so that a misspelt or renamed
+            # option fails the run instead of running something else (the spectral runs once ran
+            # their "DNS" as the sparse scene after -mode was renamed -spectral_mode)
+            env = dict(os.environ, PETSC_OPTIONS=(os.environ.get('PETSC_OPTIONS', '') + ' -options_left').strip())
             p = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=timeout,
-                               universal_newlines=True, cwd=self.work)
+                               universal_newlines=True, cwd=self.work, env=env)
         except subprocess.TimeoutExpired:
             self.log.write('  timeout after %g s\n' % timeout)
             return '', 'timeout'
         self.log.write(p.stdout[-3000:] + '\n')
+        if 'There are options you set that were not used' in p.stdout or 'There is one unused database option' in p.stdout:
+            self.log.write('  unused PETSc options: the run does not do what the benchmark asks\n')
+            return p.stdout, 'unused option'
         if 'budget exceeded' in p.stdout:
             return p.stdout, 'budget'
         m = re.search(r'^ts_type \S+ steps (\d+)', p.stdout, re.M)
