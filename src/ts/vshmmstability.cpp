@@ -106,6 +106,23 @@ static PetscErrorCode LevelArnoldi(TS ts, PetscInt level, PetscReal t, Vec X, Ve
   PetscFunctionReturn(0);
 }
 
+/* While alive, the split evaluations count as the stability check's, and a fault met on the way
+   (a non-finite field near the state) is not reported as the solve's: the counter and the fault
+   record are restored when it goes out of scope, on every return path. */
+struct StabilityCounting {
+  TS_VSHMM         *vs;
+  TS_VSHMM::Counter counter;
+  PetscInt          split;
+  PetscReal         time;
+  explicit StabilityCounting(TS_VSHMM *v) : vs(v), counter(v->counting), split(v->nonfinite_split), time(v->nonfinite_time) { vs->counting = TS_VSHMM::COUNT_STABILITY; }
+  ~StabilityCounting()
+  {
+    vs->counting        = counter;
+    vs->nonfinite_split = split;
+    vs->nonfinite_time  = time;
+  }
+};
+
 /* Eigenvalues of the k x k matrix A (column-major, leading dimension lda); finite = false if LAPACK fails. */
 static PetscErrorCode Eigenvalues(PetscInt k, PetscInt lda, const PetscScalar *A, std::vector<std::complex<double>> &lambda, PetscBool *finite)
 {
@@ -215,10 +232,7 @@ PetscErrorCode TSVSHMMLevelSpectra_Private(TS ts)
   std::vector<std::complex<double>> ritz;
 
   PetscFunctionBegin;
-  const TS_VSHMM::Counter saved       = vs->counting;
-  const PetscInt          saved_split = vs->nonfinite_split;
-  const PetscReal         saved_time  = vs->nonfinite_time;
-  vs->counting                        = TS_VSHMM::COUNT_STABILITY;
+  const StabilityCounting counting(vs);
   vs->level_radius.assign(nscales, 0.0);
   vs->level_max_step.assign(nscales, PETSC_INFINITY);
   vs->level_worst.assign(nscales, 0.0);
@@ -243,10 +257,7 @@ PetscErrorCode TSVSHMMLevelSpectra_Private(TS ts)
       vs->level_limiting[level].push_back(lambda);
     }
   }
-  vs->spectra_time    = ts->ptime;
-  vs->counting        = saved;
-  vs->nonfinite_split = saved_split;
-  vs->nonfinite_time  = saved_time;
+  vs->spectra_time = ts->ptime;
   PetscFunctionReturn(0);
 }
 
@@ -274,14 +285,8 @@ static PetscErrorCode CheckCoupling(TS ts, PetscReal dt, const vshmm::Mesoscopic
 
   PetscFunctionBegin;
   if (vs->level_end.size() < 2 || !TopLevelOscillates(vs)) PetscFunctionReturn(0);
-  const TS_VSHMM::Counter saved       = vs->counting;
-  const PetscInt          saved_split = vs->nonfinite_split;
-  const PetscReal         saved_time  = vs->nonfinite_time;
-  vs->counting                        = TS_VSHMM::COUNT_STABILITY;
+  const StabilityCounting counting(vs);
   PetscCall(CoupledLevelOperators(ts, t, ts->vec_sol, levels));
-  vs->counting        = saved;
-  vs->nonfinite_split = saved_split;
-  vs->nonfinite_time  = saved_time;
   if (!levels.n) PetscFunctionReturn(0);
   /* The exact flow may grow a mode too (an unstable slow manifold): allowed, at the rate of the
      full field's eigenvalue with the largest real part */
@@ -335,11 +340,8 @@ static PetscErrorCode CheckFastEnergy(TS ts)
 
   PetscFunctionBegin;
   if (top < 1 || !TopLevelOscillates(vs)) PetscFunctionReturn(0);
-  const double            omega       = vs->level_radius[top];
-  const TS_VSHMM::Counter saved       = vs->counting;
-  const PetscInt          saved_split = vs->nonfinite_split;
-  const PetscReal         saved_time  = vs->nonfinite_time;
-  vs->counting                        = TS_VSHMM::COUNT_STABILITY;
+  const double            omega = vs->level_radius[top];
+  const StabilityCounting counting(vs);
   PetscCall(VecDuplicate(X, &G));
   PetscCall(VecDuplicate(X, &F));
   PetscCall(VecDuplicate(X, &Xp));
@@ -366,10 +368,7 @@ static PetscErrorCode CheckFastEnergy(TS ts)
   PetscCall(VecDestroy(&G));
   PetscCall(VecDestroy(&F));
   PetscCall(VecDestroy(&Xp));
-  vs->counting        = saved;
-  vs->nonfinite_split = saved_split;
-  vs->nonfinite_time  = saved_time;
-  const PetscReal E   = fnorm * fnorm + dfnorm * dfnorm / (omega * omega);
+  const PetscReal E = fnorm * fnorm + dfnorm * dfnorm / (omega * omega);
   if (!std::isfinite(E)) PetscFunctionReturn(0);
   if (!(vs->fast_energy_min > 0) || E < vs->fast_energy_min) vs->fast_energy_min = E;
   const PetscReal growth = vs->fast_energy_min > 0 ? E / vs->fast_energy_min : 1;
