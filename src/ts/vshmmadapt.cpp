@@ -15,7 +15,8 @@
   redone with finer parameters; after each accepted step the parameters for the next one are
   chosen as the cheapest the model allows for kSafety of that share. Where refining no longer
   lowers the estimate, the step is accepted and the user told once. Every step is kept inside the
-  stability region of the inner Runge-Kutta method, using each level's estimated eigenvalues.
+  stability region of the inner Runge-Kutta method, using each level's estimated eigenvalues
+  (estimated again at the state of each calibration and of a step that blew up).
 
   The separation check compares the spectral radii of consecutive levels. VSHMM samples a faster
   level statistically; where no pair of levels is separated by at least kMinSeparation the faster
@@ -148,6 +149,19 @@ static void LimitToStableSteps(TS ts, vshmm::AdaptParameters &p)
   LimitAllToStableSteps(vs, p);
   if (vs->micro_dt > 0) p.microStep = dt;
   if (!vs->savings.empty()) p.ratios = vshmm::timeRatiosFromSavings(vs->savings);
+}
+
+/* Each level's spectrum and stable step estimated again at the present state (ts->vec_sol at
+   ts->ptime), and the parameters the library chooses brought inside the new stable steps. */
+static PetscErrorCode UpdateStableSteps(TS ts)
+{
+  TS_VSHMM *vs = (TS_VSHMM *)ts->data;
+
+  PetscFunctionBegin;
+  if (vs->spectra_time == ts->ptime) PetscFunctionReturn(0);
+  PetscCall(TSVSHMMLevelSpectra_Private(ts));
+  LimitToStableSteps(ts, vs->adapt_params);
+  PetscFunctionReturn(0);
 }
 
 /* The separation check: spectral radii of consecutive levels. */
@@ -390,13 +404,16 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
 
   PetscFunctionBegin;
   if (!vs->adapt_ready) PetscCall(TSVSHMMAdaptSetUp_Private(ts));
-  vshmm::AdaptBounds bounds = Bounds(ts, DeltaT);
-  const PetscBool    later  = (ts->max_time - t1 > 0.5 * DeltaT) ? PETSC_TRUE : PETSC_FALSE;
+  const PetscBool later = (ts->max_time - t1 > 0.5 * DeltaT) ? PETSC_TRUE : PETSC_FALSE;
   /* the split between the terms is measured when a later macro step can use it: at the first, then
      after 1, 2, 4, 8 macro steps (a first measurement may fall in an initial transient), then every
      kRecalibrate */
   const PetscInt interval  = vs->adapt_calibrated_times >= 5 ? kRecalibrate : PetscMin(kRecalibrate, (PetscInt)1 << PetscMax(vs->adapt_calibrated_times - 1, 0));
   PetscBool      calibrate = (later && (!vs->adapt_calibrated || vs->adapt_since_calibration >= interval)) ? PETSC_TRUE : PETSC_FALSE;
+  /* the levels' stable steps follow the state: estimated again with each calibration (an initial
+     state off the slow manifold can have other eigenvalues than the solution a step later) */
+  if (calibrate) PetscCall(UpdateStableSteps(ts));
+  vshmm::AdaptBounds bounds = Bounds(ts, DeltaT);
   PetscReal      Eprev     = PETSC_MAX_REAL;
   PetscInt       stalled   = 0;
   for (PetscInt attempt = 0;; ++attempt) {
@@ -413,8 +430,17 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
     PetscCall(TSVSHMMRunMacroStep_Private(ts, *schedule, t0, DeltaT, vs->Xbase, &counts));
     PetscReal xnorm;
     PetscCall(VecNorm(vs->Xbase, NORM_1, &xnorm));
-    if (!std::isfinite(xnorm) && attempt + 1 < kMaxAttempts) { /* blew up: redo with every parameter finer */
+    if (!std::isfinite(xnorm) && attempt + 1 < kMaxAttempts) { /* blew up: redo within the stable steps of the present state, or with every parameter finer */
       DiscardTry(vs, rhs0, lev0);
+      if (vs->spectra_time != ts->ptime) {
+        const PetscReal cycle = vshmm::cycleLength(p), dt = p.microStep;
+        PetscCall(UpdateStableSteps(ts));
+        bounds = Bounds(ts, DeltaT);
+        if (p.microStep < dt || vshmm::cycleLength(p) < cycle) {
+          PetscCall(PetscInfo(ts, "Adapt: macro step [%g, %g] try %" PetscInt_FMT " is not finite: within the stable steps at t = %g\n", (double)t0, (double)t1, attempt, (double)t0));
+          continue;
+        }
+      }
       PetscCall(PetscInfo(ts, "Adapt: macro step [%g, %g] try %" PetscInt_FMT " is not finite: every parameter finer\n", (double)t0, (double)t1, attempt));
       if (!bounds.fixedMicroStep) p.microStep *= 0.5;
       if (!bounds.fixedRatios)
