@@ -78,6 +78,9 @@ struct VSHMMSpectralDetection {
   PetscInt               evaluations = 0;    /* operator evaluations of the detection (DNS and the auto rule's F(u0)) */
   PetscLogDouble         wall        = 0;    /* wall time of the detection */
   bool                   converged   = true; /* auto snapshots: the clusters stopped changing before the step limit */
+  PetscReal              filled      = 0;    /* auto snapshots: the time at which the bands filled the spectrum (0: never) */
+  PetscReal              kept        = 0;    /* and the time of the last sparse look, whose clusters were kept */
+  PetscReal              left_out    = -1;   /* auto snapshots: RMS over the steps of ||u outside the bands|| / ||u|| (-1: not known) */
   std::string            rule;               /* -spectral_cluster_detect auto: what it decided and why */
 };
 
@@ -118,6 +121,7 @@ struct VSHMMSpectral_Data {
   std::string              detect_file;
   PetscReal                detect_dt        = 0;
   PetscInt                 detect_max_steps = 32768;
+  PetscReal                max_fraction     = 0.5; /* detected clusters holding more of 0..N/2 are not sparse */
   VSHMMSpectralProjection  projection       = VSHMMSPECTRAL_PROJECTION_AUTO;
   VSHMMSpectralEvaluation  evaluation       = VSHMMSPECTRAL_EVALUATION_FFT;
   VSHMMSpectralPlanner     planner          = VSHMMSPECTRAL_PLANNER_ESTIMATE;

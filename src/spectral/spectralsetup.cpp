@@ -63,6 +63,26 @@ struct DetectCtx {
   PetscInt               evaluations = 0, steps = 0;
   const spc::Layout     *full = nullptr; /* set: keep the largest |c_k| over every step in peak */
   std::vector<double>    peak;
+  std::vector<double>    meansq;      /* sum over the states seen of (|c_k| / ||u||)^2 */
+  PetscInt               samples = 0; /* states summed in meansq */
+  void                   keep(const std::vector<double> &m)
+  {
+    double n2 = 0;
+    for (size_t k = 0; k < m.size(); ++k) n2 += (spc::isRealOnly(full->N(), (int)k) ? 1.0 : 2.0) * m[k] * m[k];
+    if (peak.empty()) peak.assign(m.size(), 0.0), meansq.assign(m.size(), 0.0);
+    for (size_t k = 0; k < m.size(); ++k) {
+      peak[k] = std::max(peak[k], m[k]);
+      if (n2 > 0) meansq[k] += m[k] * m[k] / n2;
+    }
+    samples++;
+  }
+  /* the root mean square over the states seen of |c_k| / ||u|| (relative norm 1) */
+  std::vector<double> mean() const
+  {
+    std::vector<double> r(meansq.size());
+    for (size_t k = 0; k < r.size(); ++k) r[k] = std::sqrt(meansq[k] / (double)std::max<PetscInt>(samples, 1));
+    return r;
+  }
 };
 
 static PetscErrorCode DetectRHS(TS ts, PetscReal t, Vec U, Vec F, void *ctx)
@@ -95,9 +115,8 @@ static PetscErrorCode DetectPostStep(TS ts)
     const PetscScalar *c;
     PetscCall(TSGetSolution(ts, &U));
     PetscCall(VecGetArrayRead(U, &c));
-    const std::vector<double> m = FullMagnitudes(*d->full, d->full->size(), c) /* full layout: N reals */;
+    d->keep(FullMagnitudes(*d->full, d->full->size(), c) /* full layout: N reals */);
     PetscCall(VecRestoreArrayRead(U, &c));
-    for (size_t k = 0; k < m.size(); ++k) d->peak[k] = std::max(d->peak[k], m[k]);
   }
   PetscFunctionReturn(0);
 }
@@ -122,6 +141,14 @@ static std::vector<double> BandRates(const spc::ClusterSet &bands, const std::ve
   for (double a : A) ma = std::max(ma, std::fabs(a));
   for (const auto &c : bands.clusters) r.push_back(md * c.back() * (double)c.back() + ma * c.back());
   return r;
+}
+
+/* The number of wavenumbers in the clusters. */
+static PetscInt RetainedCount(const spc::ClusterSet &cs)
+{
+  PetscInt n = 0;
+  for (const auto &c : cs.clusters) n += (PetscInt)c.size();
+  return n;
 }
 
 /* Snapshots |c_k| (k = 0..N/2) of a short direct simulation on every rank (PETSC_COMM_SELF), TS
@@ -165,13 +192,15 @@ static PetscErrorCode DetectionDNS(VSHMMSpectral sp, const std::vector<double> &
   const bool automatic = s->detect_times.empty();
   if (automatic) {
     const PetscScalar *c;
-    PetscCall(VecGetArrayRead(U, &c));
-    dctx->peak = FullMagnitudes(full, (int)s->N, c);
-    PetscCall(VecRestoreArrayRead(U, &c));
     dctx->full = &full;
+    PetscCall(VecGetArrayRead(U, &c));
+    dctx->keep(FullMagnitudes(full, (int)s->N, c));
+    PetscCall(VecRestoreArrayRead(U, &c));
   }
-  spc::ClusterSet last;
-  PetscInt        same = 0;
+  spc::ClusterSet     last;
+  PetscInt            same = 0;
+  std::vector<double> sparse; /* the largest |c_k| at the last look whose bands were sparse */
+  PetscReal           sparse_t = 0;
   for (size_t i = 0;; ++i) {
     PetscReal t;
     if (!automatic) {
@@ -202,6 +231,18 @@ static PetscErrorCode DetectionDNS(VSHMMSpectral sp, const std::vector<double> &
       same = (i > 0 && cs.clusters == last.clusters) ? same + 1 : 0;
       last = cs;
       PetscCall(PetscInfo(sp, "cluster detection DNS: t = %g (%" PetscInt_FMT " steps): %d clusters %s\n", (double)t, dctx->steps, (int)cs.size(), cs.format().c_str()));
+      if (RetainedCount(cs) > s->max_fraction * (spc::maxWavenumber((int)s->N) + 1)) {
+        /* the bands fill the spectrum: not sparse any more; keep the last sparse look's clusters */
+        if (!sparse.empty()) {
+          s->detection.filled = t;
+          s->detection.kept   = sparse_t;
+          mags.assign(1, sparse);
+          PetscCall(PetscInfo(sp, "cluster detection DNS: at t = %g the bands hold more than %g of the wavenumbers: the clusters of t = %g are kept\n", (double)t, (double)s->max_fraction, (double)sparse_t));
+        }
+        break;
+      }
+      sparse   = mags[0];
+      sparse_t = t;
       if (same >= 2) break;
       if (dctx->steps >= s->detect_max_steps || t >= s->detect_max_steps * dt * (1 - 1e-12)) {
         s->detection.converged = false;
@@ -209,6 +250,23 @@ static PetscErrorCode DetectionDNS(VSHMMSpectral sp, const std::vector<double> &
         break;
       }
     }
+  }
+  if (automatic) { /* the share of ||u|| the bands leave out, RMS over every step */
+    std::vector<int> support;
+    spc::ClusterSet  cs;
+    try {
+      cs = ClustersOf(s, mags, s->norm, VSHMMSpectralLambda(s), support);
+    } catch (const std::exception &e) {
+      SETERRQ(PetscObjectComm((PetscObject)sp), PETSC_ERR_ARG_WRONG, "cluster detection: %s", e.what());
+    }
+    const std::vector<double> mean = dctx->mean();
+    std::vector<char>         in(mean.size(), 0);
+    double                    out = 0;
+    for (const auto &c : cs.clusters)
+      for (int k : c) in[k] = 1;
+    for (size_t k = 0; k < mean.size(); ++k)
+      if (!in[k]) out += (spc::isRealOnly((int)s->N, (int)k) ? 1.0 : 2.0) * mean[k] * mean[k];
+    s->detection.left_out = std::sqrt(out);
   }
   PetscCall(TSDestroy(&ts));
   PetscCall(VecDestroy(&U));
