@@ -143,19 +143,39 @@ static std::vector<double> BandRates(const spc::ClusterSet &bands, const std::ve
   return r;
 }
 
-/* The number of wavenumbers in the clusters. */
-static PetscInt RetainedCount(const spc::ClusterSet &cs)
+/* The share of ||u|| outside the clusters: sqrt(sum over k outside of mean[k]^2) with mean[k] the
+   root mean square of |c_k| / ||u|| over the detection DNS's steps (sum over every k: 1). */
+static double LeftOut(int N, const spc::ClusterSet &cs, const std::vector<double> &mean)
 {
-  PetscInt n = 0;
-  for (const auto &c : cs.clusters) n += (PetscInt)c.size();
-  return n;
+  std::vector<char> in(mean.size(), 0);
+  double            out = 0;
+  for (const auto &c : cs.clusters)
+    for (int k : c) in[k] = 1;
+  for (size_t k = 0; k < mean.size(); ++k)
+    if (!in[k]) out += (spc::isRealOnly(N, (int)k) ? 1.0 : 2.0) * mean[k] * mean[k];
+  return std::sqrt(out);
+}
+
+/* Whether a band of `now` holds two or more bands of `before` (the support only grows: bands merge). */
+static bool BandsMerged(const spc::ClusterSet &before, const spc::ClusterSet &now)
+{
+  for (const auto &c : now.clusters) {
+    int n = 0;
+    for (const auto &b : before.clusters)
+      if (!b.empty() && b.front() >= c.front() && b.front() <= c.back()) n++;
+    if (n >= 2) return true;
+  }
+  return false;
 }
 
 /* Snapshots |c_k| (k = 0..N/2) of a short direct simulation on every rank (PETSC_COMM_SELF), TS
    options prefix <prefix>spectral_cluster_detect_: at -spectral_cluster_detect_times, or (none
    given) the largest |c_k| over every step, looked at after 64, 128, 256, ... steps until its
    clusters are the same three times in a row (two doublings of the time bring nothing new) or
-   -spectral_cluster_detect_max_steps is reached. */
+   -spectral_cluster_detect_max_steps is reached. If bands of one look merge at the next and the
+   wavenumbers outside the earlier bands hold at most -spectral_cluster_tolerance of ||u|| (root
+   mean square over the steps so far), the earlier look's bands are kept: the merging modes carry
+   less than the tolerance can see. */
 static PetscErrorCode DetectionDNS(VSHMMSpectral sp, const std::vector<double> &D, const std::vector<double> &A, DetectCtx *dctx, const std::vector<double> &u0, std::vector<std::vector<double>> &mags)
 {
   VSHMMSpectral_Data *s    = sp->data;
@@ -199,8 +219,8 @@ static PetscErrorCode DetectionDNS(VSHMMSpectral sp, const std::vector<double> &
   }
   spc::ClusterSet     last;
   PetscInt            same = 0;
-  std::vector<double> sparse; /* the largest |c_k| at the last look whose bands were sparse */
-  PetscReal           sparse_t = 0;
+  std::vector<double> last_peak; /* the largest |c_k| at the previous look */
+  PetscReal           last_t = 0;
   for (size_t i = 0;; ++i) {
     PetscReal t;
     if (!automatic) {
@@ -228,21 +248,21 @@ static PetscErrorCode DetectionDNS(VSHMMSpectral sp, const std::vector<double> &
       } catch (const std::exception &e) {
         SETERRQ(PetscObjectComm((PetscObject)sp), PETSC_ERR_ARG_WRONG, "cluster detection: %s", e.what());
       }
-      same = (i > 0 && cs.clusters == last.clusters) ? same + 1 : 0;
-      last = cs;
       PetscCall(PetscInfo(sp, "cluster detection DNS: t = %g (%" PetscInt_FMT " steps): %d clusters %s\n", (double)t, dctx->steps, (int)cs.size(), cs.format().c_str()));
-      if (RetainedCount(cs) > s->max_fraction * (spc::maxWavenumber((int)s->N) + 1)) {
-        /* the bands fill the spectrum: not sparse any more; keep the last sparse look's clusters */
-        if (!sparse.empty()) {
-          s->detection.filled = t;
-          s->detection.kept   = sparse_t;
-          mags.assign(1, sparse);
-          PetscCall(PetscInfo(sp, "cluster detection DNS: at t = %g the bands hold more than %g of the wavenumbers: the clusters of t = %g are kept\n", (double)t, (double)s->max_fraction, (double)sparse_t));
+      if (i > 0 && BandsMerged(last, cs)) {
+        const double out = LeftOut((int)s->N, last, dctx->mean());
+        PetscCall(PetscInfo(sp, "cluster detection DNS: bands of t = %g merged at t = %g; the wavenumbers outside them hold %g of ||u|| (-spectral_cluster_tolerance %g)\n", (double)last_t, (double)t, out, (double)s->cluster_tol));
+        if (out <= s->cluster_tol) { /* keep the bands before the merge */
+          s->detection.merged_at = t;
+          s->detection.kept      = last_t;
+          mags.assign(1, last_peak);
+          break;
         }
-        break;
       }
-      sparse   = mags[0];
-      sparse_t = t;
+      same      = (i > 0 && cs.clusters == last.clusters) ? same + 1 : 0;
+      last      = cs;
+      last_peak = mags[0];
+      last_t    = t;
       if (same >= 2) break;
       if (dctx->steps >= s->detect_max_steps || t >= s->detect_max_steps * dt * (1 - 1e-12)) {
         s->detection.converged = false;
@@ -259,14 +279,7 @@ static PetscErrorCode DetectionDNS(VSHMMSpectral sp, const std::vector<double> &
     } catch (const std::exception &e) {
       SETERRQ(PetscObjectComm((PetscObject)sp), PETSC_ERR_ARG_WRONG, "cluster detection: %s", e.what());
     }
-    const std::vector<double> mean = dctx->mean();
-    std::vector<char>         in(mean.size(), 0);
-    double                    out = 0;
-    for (const auto &c : cs.clusters)
-      for (int k : c) in[k] = 1;
-    for (size_t k = 0; k < mean.size(); ++k)
-      if (!in[k]) out += (spc::isRealOnly((int)s->N, (int)k) ? 1.0 : 2.0) * mean[k] * mean[k];
-    s->detection.left_out = std::sqrt(out);
+    s->detection.left_out = LeftOut((int)s->N, cs, dctx->mean());
   }
   PetscCall(TSDestroy(&ts));
   PetscCall(VecDestroy(&U));
@@ -341,6 +354,39 @@ static PetscErrorCode DetectionSnapshots(VSHMMSpectral sp, const std::vector<dou
   if (dns) PetscCall(DetectionDNS(sp, D, A, &dctx, u, mags));
   s->detection.steps       = dctx.steps;
   s->detection.evaluations = dctx.evaluations;
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   VSHMMSpectralSetClusterTolerance - Sets the tolerance of the automatic cluster detection: when
+   bands of the detection DNS merge (the modes between them rise above the threshold) and the
+   wavenumbers outside the bands before the merge hold at most tol of ||u|| (root mean square over
+   the DNS steps so far), the bands before the merge are kept
+
+   Logically collective
+
+   Input Parameters:
++  sp - the object
+-  tol - the tolerance, nonnegative (0: merged bands stay merged); default 1e-2
+
+   Options Database Key:
+.  -spectral_cluster_tolerance <tol> - the tolerance
+
+   Note:
+   The examples pass `-ts_rtol` here (before `VSHMMSpectralSetFromOptions()`), so the detection
+   and the time stepping share the scene's tolerance.
+
+   Level: intermediate
+
+.seealso: `VSHMMSpectralSetUp()`, `VSHMMSpectralView()`
+@*/
+PetscErrorCode VSHMMSpectralSetClusterTolerance(VSHMMSpectral sp, PetscReal tol)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
+  PetscCheck(std::isfinite(tol) && tol >= 0, PetscObjectComm((PetscObject)sp), PETSC_ERR_ARG_OUTOFRANGE, "The cluster tolerance (-%sspectral_cluster_tolerance) must be finite and nonnegative, got %g", VSHMMSpectralPrefix(sp), (double)tol);
+  sp->data->cluster_tol = tol;
+  sp->setupcalled       = PETSC_FALSE;
   PetscFunctionReturn(0);
 }
 

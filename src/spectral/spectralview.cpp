@@ -15,8 +15,8 @@ static std::string DescribeDetection(const VSHMMSpectral_Data *s)
     for (PetscReal t : s->detection.times) m << " " << t;
     if (!s->detection.converged) m << " (the clusters still changed at -spectral_cluster_detect_max_steps " << s->detect_max_steps << ")";
     m << "\n";
-    if (s->detection.filled > 0)
-      m << "cluster detection: at t = " << s->detection.filled << " the bands hold more than " << s->max_fraction << " of the wavenumbers (not sparse): the clusters of t = " << s->detection.kept << " are kept (-spectral_cluster_max_fraction)\n";
+    if (s->detection.merged_at > 0)
+      m << "cluster detection: bands merged at t = " << s->detection.merged_at << "; the wavenumbers outside the bands of t = " << s->detection.kept << " hold at most -spectral_cluster_tolerance " << s->cluster_tol << " of ||u||: those bands are kept\n";
   }
   m << "cluster detection: lambda " << VSHMMSpectralLambda(s) << " (" << spc::normalizationName(s->norm) << " normalisation), ";
   if (s->gap >= 0) m << "gap " << s->gap;
