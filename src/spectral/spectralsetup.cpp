@@ -143,31 +143,6 @@ static std::vector<double> BandRates(const spc::ClusterSet &bands, const std::ve
   return r;
 }
 
-/* The share of ||u|| outside the clusters: sqrt(sum over k outside of mean[k]^2) with mean[k] the
-   root mean square of |c_k| / ||u|| over the detection DNS's steps (sum over every k: 1). */
-static double LeftOut(int N, const spc::ClusterSet &cs, const std::vector<double> &mean)
-{
-  std::vector<char> in(mean.size(), 0);
-  double            out = 0;
-  for (const auto &c : cs.clusters)
-    for (int k : c) in[k] = 1;
-  for (size_t k = 0; k < mean.size(); ++k)
-    if (!in[k]) out += (spc::isRealOnly(N, (int)k) ? 1.0 : 2.0) * mean[k] * mean[k];
-  return std::sqrt(out);
-}
-
-/* Whether a band of `now` holds two or more bands of `before` (the support only grows: bands merge). */
-static bool BandsMerged(const spc::ClusterSet &before, const spc::ClusterSet &now)
-{
-  for (const auto &c : now.clusters) {
-    int n = 0;
-    for (const auto &b : before.clusters)
-      if (!b.empty() && b.front() >= c.front() && b.front() <= c.back()) n++;
-    if (n >= 2) return true;
-  }
-  return false;
-}
-
 /* Snapshots |c_k| (k = 0..N/2) of a short direct simulation on every rank (PETSC_COMM_SELF), TS
    options prefix <prefix>spectral_cluster_detect_: at -spectral_cluster_detect_times, or (none
    given) the largest |c_k| over every step, looked at after 64, 128, 256, ... steps until its
@@ -249,8 +224,8 @@ static PetscErrorCode DetectionDNS(VSHMMSpectral sp, const std::vector<double> &
         SETERRQ(PetscObjectComm((PetscObject)sp), PETSC_ERR_ARG_WRONG, "cluster detection: %s", e.what());
       }
       PetscCall(PetscInfo(sp, "cluster detection DNS: t = %g (%" PetscInt_FMT " steps): %d clusters %s\n", (double)t, dctx->steps, (int)cs.size(), cs.format().c_str()));
-      if (i > 0 && BandsMerged(last, cs)) {
-        const double out = LeftOut((int)s->N, last, dctx->mean());
+      if (i > 0 && spc::bandsMerged(last, cs)) {
+        const double out = spc::shareOutside(last, dctx->mean());
         PetscCall(PetscInfo(sp, "cluster detection DNS: bands of t = %g merged at t = %g; the wavenumbers outside them hold %g of ||u|| (-spectral_cluster_tolerance %g)\n", (double)last_t, (double)t, out, (double)s->cluster_tol));
         if (out <= s->cluster_tol) { /* keep the bands before the merge */
           s->detection.merged_at = t;
@@ -279,7 +254,7 @@ static PetscErrorCode DetectionDNS(VSHMMSpectral sp, const std::vector<double> &
     } catch (const std::exception &e) {
       SETERRQ(PetscObjectComm((PetscObject)sp), PETSC_ERR_ARG_WRONG, "cluster detection: %s", e.what());
     }
-    s->detection.left_out = LeftOut((int)s->N, cs, dctx->mean());
+    s->detection.left_out = spc::shareOutside(cs, dctx->mean());
   }
   PetscCall(TSDestroy(&ts));
   PetscCall(VecDestroy(&U));
