@@ -105,6 +105,7 @@ PETSC_EXTERN PetscErrorCode VSHMMSpectralEstimateTimeStep(VSHMMSpectral, PetscRe
 PETSC_EXTERN PetscErrorCode VSHMMSpectralGetStableTimeStep(VSHMMSpectral, TSRKType, PetscReal *);
 PETSC_EXTERN PetscErrorCode VSHMMSpectralGetSpectralRadius(VSHMMSpectral, PetscReal *, PetscReal *);
 PETSC_EXTERN PetscErrorCode VSHMMSpectralSetGrowthBound(VSHMMSpectral, PetscReal);
+PETSC_EXTERN PetscErrorCode VSHMMSpectralSetClusterTolerance(VSHMMSpectral, PetscReal);
 PETSC_EXTERN PetscErrorCode VSHMMSpectralGrowthMonitor(TS, PetscInt, PetscReal, Vec, void *);
 PETSC_EXTERN PetscErrorCode VSHMMSpectralGetStatistics(VSHMMSpectral, VSHMMSpectralStatistics *);
 

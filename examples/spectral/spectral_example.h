@@ -435,6 +435,12 @@ static PetscErrorCode RunSpectralExample(const char *scene, PetscReal tfinal)
   PetscCall(ReadRunOptions(&run));
   PetscCall(VSHMMSpectralCreate(PETSC_COMM_WORLD, &run.sp));
   PetscCall(VSHMMSpectralSetDefaultScene(run.sp, scene));
+  { /* the detection's tolerance is the time stepping's (-spectral_cluster_tolerance overrides) */
+    PetscReal rtol;
+    PetscBool set;
+    PetscCall(PetscOptionsGetReal(NULL, NULL, "-ts_rtol", &rtol, &set));
+    if (set) PetscCall(VSHMMSpectralSetClusterTolerance(run.sp, rtol));
+  }
   PetscCall(VSHMMSpectralSetFromOptions(run.sp));
   PetscCall(VSHMMSpectralSetUp(run.sp));
   PetscCall(VSHMMSpectralView(run.sp, PETSC_VIEWER_STDOUT_WORLD));

@@ -78,6 +78,9 @@ struct VSHMMSpectralDetection {
   PetscInt               evaluations = 0;    /* operator evaluations of the detection (DNS and the auto rule's F(u0)) */
   PetscLogDouble         wall        = 0;    /* wall time of the detection */
   bool                   converged   = true; /* auto snapshots: the clusters stopped changing before the step limit */
+  PetscReal              merged_at   = 0;    /* auto snapshots: the look at which bands merged and the previous look's were kept (0: none) */
+  PetscReal              kept        = 0;    /* the time of that previous look */
+  PetscReal              left_out    = -1;   /* auto snapshots: RMS over the steps of ||u outside the bands|| / ||u|| (-1: not known) */
   std::string            rule;               /* -spectral_cluster_detect auto: what it decided and why */
 };
 
@@ -118,6 +121,7 @@ struct VSHMMSpectral_Data {
   std::string              detect_file;
   PetscReal                detect_dt        = 0;
   PetscInt                 detect_max_steps = 32768;
+  PetscReal                cluster_tol      = 1e-2; /* merged bands are undone if what the merge adds holds at most this of ||u|| */
   VSHMMSpectralProjection  projection       = VSHMMSPECTRAL_PROJECTION_AUTO;
   VSHMMSpectralEvaluation  evaluation       = VSHMMSPECTRAL_EVALUATION_FFT;
   VSHMMSpectralPlanner     planner          = VSHMMSPECTRAL_PLANNER_ESTIMATE;

@@ -63,6 +63,26 @@ struct DetectCtx {
   PetscInt               evaluations = 0, steps = 0;
   const spc::Layout     *full = nullptr; /* set: keep the largest |c_k| over every step in peak */
   std::vector<double>    peak;
+  std::vector<double>    meansq;      /* sum over the states seen of (|c_k| / ||u||)^2 */
+  PetscInt               samples = 0; /* states summed in meansq */
+  void                   keep(const std::vector<double> &m)
+  {
+    double n2 = 0;
+    for (size_t k = 0; k < m.size(); ++k) n2 += (spc::isRealOnly(full->N(), (int)k) ? 1.0 : 2.0) * m[k] * m[k];
+    if (peak.empty()) peak.assign(m.size(), 0.0), meansq.assign(m.size(), 0.0);
+    for (size_t k = 0; k < m.size(); ++k) {
+      peak[k] = std::max(peak[k], m[k]);
+      if (n2 > 0) meansq[k] += m[k] * m[k] / n2;
+    }
+    samples++;
+  }
+  /* the root mean square over the states seen of |c_k| / ||u|| (relative norm 1) */
+  std::vector<double> mean() const
+  {
+    std::vector<double> r(meansq.size());
+    for (size_t k = 0; k < r.size(); ++k) r[k] = std::sqrt(meansq[k] / (double)std::max<PetscInt>(samples, 1));
+    return r;
+  }
 };
 
 static PetscErrorCode DetectRHS(TS ts, PetscReal t, Vec U, Vec F, void *ctx)
@@ -95,9 +115,8 @@ static PetscErrorCode DetectPostStep(TS ts)
     const PetscScalar *c;
     PetscCall(TSGetSolution(ts, &U));
     PetscCall(VecGetArrayRead(U, &c));
-    const std::vector<double> m = FullMagnitudes(*d->full, d->full->size(), c) /* full layout: N reals */;
+    d->keep(FullMagnitudes(*d->full, d->full->size(), c) /* full layout: N reals */);
     PetscCall(VecRestoreArrayRead(U, &c));
-    for (size_t k = 0; k < m.size(); ++k) d->peak[k] = std::max(d->peak[k], m[k]);
   }
   PetscFunctionReturn(0);
 }
@@ -128,7 +147,10 @@ static std::vector<double> BandRates(const spc::ClusterSet &bands, const std::ve
    options prefix <prefix>spectral_cluster_detect_: at -spectral_cluster_detect_times, or (none
    given) the largest |c_k| over every step, looked at after 64, 128, 256, ... steps until its
    clusters are the same three times in a row (two doublings of the time bring nothing new) or
-   -spectral_cluster_detect_max_steps is reached. */
+   -spectral_cluster_detect_max_steps is reached. If bands of one look merge at the next and the
+   wavenumbers outside the earlier bands hold at most -spectral_cluster_tolerance of ||u|| (root
+   mean square over the steps so far), the earlier look's bands are kept: the merging modes carry
+   less than the tolerance can see. */
 static PetscErrorCode DetectionDNS(VSHMMSpectral sp, const std::vector<double> &D, const std::vector<double> &A, DetectCtx *dctx, const std::vector<double> &u0, std::vector<std::vector<double>> &mags)
 {
   VSHMMSpectral_Data *s    = sp->data;
@@ -165,13 +187,15 @@ static PetscErrorCode DetectionDNS(VSHMMSpectral sp, const std::vector<double> &
   const bool automatic = s->detect_times.empty();
   if (automatic) {
     const PetscScalar *c;
-    PetscCall(VecGetArrayRead(U, &c));
-    dctx->peak = FullMagnitudes(full, (int)s->N, c);
-    PetscCall(VecRestoreArrayRead(U, &c));
     dctx->full = &full;
+    PetscCall(VecGetArrayRead(U, &c));
+    dctx->keep(FullMagnitudes(full, (int)s->N, c));
+    PetscCall(VecRestoreArrayRead(U, &c));
   }
-  spc::ClusterSet last;
-  PetscInt        same = 0;
+  spc::ClusterSet     last;
+  PetscInt            same = 0;
+  std::vector<double> last_peak; /* the largest |c_k| at the previous look */
+  PetscReal           last_t = 0;
   for (size_t i = 0;; ++i) {
     PetscReal t;
     if (!automatic) {
@@ -199,9 +223,21 @@ static PetscErrorCode DetectionDNS(VSHMMSpectral sp, const std::vector<double> &
       } catch (const std::exception &e) {
         SETERRQ(PetscObjectComm((PetscObject)sp), PETSC_ERR_ARG_WRONG, "cluster detection: %s", e.what());
       }
-      same = (i > 0 && cs.clusters == last.clusters) ? same + 1 : 0;
-      last = cs;
       PetscCall(PetscInfo(sp, "cluster detection DNS: t = %g (%" PetscInt_FMT " steps): %d clusters %s\n", (double)t, dctx->steps, (int)cs.size(), cs.format().c_str()));
+      if (i > 0 && spc::bandsMerged(last, cs)) {
+        const double out = spc::shareOutside(last, dctx->mean());
+        PetscCall(PetscInfo(sp, "cluster detection DNS: bands of t = %g merged at t = %g; the wavenumbers outside them hold %g of ||u|| (-spectral_cluster_tolerance %g)\n", (double)last_t, (double)t, out, (double)s->cluster_tol));
+        if (out <= s->cluster_tol) { /* keep the bands before the merge */
+          s->detection.merged_at = t;
+          s->detection.kept      = last_t;
+          mags.assign(1, last_peak);
+          break;
+        }
+      }
+      same      = (i > 0 && cs.clusters == last.clusters) ? same + 1 : 0;
+      last      = cs;
+      last_peak = mags[0];
+      last_t    = t;
       if (same >= 2) break;
       if (dctx->steps >= s->detect_max_steps || t >= s->detect_max_steps * dt * (1 - 1e-12)) {
         s->detection.converged = false;
@@ -209,6 +245,16 @@ static PetscErrorCode DetectionDNS(VSHMMSpectral sp, const std::vector<double> &
         break;
       }
     }
+  }
+  if (automatic) { /* the share of ||u|| the bands leave out, RMS over every step */
+    std::vector<int> support;
+    spc::ClusterSet  cs;
+    try {
+      cs = ClustersOf(s, mags, s->norm, VSHMMSpectralLambda(s), support);
+    } catch (const std::exception &e) {
+      SETERRQ(PetscObjectComm((PetscObject)sp), PETSC_ERR_ARG_WRONG, "cluster detection: %s", e.what());
+    }
+    s->detection.left_out = spc::shareOutside(cs, dctx->mean());
   }
   PetscCall(TSDestroy(&ts));
   PetscCall(VecDestroy(&U));
@@ -283,6 +329,39 @@ static PetscErrorCode DetectionSnapshots(VSHMMSpectral sp, const std::vector<dou
   if (dns) PetscCall(DetectionDNS(sp, D, A, &dctx, u, mags));
   s->detection.steps       = dctx.steps;
   s->detection.evaluations = dctx.evaluations;
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   VSHMMSpectralSetClusterTolerance - Sets the tolerance of the automatic cluster detection: when
+   bands of the detection DNS merge (the modes between them rise above the threshold) and the
+   wavenumbers outside the bands before the merge hold at most tol of ||u|| (root mean square over
+   the DNS steps so far), the bands before the merge are kept
+
+   Logically collective
+
+   Input Parameters:
++  sp - the object
+-  tol - the tolerance, nonnegative (0: merged bands stay merged); default 1e-2
+
+   Options Database Key:
+.  -spectral_cluster_tolerance <tol> - the tolerance
+
+   Note:
+   The examples pass `-ts_rtol` here (before `VSHMMSpectralSetFromOptions()`), so the detection
+   and the time stepping share the scene's tolerance.
+
+   Level: intermediate
+
+.seealso: `VSHMMSpectralSetUp()`, `VSHMMSpectralView()`
+@*/
+PetscErrorCode VSHMMSpectralSetClusterTolerance(VSHMMSpectral sp, PetscReal tol)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
+  PetscCheck(std::isfinite(tol) && tol >= 0, PetscObjectComm((PetscObject)sp), PETSC_ERR_ARG_OUTOFRANGE, "The cluster tolerance (-%sspectral_cluster_tolerance) must be finite and nonnegative, got %g", VSHMMSpectralPrefix(sp), (double)tol);
+  sp->data->cluster_tol = tol;
+  sp->setupcalled       = PETSC_FALSE;
   PetscFunctionReturn(0);
 }
 

@@ -15,11 +15,14 @@ static std::string DescribeDetection(const VSHMMSpectral_Data *s)
     for (PetscReal t : s->detection.times) m << " " << t;
     if (!s->detection.converged) m << " (the clusters still changed at -spectral_cluster_detect_max_steps " << s->detect_max_steps << ")";
     m << "\n";
+    if (s->detection.merged_at > 0)
+      m << "cluster detection: bands merged at t = " << s->detection.merged_at << "; the wavenumbers outside the bands of t = " << s->detection.kept << " hold at most -spectral_cluster_tolerance " << s->cluster_tol << " of ||u||: those bands are kept\n";
   }
   m << "cluster detection: lambda " << VSHMMSpectralLambda(s) << " (" << spc::normalizationName(s->norm) << " normalisation), ";
   if (s->gap >= 0) m << "gap " << s->gap;
   else m << "gap ratio " << s->gap_ratio;
   m << (s->fill_holes ? ", holes filled" : "") << ": " << s->detection.support << " wavenumbers above lambda in " << s->detection.merged << " bands, " << s->detection.scales << " clusters (bands less than " << s->scale_separation << " apart in time scale share one)\n";
+  if (s->detection.left_out >= 0) m << "cluster detection: the wavenumbers outside the bands hold " << s->detection.left_out << " of ||u|| (root mean square over the DNS steps)\n";
   if (s->detection.evaluations > 0) m << "cluster detection cost: " << s->detection.steps << " DNS steps, " << s->detection.evaluations << " evaluations on " << s->N << " modes (wall time: VSHMMSpectralGetStatistics())\n";
   return m.str();
 }

@@ -397,6 +397,30 @@ TEST(Detect, Scales)
   EXPECT_THROW(groupIntoScales(bands, {1, 2}, 10), std::invalid_argument);
 }
 
+// Bands merge when a band of the later look holds two of the earlier one; widening, a new band
+// or a band split (which a growing support cannot give) is no merge.
+TEST(Detect, BandsMerged)
+{
+  ClusterSet eight = ClusterSet::parse("0:14,47:87,117:154,187:196", 1024);
+  EXPECT_TRUE(bandsMerged(eight, ClusterSet::parse("0:160,187:196", 1024)));
+  EXPECT_TRUE(bandsMerged(eight, ClusterSet::parse("0:386", 1024)));
+  EXPECT_FALSE(bandsMerged(eight, ClusterSet::parse("0:15,44:90,117:154,187:196,245:267", 1024)));
+  EXPECT_FALSE(bandsMerged(eight, eight));
+  EXPECT_FALSE(bandsMerged(ClusterSet::parse("0:5", 64), ClusterSet::parse("0:2,4:5", 64)));
+}
+
+// The share of ||u|| outside the clusters, with the weights of a real field (k = 0 and N/2 once).
+TEST(Detect, ShareOutside)
+{
+  const int           N = 16;
+  std::vector<double> m(N / 2 + 1, 0.0);
+  m[0] = 0.6, m[1] = std::sqrt(0.5 * (1 - 0.36 - 0.01 - 2 * 0.0009)), m[5] = 0.03, m[8] = 0.1; // sum of w_k m_k^2 = 1
+  EXPECT_NEAR(shareOutside(ClusterSet::parse("0:1", N), m), std::sqrt(2 * 0.0009 + 0.01), 1e-15);
+  EXPECT_NEAR(shareOutside(ClusterSet::parse("0:1,8", N), m), 0.03 * std::sqrt(2.0), 1e-15);
+  EXPECT_NEAR(shareOutside(ClusterSet::parse("0:8", N), m), 0.0, 1e-15);
+  EXPECT_THROW(shareOutside(ClusterSet::parse("0:1", N), std::vector<double>(5, 0.0)), std::invalid_argument);
+}
+
 TEST(Detect, Buffers)
 {
   ClusterSet cs = ClusterSet::parse("0,64,138,256", 1024);

@@ -142,6 +142,30 @@ ClusterSet groupIntoScales(const ClusterSet &bands, const std::vector<double> &r
   return out;
 }
 
+bool bandsMerged(const ClusterSet &before, const ClusterSet &now)
+{
+  for (const auto &c : now.clusters) {
+    if (c.empty()) continue;
+    int n = 0;
+    for (const auto &b : before.clusters)
+      if (!b.empty() && b.front() >= c.front() && b.front() <= c.back()) n++;
+    if (n >= 2) return true;
+  }
+  return false;
+}
+
+double shareOutside(const ClusterSet &clusters, const std::vector<double> &m)
+{
+  if ((int)m.size() != maxWavenumber(clusters.N) + 1) throw std::invalid_argument("the mean spectrum has the wrong number of wavenumbers");
+  std::vector<char> in(m.size(), 0);
+  for (const auto &c : clusters.clusters)
+    for (int k : c) in[k] = 1;
+  double out = 0;
+  for (size_t k = 0; k < m.size(); ++k)
+    if (!in[k]) out += (isRealOnly(clusters.N, (int)k) ? 1.0 : 2.0) * m[k] * m[k];
+  return std::sqrt(out);
+}
+
 ClusterSet addBuffers(const ClusterSet &clusters, const std::vector<int> &buffers)
 {
   if (buffers.empty()) return clusters;

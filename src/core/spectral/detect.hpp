@@ -60,6 +60,15 @@ ClusterSet fillHoles(const ClusterSet &clusters);
 // every band a scale of its own. The result's clusters may have holes between their bands.
 ClusterSet groupIntoScales(const ClusterSet &bands, const std::vector<double> &rates, double separation);
 
+// Whether bands merged between two looks at a growing support: a band of `now` holds the lowest
+// wavenumbers of two or more bands of `before`.
+bool bandsMerged(const ClusterSet &before, const ClusterSet &now);
+
+// The share of ||u|| outside the clusters: sqrt(sum over k = 0..N/2 outside them of w_k m_k^2),
+// w_k = 1 for k = 0 and k = N/2 (N even), 2 otherwise, with m_k the root mean square over time of
+// |c_k| / ||u|| (so that the sum over every k is 1). Throws if m does not have N/2 + 1 values.
+double shareOutside(const ClusterSet &clusters, const std::vector<double> &m);
+
 // Adds every wavenumber within buffers[j] of a member of cluster j (clipped to 0..N/2). One
 // value for all clusters or one per cluster. Throws if two clusters then overlap.
 ClusterSet addBuffers(const ClusterSet &clusters, const std::vector<int> &buffers);
