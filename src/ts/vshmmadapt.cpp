@@ -499,6 +499,9 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
       continue;
     }
     if (E > budget) {
+      /* the next macro step starts from the parameters accepted here (the refinement that did
+         not meet the share is not carried on: past an initial layer the estimate falls again) */
+      next                  = p;
       const PetscBool noise = (floor && savings) ? PETSC_TRUE : PETSC_FALSE;
       const char     *why   = noise        ? "finer parameters do not lower the estimate"
                               : floor      ? "finer micro steps do not lower the estimate, and the savings factors are set or none are left"
