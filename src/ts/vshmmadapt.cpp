@@ -413,9 +413,9 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
   /* the levels' stable steps follow the state: estimated again with each calibration (an initial
      state off the slow manifold can have other eigenvalues than the solution a step later) */
   if (calibrate) PetscCall(UpdateStableSteps(ts));
-  vshmm::AdaptBounds bounds = Bounds(ts, DeltaT);
-  PetscReal      Eprev     = PETSC_MAX_REAL;
-  PetscInt       stalled   = 0;
+  vshmm::AdaptBounds bounds  = Bounds(ts, DeltaT);
+  PetscReal          Eprev   = PETSC_MAX_REAL;
+  PetscInt           stalled = 0;
   for (PetscInt attempt = 0;; ++attempt) {
     vshmm::AdaptParameters &p = vs->adapt_params;
     vs->nonfinite_split       = -1;
