@@ -282,6 +282,23 @@ add_test(NAME spectral_detect_auto_advection_tol1e-4 COMMAND ${_sp_launch_adv} $
 set_tests_properties(spectral_detect_auto_advection_tol1e-4 PROPERTIES LABELS "example;spectral" TIMEOUT 60
                      PASS_REGULAR_EXPRESSION "-ts_type vshmm needs at least two clusters \\(time scales\\), but the scene has one \\(the detection found one band of wavenumbers\\)")
 
+# The stable step at u0 too large later (burgers_growth.yaml: viscous Burgers whose amplitude
+# grows e-fold per unit time, max|u| 0.1 -> 1.9 at t = 3): the RK3 step estimated at u0 (0.0597)
+# is lowered 8 times as sum |c_k| grows, to 0.0220; against RK3 at dt = 1e-4 (which dt = 5e-5
+# changes by 3e-10) the relative L2 errors are 9.1e-6, 2.2e-5, 3.8e-3 (tolerance 5e-3). Without the
+# re-estimate the run blows up before t = 3 and the growth check stops it.
+set(_sp_burgers_growth -options_file_yaml ${PROJECT_SOURCE_DIR}/examples/scenes/burgers_growth.yaml)
+vshmm_example_test(NAME spectral_stable_recheck_ref EXE diffusion
+                   ARGS ${_sp_burgers_growth} -ts_dt 1e-4 -grid_solution_file ref -no_timing
+                   REGEX "output t 3 rhs_evaluations 90000 ")
+vshmm_example_test(NAME spectral_stable_recheck EXE diffusion
+                   ARGS ${_sp_burgers_growth} -compare_grid_solution ${_sp_dir}/spectral_stable_recheck_ref/ref -compare_tolerance 5e-3 -no_timing
+                   REGEX "ts_type rk 3: time step 0.0596681\n.*stable step at t = 2.96143: 0.0220296 .*output t 3 rhs_evaluations 198 .*compare t 3 relative_l2_error.*stable step rechecks 8 [^\n]*lowered from 0.0596681 to 0.0220296")
+set_tests_properties(spectral_stable_recheck_ref PROPERTIES FIXTURES_SETUP spectral_stable_recheck_ref LABELS "example;spectral")
+set_tests_properties(spectral_stable_recheck PROPERTIES FIXTURES_REQUIRED spectral_stable_recheck_ref LABELS "example;spectral")
+add_test(NAME spectral_stable_recheck_off COMMAND ${_sp_launch_adv} $<TARGET_FILE:diffusion> ${_sp_burgers_growth} -stable_step_recheck false)
+set_tests_properties(spectral_stable_recheck_off PROPERTIES LABELS "example;spectral" PASS_REGULAR_EXPRESSION "The solution blew up at t = 3")
+
 # --- the paper's scenes parse and run (a short time: the full runs are in docs/spectral.md) ----
 vshmm_example_test(NAME spectral_scene_diffusion EXE diffusion
                    ARGS -options_file_yaml ${PROJECT_SOURCE_DIR}/examples/scenes/diffusion.yaml -output_times 0.005 -no_timing

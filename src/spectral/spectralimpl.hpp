@@ -172,7 +172,7 @@ struct _p_VSHMMSpectral {
 };
 
 /* log events (registered by VSHMMSpectralInitializePackage()) */
-PETSC_INTERN PetscLogEvent VSHMMSPECTRAL_SetUp, VSHMMSPECTRAL_RHS, VSHMMSPECTRAL_Split, VSHMMSPECTRAL_Physical, VSHMMSPECTRAL_ForwardFFT, VSHMMSPECTRAL_ProjDirect, VSHMMSPECTRAL_MatVec, VSHMMSPECTRAL_Eigen, VSHMMSPECTRAL_Growth;
+PETSC_INTERN PetscLogEvent VSHMMSPECTRAL_SetUp, VSHMMSPECTRAL_RHS, VSHMMSPECTRAL_Split, VSHMMSPECTRAL_Physical, VSHMMSPECTRAL_ForwardFFT, VSHMMSPECTRAL_ProjDirect, VSHMMSPECTRAL_MatVec, VSHMMSPECTRAL_Eigen, VSHMMSPECTRAL_Growth, VSHMMSPECTRAL_Detect;
 
 /* The options prefix of sp ("" without one), for error messages that name an option. */
 static inline const char *VSHMMSpectralPrefix(VSHMMSpectral sp)

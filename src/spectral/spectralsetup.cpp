@@ -413,7 +413,9 @@ static PetscErrorCode FindClusters(VSHMMSpectral sp, const std::vector<double> &
     PetscLogDouble                   w0, w1;
 
     PetscCall(PetscTime(&w0));
+    PetscCall(PetscLogEventBegin(VSHMMSPECTRAL_Detect, sp, 0, 0, 0));
     PetscCall(DetectionSnapshots(sp, D, A, mags));
+    PetscCall(PetscLogEventEnd(VSHMMSPECTRAL_Detect, sp, 0, 0, 0));
     s->detect = given; /* the option as given: a later -spectral_clusters is not "both" */
     try {
       found = ClustersOf(s, mags, s->norm, VSHMMSpectralLambda(s), support);
