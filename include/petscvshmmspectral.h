@@ -103,6 +103,7 @@ PETSC_EXTERN PetscErrorCode VSHMMSpectralRHSFunction(TS, PetscReal, Vec, Vec, vo
 PETSC_EXTERN PetscErrorCode VSHMMSpectralSetUpTS(VSHMMSpectral, TS);
 PETSC_EXTERN PetscErrorCode VSHMMSpectralEstimateTimeStep(VSHMMSpectral, PetscReal *);
 PETSC_EXTERN PetscErrorCode VSHMMSpectralGetStableTimeStep(VSHMMSpectral, TSRKType, PetscReal *);
+PETSC_EXTERN PetscErrorCode VSHMMSpectralGetStableTimeStepAt(VSHMMSpectral, Vec, TSRKType, PetscReal *);
 PETSC_EXTERN PetscErrorCode VSHMMSpectralGetSpectralRadius(VSHMMSpectral, PetscReal *, PetscReal *);
 PETSC_EXTERN PetscErrorCode VSHMMSpectralSetGrowthBound(VSHMMSpectral, PetscReal);
 PETSC_EXTERN PetscErrorCode VSHMMSpectralSetClusterTolerance(VSHMMSpectral, PetscReal);

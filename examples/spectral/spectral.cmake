@@ -219,16 +219,52 @@ set_tests_properties(spectral_auto_dns_ref PROPERTIES FIXTURES_SETUP spectral_au
 set_tests_properties(spectral_auto_zero_tuning PROPERTIES FIXTURES_REQUIRED spectral_auto_ref LABELS "example;spectral")
 set_tests_properties(spectral_detect_dns_small spectral_detect_initial_buffers PROPERTIES LABELS "example;spectral")
 # The paper's advection scene (advection_auto.yaml, N = 1024): the detection DNS's bands grow
-# around the harmonics of a's wavenumbers 64 and 256 (8 bands at t = 0.81, 256 steps) and merge at
-# t = 1.63 (modes between them rise above lambda); the wavenumbers outside the 8 bands hold 8.9e-4
-# of ||u||, below the scene's tolerance 1e-2 (-ts_rtol, passed as -spectral_cluster_tolerance), so
-# the 8 bands are kept (2 scales). With the tolerance 1e-4 the merged bands stay: on N = 2048 (6
-# bands merged into one at t = 1.25, 9.9e-4 of ||u|| outside) one band, the one-cluster error.
+# around the harmonics of a's wavenumbers 64 and 256 (8 bands at t = 0.20, 0.41, 0.81: 64, 128,
+# 256 steps) and merge at t = 1.63 (modes between them rise above lambda). With the scene's
+# tolerance 1e-2 (-ts_rtol, passed as -spectral_cluster_tolerance) the looks at 128 and 256 steps
+# agree with the first: its 8 bands only widened, by wavenumbers holding 1.4e-3 of ||u||, so the
+# detection stops at 256 steps with the 8 bands of t = 0.81 (2 scales). With the tolerance 1e-3
+# the widening counts (1.4e-3 > 1e-3) and the merge rule decides at 512 steps: the wavenumbers
+# outside the 8 bands hold 8.9e-4 of ||u||, below 1e-3, so the same 8 bands are kept. With the
+# tolerance 1e-4 the merged bands stay: on N = 2048 (6 bands merged into one at t = 1.25, 9.9e-4
+# of ||u|| outside) one band, the one-cluster error.
 set(_sp_adv_auto -options_file_yaml ${PROJECT_SOURCE_DIR}/examples/scenes/advection_auto.yaml)
 set(_sp_adv_auto_clusters "K0 = {0..14}: 15 wavenumbers.*K1 = {47..87,117..154,187..196,245..267,315..328,382..389,510,511}: 136 wavenumbers")
 vshmm_example_test(NAME spectral_detect_auto_advection EXE advection
                    ARGS ${_sp_adv_auto} -ts_type rk -output_times 0.001 -no_timing
-                   REGEX "bands merged at t = 1.62829; the wavenumbers outside the bands of t = 0.814147 hold at most -spectral_cluster_tolerance 0.01 of .*120 wavenumbers above lambda in 8 bands, 2 clusters.*outside the bands hold 0.000892[0-9]* of .*${_sp_adv_auto_clusters}.*detection dns_steps 512 evaluations 1537")
+                   REGEX "snapshots at 0.203537 0.407073 0.814147\n.*120 wavenumbers above lambda in 8 bands, 2 clusters.*the last looks agree within -spectral_cluster_tolerance 0.01: their bands widened at the edges by wavenumbers holding 0.00135[0-9]* of .*${_sp_adv_auto_clusters}.*detection dns_steps 256 evaluations 769\n")
+vshmm_example_test(NAME spectral_detect_auto_advection_merge EXE advection
+                   ARGS ${_sp_adv_auto} -ts_type rk -ts_rtol 1e-3 -ts_atol 1e-3 -output_times 0.001 -no_timing
+                   REGEX "bands merged at t = 1.62829; the wavenumbers outside the bands of t = 0.814147 hold at most -spectral_cluster_tolerance 0.001 of .*120 wavenumbers above lambda in 8 bands, 2 clusters.*outside the bands hold 0.000892[0-9]* of .*${_sp_adv_auto_clusters}.*detection dns_steps 512 evaluations 1537")
+set_tests_properties(spectral_detect_auto_advection_merge PROPERTIES LABELS "example;spectral")
+# The diffusion-advection scene (diffadv_auto.yaml, N = 1024): the slow band gains a wavenumber at
+# its edge every few doublings (0..5 at 64 steps, 0..8 at 8192), so the looks were never the same
+# three times and the detection ran to its step limit (32,768 steps, 98,305 evaluations). Its
+# looks at 128 and 256 steps agree with the first within the tolerance 1e-2 (the bands widened by
+# wavenumbers holding 2.2e-4 of ||u||): 256 steps, 769 evaluations. With the tolerance 0 (looks
+# must be the same) it still runs to the step limit (here 4096).
+set(_sp_diffadv_auto -options_file_yaml ${PROJECT_SOURCE_DIR}/examples/scenes/diffadv_auto.yaml)
+set(_sp_diffadv_auto_clusters "K0 = {0..6}: 7 wavenumbers.*K1 = {44..52,94..98,149..155,197..203,246..250}: 33 wavenumbers")
+vshmm_example_test(NAME spectral_detect_auto_diffadv EXE diffusion
+                   ARGS ${_sp_diffadv_auto} -ts_type rk -output_times 0.001 -no_timing
+                   REGEX "the last looks agree within -spectral_cluster_tolerance 0.01: their bands widened at the edges by wavenumbers holding 0.000217[0-9]* of .*${_sp_diffadv_auto_clusters}.*detection dns_steps 256 evaluations 769\n")
+vshmm_example_test(NAME spectral_detect_auto_diffadv_tol0 EXE diffusion
+                   ARGS ${_sp_diffadv_auto} -ts_type rk -spectral_cluster_tolerance 0 -spectral_cluster_detect_max_steps 4096 -output_times 0.001 -no_timing
+                   REGEX "\\(the clusters still changed at -spectral_cluster_detect_max_steps 4096\\).*K0 = {0..7}: 8 wavenumbers.*K1 = {44..53,94..98,149..155,197..203,246..250}.*detection dns_steps 4096 evaluations 12289\n")
+set_tests_properties(spectral_detect_auto_diffadv spectral_detect_auto_diffadv_tol0 PROPERTIES LABELS "example;spectral")
+# Its zero-tuning run to t = 0.125, 0.25 against a DNS (RK3 dt = 1e-5; converged to 2e-5 and
+# better, docs/spectral.md): relative L2 error 7.5e-3, 8.2e-3 (tolerance 9e-3; on the clusters of
+# the 32,768-step detection, 0..8 and 43..53, 6.1e-3, 6.6e-3; the explicit sparse method, RK3 dt
+# = 2e-5, on the new clusters 2.3e-3, 3.2e-3, on the former 1.9e-3, 2.7e-3).
+vshmm_example_test(NAME spectral_auto_diffadv_dns_ref EXE diffusion
+                   ARGS ${_sp_diffadv_auto} -spectral_mode dns -ts_type rk -ts_rk_type 3 -ts_dt 1e-5 -output_times 0.125,0.25 -grid_solution_file dns -no_timing
+                   REGEX "output t 0.25 rhs_evaluations 75000 ")
+vshmm_example_test(NAME spectral_auto_diffadv_zero_tuning EXE diffusion
+                   ARGS ${_sp_diffadv_auto} -output_times 0.125,0.25 -compare_grid_solution ${_sp_dir}/spectral_auto_diffadv_dns_ref/dns -compare_tolerance 9e-3 -no_timing
+                   REGEX "${_sp_diffadv_auto_clusters}.*detection dns_steps 256 evaluations 769
+.*compare t 0.25 relative_l2_error")
+set_tests_properties(spectral_auto_diffadv_dns_ref PROPERTIES FIXTURES_SETUP spectral_auto_diffadv_ref LABELS "example;spectral")
+set_tests_properties(spectral_auto_diffadv_zero_tuning PROPERTIES FIXTURES_REQUIRED spectral_auto_diffadv_ref LABELS "example;spectral")
 # Its zero-tuning run to t = 9 against a DNS (RK3 dt = 1e-3; the paper's reference, dt = 1.6e-4,
 # differs by 6.2e-4 at t = 9): relative L2 error 5.4e-3 (tolerance 8e-3; the explicit sparse method
 # on these clusters: 5.2e-3; the former detection kept 0..386 and 510..512, not a sparse split).
@@ -245,6 +281,23 @@ vshmm_mpiexec_command(_sp_launch_adv 1)
 add_test(NAME spectral_detect_auto_advection_tol1e-4 COMMAND ${_sp_launch_adv} $<TARGET_FILE:advection> ${_sp_adv_auto} -spectral_grid_points 2048 -ts_rtol 1e-4 -ts_atol 1e-4 -output_times 0.001)
 set_tests_properties(spectral_detect_auto_advection_tol1e-4 PROPERTIES LABELS "example;spectral" TIMEOUT 60
                      PASS_REGULAR_EXPRESSION "-ts_type vshmm needs at least two clusters \\(time scales\\), but the scene has one \\(the detection found one band of wavenumbers\\)")
+
+# The stable step at u0 too large later (burgers_growth.yaml: viscous Burgers whose amplitude
+# grows e-fold per unit time, max|u| 0.1 -> 1.9 at t = 3): the RK3 step estimated at u0 (0.0597)
+# is lowered 8 times as sum |c_k| grows, to 0.0220; against RK3 at dt = 1e-4 (which dt = 5e-5
+# changes by 3e-10) the relative L2 errors are 9.1e-6, 2.2e-5, 3.8e-3 (tolerance 5e-3). Without the
+# re-estimate the run blows up before t = 3 and the growth check stops it.
+set(_sp_burgers_growth -options_file_yaml ${PROJECT_SOURCE_DIR}/examples/scenes/burgers_growth.yaml)
+vshmm_example_test(NAME spectral_stable_recheck_ref EXE diffusion
+                   ARGS ${_sp_burgers_growth} -ts_dt 1e-4 -grid_solution_file ref -no_timing
+                   REGEX "output t 3 rhs_evaluations 90000 ")
+vshmm_example_test(NAME spectral_stable_recheck EXE diffusion
+                   ARGS ${_sp_burgers_growth} -compare_grid_solution ${_sp_dir}/spectral_stable_recheck_ref/ref -compare_tolerance 5e-3 -no_timing
+                   REGEX "ts_type rk 3: time step 0.0596681\n.*stable step at t = 2.96143: 0.0220296 .*output t 3 rhs_evaluations 198 .*compare t 3 relative_l2_error.*stable step rechecks 8 [^\n]*lowered from 0.0596681 to 0.0220296")
+set_tests_properties(spectral_stable_recheck_ref PROPERTIES FIXTURES_SETUP spectral_stable_recheck_ref LABELS "example;spectral")
+set_tests_properties(spectral_stable_recheck PROPERTIES FIXTURES_REQUIRED spectral_stable_recheck_ref LABELS "example;spectral")
+add_test(NAME spectral_stable_recheck_off COMMAND ${_sp_launch_adv} $<TARGET_FILE:diffusion> ${_sp_burgers_growth} -stable_step_recheck false)
+set_tests_properties(spectral_stable_recheck_off PROPERTIES LABELS "example;spectral" PASS_REGULAR_EXPRESSION "The solution blew up at t = 3")
 
 # --- the paper's scenes parse and run (a short time: the full runs are in docs/spectral.md) ----
 vshmm_example_test(NAME spectral_scene_diffusion EXE diffusion

@@ -17,6 +17,10 @@
                                     not u on the grid (the default observables)
      -micro_step_from_stability 0   with -ts_vshmm_adapt: let adapt choose the micro step also where
                                     the fast modes only decay (default: the stability limit there)
+     -stable_step_recheck 0         an explicit TS stepping by the stable step the example chose
+                                    (no -ts_dt): do not estimate it again as the solution grows
+                                    (StableStepMonitor(); by default it is, for nonlinear scenes)
+   With -log_view the work is in two stages, "Spectral set-up" and "Solve".
 */
 #include <petscvshmm.h>
 #include <petscvshmmspectral.h>
@@ -37,6 +41,12 @@ typedef struct {
   PetscMPIInt     rank;
   PetscBool       detected; /* the clusters were detected */
   PetscInt        nclusters;
+  /* an explicit TS's step from VSHMMSpectralGetStableTimeStep() (linearised at u0), re-checked by
+     StableStepMonitor(): the method, sum |c_k| at the last estimate, the estimates made, the step */
+  PetscBool recheck;
+  TSRKType  recheck_rk;
+  PetscReal recheck_w, recheck_dt, recheck_dt0;
+  PetscInt  rechecks;
 } SpectralRun;
 
 /* -output_times: any number of values. PETSc's array reader stops silently at the capacity it is
@@ -220,7 +230,7 @@ static PetscErrorCode SolveToOutputTimes(SpectralRun *run, TS ts, Vec U)
     char              file[PETSC_MAX_PATH_LEN] = "";
 
     PetscCall(TSSetMaxTime(ts, ti));
-    PetscCall(TSSetTimeStep(ts, dt0));
+    PetscCall(TSSetTimeStep(ts, run->recheck ? run->recheck_dt : dt0)); /* the step, lowered by StableStepMonitor() */
     PetscCall(TSSolve(ts, U));
     PetscCall(TSGetSolveTime(ts, &t));
     PetscCall(TSGetConvergedReason(ts, &reason));
@@ -418,21 +428,89 @@ static PetscErrorCode SetDefaultSteps(SpectralRun *run, TS ts)
   PetscCall(VSHMMSpectralGetStableTimeStep(run->sp, rk, &h));
   if (PetscIsInfReal(h)) PetscFunctionReturn(0); /* no eigenvalue limits it: keep tfinal / 100 */
   PetscCall(TSSetTimeStep(ts, h));
+  run->recheck    = PETSC_TRUE;
+  run->recheck_rk = rk;
+  run->recheck_dt = run->recheck_dt0 = h;
+  PetscFunctionReturn(0);
+}
+
+/* sum over the retained k of |c_k| (k > 0 twice): a bound on max|u| over the grid. */
+static PetscErrorCode WienerNorm(SpectralRun *run, Vec U, PetscReal *w)
+{
+  PetscInt i;
+
+  PetscFunctionBeginUser;
+  PetscCall(VSHMMSpectralGetModeMagnitudes(run->sp, U, run->mags));
+  *w = 0;
+  for (i = 0; i < run->nmodes; i++) *w += (run->modes[i] ? 2.0 : 1.0) * run->mags[i];
+  PetscFunctionReturn(0);
+}
+
+/* The stable step of an explicit TS set by SetDefaultSteps() is the operator's linearised at u0.
+   A nonlinear term's Jacobian grows with the solution (burgers: by max|c u| kmax + max|(c u)_x|;
+   a reaction: by |r| (|c1| + 2 |c2| M + 3 |c3| M^2), M = max|u|), and every such bound grows with
+   W = sum |c_k| >= max|u| (max|(c u)_x| <= kmax max|c u|). So every 8 steps W is compared with its
+   value at the last estimate; when it has grown by more than 10% the stable step is estimated
+   again at the current state (VSHMMSpectralGetStableTimeStepAt(): 40 evaluations, none for a
+   linear scene) and the step is lowered to it if smaller, with a message. The step is never
+   raised again. */
+static PetscErrorCode StableStepMonitor(TS ts, PetscInt step, PetscReal t, Vec U, void *ctx)
+{
+  SpectralRun *run = (SpectralRun *)ctx;
+  PetscReal    w, h, dt;
+
+  PetscFunctionBeginUser;
+  if (step % 8) PetscFunctionReturn(0);
+  PetscCall(WienerNorm(run, U, &w));
+  if (!(w > 1.1 * run->recheck_w)) PetscFunctionReturn(0);
+  PetscCall(VSHMMSpectralGetStableTimeStepAt(run->sp, U, run->recheck_rk, &h));
+  run->rechecks++;
+  if (h < run->recheck_dt) {
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "stable step at t = %g: %g (TSRK %s, the Jacobian at the current state; sum |c_k| %g, %g at the last estimate): the time step is lowered from %g\n", (double)t, (double)h, run->recheck_rk, (double)w,
+                          (double)run->recheck_w, (double)run->recheck_dt));
+    run->recheck_dt = h;
+  }
+  PetscCall(TSGetTimeStep(ts, &dt)); /* possibly already shortened to end at the final time */
+  if (dt > run->recheck_dt) PetscCall(TSSetTimeStep(ts, run->recheck_dt));
+  run->recheck_w = w;
+  PetscFunctionReturn(0);
+}
+
+/* Installs StableStepMonitor() when the step came from the stability estimate
+   (-stable_step_recheck false: not). */
+static PetscErrorCode SetStableStepRecheck(SpectralRun *run, TS ts, Vec U)
+{
+  PetscBool use = PETSC_TRUE;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsGetBool(NULL, NULL, "-stable_step_recheck", &use, NULL));
+  if (!run->recheck || !use) {
+    run->recheck = PETSC_FALSE;
+    PetscFunctionReturn(0);
+  }
+  PetscCall(WienerNorm(run, U, &run->recheck_w));
+  PetscCall(TSMonitorSet(ts, StableStepMonitor, run, NULL));
   PetscFunctionReturn(0);
 }
 
 /* Runs the scene `scene` ("diffusion" or "advection") with default final time tfinal. */
 static PetscErrorCode RunSpectralExample(const char *scene, PetscReal tfinal)
 {
-  SpectralRun run;
-  TS          ts;
-  Vec         U;
+  SpectralRun   run;
+  TS            ts;
+  Vec           U;
+  PetscLogStage setup_stage, solve_stage;
 
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(&run, sizeof(run)));
   PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &run.rank));
   PetscCall(TSVSHMMInitializePackage());
   PetscCall(ReadRunOptions(&run));
+  /* -log_view stages: the set-up (fields, FFTW plans, detection, stable-step estimates) and the
+     solve (TSVSHMM's set-up, e.g. its stability check, happens in the first TSSolve) */
+  PetscCall(PetscLogStageRegister("Spectral set-up", &setup_stage));
+  PetscCall(PetscLogStageRegister("Solve", &solve_stage));
+  PetscCall(PetscLogStagePush(setup_stage));
   PetscCall(VSHMMSpectralCreate(PETSC_COMM_WORLD, &run.sp));
   PetscCall(VSHMMSpectralSetDefaultScene(run.sp, scene));
   { /* the detection's tolerance is the time stepping's (-spectral_cluster_tolerance overrides) */
@@ -472,9 +550,15 @@ static PetscErrorCode RunSpectralExample(const char *scene, PetscReal tfinal)
   PetscCall(SetDefaultSteps(&run, ts));
   PetscCall(SetGridObservables(&run, ts));
   PetscCall(StableMicroStep(&run, ts, U));
+  PetscCall(SetStableStepRecheck(&run, ts, U));
   PetscCall(PrintStepper(ts));
+  PetscCall(PetscLogStagePop());
 
+  PetscCall(PetscLogStagePush(solve_stage));
   PetscCall(SolveToOutputTimes(&run, ts, U));
+  if (run.recheck && run.recheck_dt < run.recheck_dt0)
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "stable step rechecks %d (about 41 evaluations each, not in rhs_evaluations): the time step was lowered from %g to %g\n", (int)run.rechecks, (double)run.recheck_dt0, (double)run.recheck_dt));
+  PetscCall(PetscLogStagePop());
 
   PetscCall(TSDestroy(&ts));
   PetscCall(VecDestroy(&U));

@@ -10,7 +10,7 @@
 #include <sstream>
 
 PetscClassId  VSHMMSPECTRAL_CLASSID = 0;
-PetscLogEvent VSHMMSPECTRAL_SetUp, VSHMMSPECTRAL_RHS, VSHMMSPECTRAL_Split, VSHMMSPECTRAL_Physical, VSHMMSPECTRAL_ForwardFFT, VSHMMSPECTRAL_ProjDirect, VSHMMSPECTRAL_MatVec, VSHMMSPECTRAL_Eigen, VSHMMSPECTRAL_Growth;
+PetscLogEvent VSHMMSPECTRAL_SetUp, VSHMMSPECTRAL_RHS, VSHMMSPECTRAL_Split, VSHMMSPECTRAL_Physical, VSHMMSPECTRAL_ForwardFFT, VSHMMSPECTRAL_ProjDirect, VSHMMSPECTRAL_MatVec, VSHMMSPECTRAL_Eigen, VSHMMSPECTRAL_Growth, VSHMMSPECTRAL_Detect;
 
 const char *const VSHMMSpectralModes[]          = {"dns", "sparse", "VSHMMSpectralMode", "VSHMMSPECTRAL_MODE_", nullptr};
 const char *const VSHMMSpectralDetects[]        = {"none", "initial", "dns", "file", "auto", "VSHMMSpectralDetect", "VSHMMSPECTRAL_DETECT_", nullptr};
@@ -69,6 +69,7 @@ PetscErrorCode VSHMMSpectralInitializePackage(void)
   PetscCall(PetscLogEventRegister("SpecMatVec", VSHMMSPECTRAL_CLASSID, &VSHMMSPECTRAL_MatVec));
   PetscCall(PetscLogEventRegister("SpecEigen", VSHMMSPECTRAL_CLASSID, &VSHMMSPECTRAL_Eigen));
   PetscCall(PetscLogEventRegister("SpecGrowth", VSHMMSPECTRAL_CLASSID, &VSHMMSPECTRAL_Growth));
+  PetscCall(PetscLogEventRegister("SpecDetect", VSHMMSPECTRAL_CLASSID, &VSHMMSPECTRAL_Detect));
   PetscCall(PetscRegisterFinalize(VSHMMSpectralFinalizePackage));
   PetscFunctionReturn(0);
 }

@@ -80,6 +80,7 @@ struct VSHMMSpectralDetection {
   bool                   converged   = true; /* auto snapshots: the clusters stopped changing before the step limit */
   PetscReal              merged_at   = 0;    /* auto snapshots: the look at which bands merged and the previous look's were kept (0: none) */
   PetscReal              kept        = 0;    /* the time of that previous look */
+  PetscReal              widened     = -1;   /* auto snapshots: the agreeing looks' bands widened by wavenumbers holding this share of ||u|| (-1: the looks were the same) */
   PetscReal              left_out    = -1;   /* auto snapshots: RMS over the steps of ||u outside the bands|| / ||u|| (-1: not known) */
   std::string            rule;               /* -spectral_cluster_detect auto: what it decided and why */
 };
@@ -171,7 +172,7 @@ struct _p_VSHMMSpectral {
 };
 
 /* log events (registered by VSHMMSpectralInitializePackage()) */
-PETSC_INTERN PetscLogEvent VSHMMSPECTRAL_SetUp, VSHMMSPECTRAL_RHS, VSHMMSPECTRAL_Split, VSHMMSPECTRAL_Physical, VSHMMSPECTRAL_ForwardFFT, VSHMMSPECTRAL_ProjDirect, VSHMMSPECTRAL_MatVec, VSHMMSPECTRAL_Eigen, VSHMMSPECTRAL_Growth;
+PETSC_INTERN PetscLogEvent VSHMMSPECTRAL_SetUp, VSHMMSPECTRAL_RHS, VSHMMSPECTRAL_Split, VSHMMSPECTRAL_Physical, VSHMMSPECTRAL_ForwardFFT, VSHMMSPECTRAL_ProjDirect, VSHMMSPECTRAL_MatVec, VSHMMSPECTRAL_Eigen, VSHMMSPECTRAL_Growth, VSHMMSPECTRAL_Detect;
 
 /* The options prefix of sp ("" without one), for error messages that name an option. */
 static inline const char *VSHMMSpectralPrefix(VSHMMSpectral sp)

@@ -146,8 +146,11 @@ static std::vector<double> BandRates(const spc::ClusterSet &bands, const std::ve
 /* Snapshots |c_k| (k = 0..N/2) of a short direct simulation on every rank (PETSC_COMM_SELF), TS
    options prefix <prefix>spectral_cluster_detect_: at -spectral_cluster_detect_times, or (none
    given) the largest |c_k| over every step, looked at after 64, 128, 256, ... steps until its
-   clusters are the same three times in a row (two doublings of the time bring nothing new) or
-   -spectral_cluster_detect_max_steps is reached. If bands of one look merge at the next and the
+   clusters agree three times in a row (two doublings of the time bring nothing new) or
+   -spectral_cluster_detect_max_steps is reached. Looks agree when their clusters are the same,
+   or when the bands of the first of them only widened at their edges by wavenumbers that hold at
+   most -spectral_cluster_tolerance of ||u|| (root mean square over the steps so far); the last
+   look's (widest) bands are then kept. If bands of one look merge at the next and the
    wavenumbers outside the earlier bands hold at most -spectral_cluster_tolerance of ||u|| (root
    mean square over the steps so far), the earlier look's bands are kept: the merging modes carry
    less than the tolerance can see. */
@@ -192,9 +195,10 @@ static PetscErrorCode DetectionDNS(VSHMMSpectral sp, const std::vector<double> &
     dctx->keep(FullMagnitudes(full, (int)s->N, c));
     PetscCall(VecRestoreArrayRead(U, &c));
   }
-  spc::ClusterSet     last;
-  PetscInt            same = 0;
-  std::vector<double> last_peak; /* the largest |c_k| at the previous look */
+  spc::ClusterSet     last, anchor;
+  PetscInt            same     = 0;
+  PetscReal           anchor_t = 0, widened = -1; /* the share of ||u|| the agreeing looks added */
+  std::vector<double> last_peak;                  /* the largest |c_k| at the previous look */
   PetscReal           last_t = 0;
   for (size_t i = 0;; ++i) {
     PetscReal t;
@@ -234,11 +238,25 @@ static PetscErrorCode DetectionDNS(VSHMMSpectral sp, const std::vector<double> &
           break;
         }
       }
-      same      = (i > 0 && cs.clusters == last.clusters) ? same + 1 : 0;
+      /* agreement with the first look of the current run of agreeing looks: the same bands, or
+         (tolerance > 0) the same bands widened at their edges by wavenumbers that hold at most the
+         tolerance of ||u|| in all (they sit at the threshold, as diffadv's slow band, which gains
+         one wavenumber every few doublings) */
+      bool agree = i > 0 && cs.clusters == anchor.clusters;
+      if (i > 0 && !agree && s->cluster_tol > 0 && spc::bandsWidened(anchor, cs)) {
+        const double added = spc::shareAdded(anchor, cs, dctx->mean());
+        PetscCall(PetscInfo(sp, "cluster detection DNS: bands of t = %g widened at t = %g by wavenumbers holding %g of ||u|| (-spectral_cluster_tolerance %g)\n", (double)anchor_t, (double)t, added, (double)s->cluster_tol));
+        if (added <= s->cluster_tol) agree = true, widened = PetscMax(widened, added);
+      }
+      if (agree) same++;
+      else same = 0, anchor = cs, anchor_t = t, widened = -1;
       last      = cs;
       last_peak = mags[0];
       last_t    = t;
-      if (same >= 2) break;
+      if (same >= 2) {
+        s->detection.widened = widened;
+        break;
+      }
       if (dctx->steps >= s->detect_max_steps || t >= s->detect_max_steps * dt * (1 - 1e-12)) {
         s->detection.converged = false;
         PetscCall(PetscInfo(sp, "cluster detection DNS: the clusters still changed at the step limit -spectral_cluster_detect_max_steps %" PetscInt_FMT "\n", s->detect_max_steps));
@@ -395,7 +413,9 @@ static PetscErrorCode FindClusters(VSHMMSpectral sp, const std::vector<double> &
     PetscLogDouble                   w0, w1;
 
     PetscCall(PetscTime(&w0));
+    PetscCall(PetscLogEventBegin(VSHMMSPECTRAL_Detect, sp, 0, 0, 0));
     PetscCall(DetectionSnapshots(sp, D, A, mags));
+    PetscCall(PetscLogEventEnd(VSHMMSPECTRAL_Detect, sp, 0, 0, 0));
     s->detect = given; /* the option as given: a later -spectral_clusters is not "both" */
     try {
       found = ClustersOf(s, mags, s->norm, VSHMMSpectralLambda(s), support);

@@ -166,6 +166,75 @@ PetscErrorCode VSHMMSpectralGetStableTimeStep(VSHMMSpectral sp, TSRKType type, P
   PetscFunctionReturn(0);
 }
 
+/* Whether F's Jacobian depends on the state: a burgers term, or a reaction with c2 or c3. */
+static bool SceneIsNonlinear(const VSHMMSpectral_Data *s)
+{
+  for (const std::string &t : s->terms) {
+    if (t == "burgers") return true;
+    if (t == "reaction")
+      for (size_t i = 2; i < s->reaction.size(); ++i)
+        if (s->reaction[i] != 0) return true;
+  }
+  return false;
+}
+
+/*@C
+   VSHMMSpectralGetStableTimeStepAt - A stable step of an explicit Runge-Kutta method for the
+   operator linearised at a given state (`VSHMMSpectralGetStableTimeStep()` linearises at the
+   initial state)
+
+   Collective
+
+   Input Parameters:
++  sp - the object
+.  U - a state Vec (`VSHMMSpectralCreateVec()`)
+-  type - a TSRK type (TSRK3, TSRK4, ...)
+
+   Output Parameter:
+.  dt - the step (PETSC_INFINITY if no eigenvalue limits it)
+
+   Notes:
+   For a scene whose Jacobian depends on the state (a burgers term, or a reaction with c2 or c3
+   nonzero) this is a new estimate at U (forty Arnoldi steps: about 40 operator evaluations, event
+   SpecEigen): a solution whose amplitude or gradients grow can need a smaller step than at u0.
+   For a linear scene the Jacobian is the same at every state and the estimate of
+   `VSHMMSpectralGetStableTimeStep()` is returned (no work).
+
+   Level: intermediate
+
+.seealso: `VSHMMSpectralGetStableTimeStep()`, `VSHMMSpectralGetSpectralRadius()`
+@*/
+PetscErrorCode VSHMMSpectralGetStableTimeStepAt(VSHMMSpectral sp, Vec U, TSRKType type, PetscReal *dt)
+{
+  VSHMMSpectral_Data               *s;
+  const PetscScalar                *c;
+  std::vector<std::complex<double>> ritz;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
+  PetscValidHeaderSpecific(U, VEC_CLASSID, 2);
+  PetscValidCharPointer(type, 3);
+  PetscValidRealPointer(dt, 4);
+  PetscCall(VSHMMSpectralSetUp(sp));
+  s = sp->data;
+  if (!SceneIsNonlinear(s)) {
+    PetscCall(VSHMMSpectralGetStableTimeStep(sp, type, dt));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(PetscLogEventBegin(VSHMMSPECTRAL_Eigen, sp, 0, 0, 0));
+  PetscCall(VSHMMSpectralGetCoefficients_Private(sp, U, &c));
+  const std::vector<double> cu(c, c + s->layout->size());
+  PetscCall(VSHMMSpectralRestoreCoefficients_Private(sp, U, &c));
+  PetscCall(VSHMMSpectralRitzValues_Private(PetscObjectComm((PetscObject)sp), *s->op, cu, ritz));
+  s->cache_valid = PETSC_FALSE; /* the operator's buffers were used */
+  PetscCall(PetscLogEventEnd(VSHMMSPECTRAL_Eigen, sp, 0, 0, 0));
+  PetscCall(VSHMMSpectralStableStepOf_Private(PetscObjectComm((PetscObject)sp), ritz, type, dt));
+  double radius = 0;
+  for (const std::complex<double> &lambda : ritz) radius = std::max(radius, std::abs(lambda));
+  PetscCall(PetscInfo(sp, "stable step of TSRK %s at the given state: %g (spectral radius estimate %g)\n", type, (double)*dt, radius));
+  PetscFunctionReturn(0);
+}
+
 /*@C
    VSHMMSpectralGetSpectralRadius - The estimated spectral radius of the operator on the retained
    modes (the largest Ritz value of `VSHMMSpectralGetStableTimeStep()`) and an upper bound of it

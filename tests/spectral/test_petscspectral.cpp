@@ -345,6 +345,33 @@ TEST(VSHMMSpectralObject, IsAPetscObject)
   EXPECT_CONTAINS(s.view(), "scene: N = 32 grid points");
 }
 
+// The stable step at a given state: a linear scene's is the initial one at any state; with a
+// cubic reaction -u^3 the Jacobian at a constant state a is -0.5 k^2 - 3 a^2 on mode k (d = 0.5,
+// N = 64), so the spectral radius is 480.5 + 3 a^2: from u0 = 1 to the state 10 u0 the step falls
+// from 0.9 * 2.5127453266 / 483.5 to 0.9 * 2.5127453266 / 780.5.
+TEST(VSHMMSpectralStableStep, AtAStateFollowsTheJacobian)
+{
+  const std::string diffusion = "-spectral_grid_points 64 -spectral_diffusion_coefficient constant -spectral_diffusion_coefficient_value 0.5 -spectral_u0 constant -spectral_u0_value 1";
+  for (const bool cubic : {false, true}) {
+    Scene     s(diffusion + (cubic ? " -spectral_terms diffusion,reaction -spectral_reaction_coefficients 0,0,0,-1" : ""));
+    Vec       U;
+    PetscReal dt0 = 0, dt1 = 0, dt10 = 0;
+    ASSERT_EQ(s.error(), "");
+    ASSERT_EQ(VSHMMSpectralCreateVec(s.sp, &U), 0);
+    ASSERT_EQ(VSHMMSpectralSetInitialCondition(s.sp, U), 0);
+    ASSERT_EQ(VSHMMSpectralGetStableTimeStep(s.sp, TSRK3, &dt0), 0);
+    ASSERT_EQ(VSHMMSpectralGetStableTimeStepAt(s.sp, U, TSRK3, &dt1), 0);
+    ASSERT_EQ(VecScale(U, 10.0), 0);
+    ASSERT_EQ(VSHMMSpectralGetStableTimeStepAt(s.sp, U, TSRK3, &dt10), 0);
+    const double radius0 = cubic ? 483.5 : 480.5, radius10 = cubic ? 780.5 : 480.5;
+    EXPECT_NEAR(dt0, 0.9 * 2.5127453266 / radius0, 1e-5 * dt0);
+    EXPECT_NEAR(dt1, dt0, 1e-5 * dt0);
+    EXPECT_NEAR(dt10, 0.9 * 2.5127453266 / radius10, 1e-5 * dt10);
+    if (!cubic) EXPECT_EQ(dt10, dt0); // the initial estimate, no new work
+    ASSERT_EQ(VecDestroy(&U), 0);
+  }
+}
+
 // Constant d = 0.5 on every mode of N = 64: the eigenvalues are -0.5 k^2, k = 0..31 (the Nyquist
 // mode's derivative is zero), so the spectral radius is 480.5 and the bound max|d| kmax^2 = 512;
 // RK3's real-axis limit is 2.5127453266, RK4's 2.7852935634: the step is 0.9 of that / 480.5.

@@ -421,6 +421,32 @@ TEST(Detect, ShareOutside)
   EXPECT_THROW(shareOutside(ClusterSet::parse("0:1", N), std::vector<double>(5, 0.0)), std::invalid_argument);
 }
 
+// Bands that only widen (the diffadv scene's looks at 64 and 256 steps) against a new band, a
+// vanished band, a merge; the share of the added wavenumbers (k = 0 and N/2 once).
+TEST(Detect, BandsWidened)
+{
+  ClusterSet six = ClusterSet::parse("0:5,44:52,94:98,149:154,197:203,246:250", 1024);
+  EXPECT_TRUE(bandsWidened(six, six));
+  EXPECT_TRUE(bandsWidened(six, ClusterSet::parse("0:6,44:52,94:98,149:155,197:203,246:250", 1024)));
+  EXPECT_TRUE(bandsWidened(six, ClusterSet::parse("0:8,43:53,94:98,149:155,197:203,246:250", 1024)));
+  EXPECT_FALSE(bandsWidened(six, ClusterSet::parse("0:5,44:52,94:98,149:154,197:203,246:250,300:302", 1024))); // a new band
+  EXPECT_FALSE(bandsWidened(six, ClusterSet::parse("0:52,94:98,149:154,197:203,246:250", 1024)));              // merged
+  EXPECT_FALSE(bandsWidened(six, ClusterSet::parse("0:5,44:52,94:98,149:154,197:203,300:302", 1024)));         // one band replaced
+}
+
+TEST(Detect, ShareAdded)
+{
+  const int           N = 16;
+  std::vector<double> m(N / 2 + 1, 0.0);
+  m[0] = 0.5, m[2] = 0.01, m[3] = 0.02, m[8] = 0.03;
+  const ClusterSet before = ClusterSet::parse("0:1", N);
+  EXPECT_DOUBLE_EQ(shareAdded(before, before, m), 0.0);
+  EXPECT_NEAR(shareAdded(before, ClusterSet::parse("0:2", N), m), 0.01 * std::sqrt(2.0), 1e-15);
+  EXPECT_NEAR(shareAdded(before, ClusterSet::parse("0:3,8", N), m), std::sqrt(2 * 1e-4 + 2 * 4e-4 + 9e-4), 1e-15);
+  EXPECT_NEAR(shareAdded(ClusterSet::parse("0:2", N), ClusterSet::parse("1:3", N), m), 0.02 * std::sqrt(2.0), 1e-15); // k = 0 dropped: not added
+  EXPECT_THROW(shareAdded(before, before, std::vector<double>(5, 0.0)), std::invalid_argument);
+}
+
 TEST(Detect, Buffers)
 {
   ClusterSet cs = ClusterSet::parse("0,64,138,256", 1024);

@@ -166,6 +166,37 @@ double shareOutside(const ClusterSet &clusters, const std::vector<double> &m)
   return std::sqrt(out);
 }
 
+bool bandsWidened(const ClusterSet &before, const ClusterSet &now)
+{
+  if (before.size() != now.size()) return false;
+  for (size_t j = 0; j < now.size(); ++j) {
+    const auto &b = before.clusters[j], &c = now.clusters[j];
+    bool        shared = false;
+    for (int k : c)
+      if (std::binary_search(b.begin(), b.end(), k)) {
+        shared = true;
+        break;
+      }
+    if (!shared) return false;
+  }
+  return true;
+}
+
+double shareAdded(const ClusterSet &before, const ClusterSet &now, const std::vector<double> &m)
+{
+  if ((int)m.size() != maxWavenumber(now.N) + 1) throw std::invalid_argument("the mean spectrum has the wrong number of wavenumbers");
+  std::vector<char> in(m.size(), 0), added(m.size(), 0);
+  for (const auto &c : before.clusters)
+    for (int k : c)
+      if (k >= 0 && k < (int)m.size()) in[k] = 1;
+  for (const auto &c : now.clusters)
+    for (int k : c) added[k] = !in[k];
+  double a = 0;
+  for (size_t k = 0; k < m.size(); ++k)
+    if (added[k]) a += (isRealOnly(now.N, (int)k) ? 1.0 : 2.0) * m[k] * m[k];
+  return std::sqrt(a);
+}
+
 ClusterSet addBuffers(const ClusterSet &clusters, const std::vector<int> &buffers)
 {
   if (buffers.empty()) return clusters;

@@ -69,6 +69,15 @@ bool bandsMerged(const ClusterSet &before, const ClusterSet &now);
 // |c_k| / ||u|| (so that the sum over every k is 1). Throws if m does not have N/2 + 1 values.
 double shareOutside(const ClusterSet &clusters, const std::vector<double> &m);
 
+// Whether the bands only widened between two looks at a growing support: `now` has as many bands
+// as `before` and band j of `now` shares a wavenumber with band j of `before` (no band appeared,
+// vanished or merged).
+bool bandsWidened(const ClusterSet &before, const ClusterSet &now);
+
+// The share of ||u|| in the wavenumbers of `now` that `before` does not hold: sqrt(sum over
+// those k of w_k m_k^2), w_k and m as in shareOutside(). Throws if m does not have N/2 + 1 values.
+double shareAdded(const ClusterSet &before, const ClusterSet &now, const std::vector<double> &m);
+
 // Adds every wavenumber within buffers[j] of a member of cluster j (clipped to 0..N/2). One
 // value for all clusters or one per cluster. Throws if two clusters then overlap.
 ClusterSet addBuffers(const ClusterSet &clusters, const std::vector<int> &buffers);
