@@ -121,15 +121,23 @@ static PetscErrorCode DetectPostStep(TS ts)
   PetscFunctionReturn(0);
 }
 
-/* The snapshots thresholded and grouped into clusters (before buffers); support gets the
-   wavenumbers above the threshold (empty: no cluster). Throws std::invalid_argument. */
-static spc::ClusterSet ClustersOf(const VSHMMSpectral_Data *s, const std::vector<std::vector<double>> &mags, spc::Normalization norm, double lambda, std::vector<int> &support)
+/* The snapshots thresholded and grouped into clusters (before buffers) in *cs; support gets the
+   wavenumbers above the threshold (empty: no cluster). Bad grouping parameters are a PETSc error. */
+static PetscErrorCode ClustersOf(VSHMMSpectral sp, const std::vector<std::vector<double>> &mags, spc::Normalization norm, double lambda, std::vector<int> &support, spc::ClusterSet *cs)
 {
-  spc::ClusterSet cs;
-  support = spc::thresholdSupport(mags, (int)s->N, lambda, norm);
-  if (support.empty()) return cs;
-  cs = s->gap >= 0 ? spc::mergeIntoClusters(support, (int)s->N, (int)s->gap) : spc::groupIntoClusters(support, (int)s->N, s->gap_ratio);
-  return s->fill_holes ? spc::fillHoles(cs) : cs;
+  const VSHMMSpectral_Data *s = sp->data;
+
+  PetscFunctionBegin;
+  *cs = spc::ClusterSet();
+  try {
+    support = spc::thresholdSupport(mags, (int)s->N, lambda, norm);
+    if (support.empty()) PetscFunctionReturn(0);
+    *cs = s->gap >= 0 ? spc::mergeIntoClusters(support, (int)s->N, (int)s->gap) : spc::groupIntoClusters(support, (int)s->N, s->gap_ratio);
+    if (s->fill_holes) *cs = spc::fillHoles(*cs);
+  } catch (const std::exception &e) {
+    SETERRQ(PetscObjectComm((PetscObject)sp), PETSC_ERR_ARG_WRONG, "cluster detection: %s", e.what());
+  }
+  PetscFunctionReturn(0);
 }
 
 /* The time scale of each band: max|d| k^2 + max|a| k at its highest wavenumber k. */
@@ -154,7 +162,7 @@ static std::vector<double> BandRates(const spc::ClusterSet &bands, const std::ve
    wavenumbers outside the earlier bands hold at most -spectral_cluster_tolerance of ||u|| (root
    mean square over the steps so far), the earlier look's bands are kept: the merging modes carry
    less than the tolerance can see. */
-static PetscErrorCode DetectionDNS(VSHMMSpectral sp, const std::vector<double> &D, const std::vector<double> &A, DetectCtx *dctx, const std::vector<double> &u0, std::vector<std::vector<double>> &mags)
+static PetscErrorCode DetectionDNS(VSHMMSpectral sp, DetectCtx *dctx, const std::vector<double> &u0, std::vector<std::vector<double>> &mags)
 {
   VSHMMSpectral_Data *s    = sp->data;
   spc::Layout         full = spc::Layout::full((int)s->N);
@@ -222,11 +230,7 @@ static PetscErrorCode DetectionDNS(VSHMMSpectral sp, const std::vector<double> &
     if (automatic) {
       std::vector<int> support;
       spc::ClusterSet  cs;
-      try {
-        cs = ClustersOf(s, mags, s->norm, VSHMMSpectralLambda(s), support);
-      } catch (const std::exception &e) {
-        SETERRQ(PetscObjectComm((PetscObject)sp), PETSC_ERR_ARG_WRONG, "cluster detection: %s", e.what());
-      }
+      PetscCall(ClustersOf(sp, mags, s->norm, VSHMMSpectralLambda(s), support, &cs));
       PetscCall(PetscInfo(sp, "cluster detection DNS: t = %g (%" PetscInt_FMT " steps): %d clusters %s\n", (double)t, dctx->steps, (int)cs.size(), cs.format().c_str()));
       if (i > 0 && spc::bandsMerged(last, cs)) {
         const double out = spc::shareOutside(last, dctx->mean());
@@ -267,11 +271,7 @@ static PetscErrorCode DetectionDNS(VSHMMSpectral sp, const std::vector<double> &
   if (automatic) { /* the share of ||u|| the bands leave out, RMS over every step */
     std::vector<int> support;
     spc::ClusterSet  cs;
-    try {
-      cs = ClustersOf(s, mags, s->norm, VSHMMSpectralLambda(s), support);
-    } catch (const std::exception &e) {
-      SETERRQ(PetscObjectComm((PetscObject)sp), PETSC_ERR_ARG_WRONG, "cluster detection: %s", e.what());
-    }
+    PetscCall(ClustersOf(sp, mags, s->norm, VSHMMSpectralLambda(s), support, &cs));
     s->detection.left_out = spc::shareOutside(cs, dctx->mean());
   }
   PetscCall(TSDestroy(&ts));
@@ -298,12 +298,8 @@ static PetscErrorCode AutoNeedsDNS(VSHMMSpectral sp, DetectCtx *dctx, const std:
   dctx->op->apply(c.data(), f.data());
   dctx->evaluations++;
   const std::vector<double> m0 = FullMagnitudes(full, N, c.data()), mf = FullMagnitudes(full, N, f.data());
-  try {
-    c0 = ClustersOf(s, {m0}, spc::Normalization::Relative, lambda, s0);
-    c1 = ClustersOf(s, {m0, mf}, spc::Normalization::Relative, lambda, s1);
-  } catch (const std::exception &e) {
-    SETERRQ(PetscObjectComm((PetscObject)sp), PETSC_ERR_ARG_WRONG, "cluster detection: %s", e.what());
-  }
+  PetscCall(ClustersOf(sp, {m0}, spc::Normalization::Relative, lambda, s0, &c0));
+  PetscCall(ClustersOf(sp, {m0, mf}, spc::Normalization::Relative, lambda, s1, &c1));
   *dns = c1.size() > c0.size();
   std::ostringstream m;
   if (*dns) m << "auto: F(u0) reaches " << c1.size() << " clusters (" << c1.format() << "), u0 shows " << c0.size() << ": short direct simulation";
@@ -344,7 +340,7 @@ static PetscErrorCode DetectionSnapshots(VSHMMSpectral sp, const std::vector<dou
     PetscCall(AutoNeedsDNS(sp, &dctx, u, &dns));
     if (!dns) mags.push_back(spc::coefficientMagnitudes(u));
   }
-  if (dns) PetscCall(DetectionDNS(sp, D, A, &dctx, u, mags));
+  if (dns) PetscCall(DetectionDNS(sp, &dctx, u, mags));
   s->detection.steps       = dctx.steps;
   s->detection.evaluations = dctx.evaluations;
   PetscFunctionReturn(0);
@@ -417,11 +413,7 @@ static PetscErrorCode FindClusters(VSHMMSpectral sp, const std::vector<double> &
     PetscCall(DetectionSnapshots(sp, D, A, mags));
     PetscCall(PetscLogEventEnd(VSHMMSPECTRAL_Detect, sp, 0, 0, 0));
     s->detect = given; /* the option as given: a later -spectral_clusters is not "both" */
-    try {
-      found = ClustersOf(s, mags, s->norm, VSHMMSpectralLambda(s), support);
-    } catch (const std::exception &e) {
-      SETERRQ(comm, PETSC_ERR_ARG_WRONG, "cluster detection: %s", e.what());
-    }
+    PetscCall(ClustersOf(sp, mags, s->norm, VSHMMSpectralLambda(s), support, &found));
     if (support.empty()) {
       double big  = 0;
       int    kbig = 0;
