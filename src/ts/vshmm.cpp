@@ -546,6 +546,7 @@ static PetscErrorCode TSView_VSHMM(TS ts, PetscViewer viewer)
     PetscCall(PetscViewerASCIIPrintf(viewer, "  stability check: %s set-up and every %" PetscInt_FMT " macro steps; %" PetscInt64_FMT " checks, %" PetscInt64_FMT " split RHS evaluations, %" PetscInt64_FMT " warnings\n", vs->check_stability ? "at" : "not at", vs->stability_interval, vs->stability_checks, vs->stability_evaluations, vs->stability_warnings));
   else
     PetscCall(PetscViewerASCIIPrintf(viewer, "  stability check: at set-up; %" PetscInt64_FMT " checks, %" PetscInt64_FMT " split RHS evaluations, %" PetscInt64_FMT " warnings\n", vs->stability_checks, vs->stability_evaluations, vs->stability_warnings));
+  if (vs->adapt && vs->stability_evaluations > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "    (its split RHS evaluations include -ts_vshmm_adapt's estimates of the levels' spectra at its calibrations)\n"));
   PetscFunctionReturn(0);
 }
 
