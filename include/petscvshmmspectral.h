@@ -94,6 +94,7 @@ PETSC_EXTERN PetscErrorCode VSHMMSpectralViewFromOptions(VSHMMSpectral, PetscObj
 PETSC_EXTERN PetscErrorCode VSHMMSpectralGetSizes(VSHMMSpectral, PetscInt *, PetscInt *, PetscInt *);
 PETSC_EXTERN PetscErrorCode VSHMMSpectralGetCluster(VSHMMSpectral, PetscInt, PetscInt *, const PetscInt *[], PetscInt *, PetscInt *);
 PETSC_EXTERN PetscErrorCode VSHMMSpectralGetModes(VSHMMSpectral, PetscInt *, const PetscInt *[]);
+PETSC_EXTERN PetscErrorCode VSHMMSpectralGetScaleSeparations(VSHMMSpectral, PetscInt *, const PetscReal *[]);
 PETSC_EXTERN PetscErrorCode VSHMMSpectralCreateVec(VSHMMSpectral, Vec *);
 PETSC_EXTERN PetscErrorCode VSHMMSpectralSetInitialCondition(VSHMMSpectral, Vec);
 PETSC_EXTERN PetscErrorCode VSHMMSpectralGetGridValues(VSHMMSpectral, Vec, PetscReal[]);

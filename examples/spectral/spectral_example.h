@@ -302,6 +302,17 @@ static PetscErrorCode SetGridObservables(SpectralRun *run, TS ts)
                nclusters == 1 && run->detected ? " (the detection found one band of wavenumbers)" : "");
     PetscCall(TSVSHMMGetAdapt(ts, &adapt));
   }
+  if (adapt) { /* the clusters' separations (their slowest modes), unless given on the command line */
+    const PetscReal *S;
+    PetscInt         n;
+    const char      *prefix;
+    PetscBool        set;
+
+    PetscCall(TSGetOptionsPrefix(ts, &prefix));
+    PetscCall(PetscOptionsHasName(NULL, prefix, "-ts_vshmm_scale_separations", &set));
+    PetscCall(VSHMMSpectralGetScaleSeparations(run->sp, &n, &S));
+    if (!set && n > 0) PetscCall(TSVSHMMSetScaleSeparations(ts, n, S));
+  }
   PetscCall(PetscOptionsGetBool(NULL, NULL, "-observe_state", &state, NULL));
   if (adapt && !state) PetscCall(TSVSHMMSetObservables(ts, run->N, GridObservable, run));
   PetscFunctionReturn(0);

@@ -91,32 +91,50 @@ void limitWorkChange(AdaptParameters &next, const AdaptParameters &now, double m
   for (int l = 0; l < K; ++l) next.ratios[l] = now.ratios[l] * std::exp(f(c[1 + l]));
 }
 
-ErrorModel ErrorModel::fromDifferences(const AdaptParameters &p, const std::vector<AdaptParameters> &coarse, const std::vector<double> &d, int order)
+double pairUnit(double x, double s)
+{
+  return (s > 0 && std::isfinite(s)) ? x / (1.0 + x / s) : x;
+}
+
+double pairUnitInverse(double u, double s)
+{
+  if (!(s > 0 && std::isfinite(s))) return u;
+  return u < s ? u / (1.0 - u / s) : std::numeric_limits<double>::infinity();
+}
+
+double ErrorModel::unit(const AdaptParameters &p, int l) const
+{
+  return pairUnit(p.ratios[l] - 1.0, l < (int)saturation.size() ? saturation[l] : 0.0);
+}
+
+ErrorModel ErrorModel::fromDifferences(const AdaptParameters &p, const std::vector<AdaptParameters> &coarse, const std::vector<double> &d, int order, const std::vector<double> &saturation)
 {
   ErrorModel m;
-  m.order = order;
+  m.order      = order;
+  m.saturation = saturation;
   // a parameter coarsened by less than 10% is taken as not measurable (its coefficient 0)
   const double u = microUnit(coarse[0], order) - microUnit(p, order);
   m.cMicro       = coarse[0].microStep > 1.1 * p.microStep ? d[0] / u : 0.0;
   m.c.resize(p.ratios.size());
   for (size_t l = 0; l < p.ratios.size(); ++l) {
-    const double v = coarse[1 + l].ratios[l] - p.ratios[l];
-    m.c[l]         = v > 0 && v > 0.1 * (p.ratios[l] - 1.0) ? d[1 + l] / v : 0.0;
+    const double x = coarse[1 + l].ratios[l] - p.ratios[l], v = m.unit(coarse[1 + l], (int)l) - m.unit(p, (int)l);
+    m.c[l] = x > 0 && x > 0.1 * (p.ratios[l] - 1.0) && v > 0 ? d[1 + l] / v : 0.0;
   }
   return m;
 }
 
-ErrorModel ErrorModel::equalShares(const AdaptParameters &p, int order, double total)
+ErrorModel ErrorModel::equalShares(const AdaptParameters &p, int order, double total, const std::vector<double> &saturation)
 {
   ErrorModel m;
-  m.order = order;
+  m.order      = order;
+  m.saturation = saturation;
   m.c.assign(p.ratios.size(), 0.0);
   int n = 0;
   for (double r : p.ratios) n += r > 1.0 ? 1 : 0;
   const double w = total / (n + 1.0 / (order + 1));
   m.cMicro       = p.microStep > 0 ? w / (order + 1) / microUnit(p, order) : 0.0;
   for (size_t l = 0; l < p.ratios.size(); ++l)
-    if (p.ratios[l] > 1.0) m.c[l] = w / (p.ratios[l] - 1.0);
+    if (p.ratios[l] > 1.0) m.c[l] = w / m.unit(p, (int)l);
   return m;
 }
 
@@ -126,14 +144,14 @@ void ErrorModel::floorShares(const AdaptParameters &p, double fraction)
   if (!(before > 0)) return;
   if (p.microStep > 0) cMicro = std::max(cMicro, fraction * before / microUnit(p, order));
   for (size_t l = 0; l < c.size(); ++l)
-    if (p.ratios[l] > 1.0) c[l] = std::max(c[l], fraction * before / (p.ratios[l] - 1.0));
+    if (p.ratios[l] > 1.0) c[l] = std::max(c[l], fraction * before / unit(p, (int)l));
   scale(before / total(p));
 }
 
 double ErrorModel::term(const AdaptParameters &p, int which) const
 {
   if (which == 0) return cMicro * microUnit(p, order);
-  return c[which - 1] * (p.ratios[which - 1] - 1.0);
+  return c[which - 1] * unit(p, which - 1);
 }
 
 double ErrorModel::total(const AdaptParameters &p) const
@@ -204,7 +222,7 @@ AdaptParameters chooseParameters(const AdaptParameters &now, const ErrorModel &m
     bool         again  = false;
     for (int l = 0; l < K; ++l) {
       if (pinned[1 + l]) continue;
-      double r = model.c[l] > 0 ? 1.0 + w / model.c[l] : rHi[l];
+      double r = model.c[l] > 0 ? 1.0 + pairUnitInverse(w / model.c[l], l < (int)model.saturation.size() ? model.saturation[l] : 0.0) : rHi[l];
       if (r <= rLo[l] || r >= rHi[l]) {
         pinned[1 + l] = again = true;
         r                     = clampTo(r, rLo[l], rHi[l]);

@@ -12,7 +12,10 @@
 // quantities over a macro step is a sum of one term per parameter,
 //   e_dt = c_dt dt^p / prod r_l (the micro step: the fast scale's error per micro step, dt^(p+1),
 //                                times the number of cycles in the macro step, DeltaT / A_0)
-//   e_l  = c_l (r_l - 1)        (level pair l: averaging error ~ 1/sigma_l, none when merged).
+//   e_l  = c_l g_l(r_l - 1)     (level pair l: averaging error ~ 1/sigma_l, none when merged),
+// g_l(x) = x / (1 + x / s_l): linear while the effective separation sigma_l stays above 1, and
+// saturating where the method slows level l+1 below level l's time scale (r_l beyond the pair's
+// separation s_l, when that is known: TSVSHMMSetScaleSeparations(); s_l = inf otherwise).
 // The c's are measured by comparing the macro step with one whose parameter is coarsened
 // (dt -> 2 dt, r_l - 1 -> 2 (r_l - 1)). Work per macro step is proportional to
 // 1 / A_0 = 1 / (dt prod r_l), so the cheapest parameters for a total error E give each free ratio
@@ -53,20 +56,27 @@ AdaptParameters termsScaled(const AdaptParameters &p, double factor, int order);
 // (a choice that moves the error from one term to another is not undone).
 void limitWorkChange(AdaptParameters &next, const AdaptParameters &now, double maxCheaper, double maxDearer);
 
-// The error model: e_dt = cMicro dt^order / prod r_l, e_l = c[l] (r_l - 1).
+// The shape of a level pair's error term: g(x) = x / (1 + x / s) for x = r - 1 (s = inf or
+// s <= 0: g(x) = x), and its inverse (infinite where u >= s: any ratio stays below u).
+double pairUnit(double x, double s);
+double pairUnitInverse(double u, double s);
+
+// The error model: e_dt = cMicro dt^order / prod r_l, e_l = c[l] g(r_l - 1, saturation[l]).
 struct ErrorModel {
   double              cMicro = 0.0;
   std::vector<double> c;
+  std::vector<double> saturation; // s_l per level pair (empty or inf: linear)
   int                 order = 1;
 
   // Coefficients from the differences d_i between the macro step with p and with coarse[i], which
   // differs from p in parameter i only (dt, or r_{i-1}): d_i = term_i(coarse[i]) - term_i(p).
   // A parameter that could not be coarsened (coarse[i] equal to p) gets coefficient 0.
-  static ErrorModel fromDifferences(const AdaptParameters &p, const std::vector<AdaptParameters> &coarse, const std::vector<double> &differences, int order);
+  static ErrorModel fromDifferences(const AdaptParameters &p, const std::vector<AdaptParameters> &coarse, const std::vector<double> &differences, int order, const std::vector<double> &saturation = {});
   // Equal shares at p (the least-work split, as if p were the best parameters for its error):
   // every level pair with r_l > 1 has the term `total` / (n + 1 / (order + 1)), the micro step
   // 1 / (order + 1) of that, for n such pairs. The model before anything is measured.
-  static ErrorModel equalShares(const AdaptParameters &p, int order, double total);
+  static ErrorModel equalShares(const AdaptParameters &p, int order, double total, const std::vector<double> &saturation = {});
+  double            unit(const AdaptParameters &p, int l) const;     // g(r_l - 1, s_l)
   double            term(const AdaptParameters &p, int which) const; // e_dt (which = 0) or e_l (which = 1 + l)
   double            total(const AdaptParameters &p) const;
   void              scale(double f); // every coefficient times f (a new measurement of the total)

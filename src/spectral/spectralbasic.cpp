@@ -353,6 +353,41 @@ PetscErrorCode VSHMMSpectralGetCluster(VSHMMSpectral sp, PetscInt j, PetscInt *n
 }
 
 /*@C
+   VSHMMSpectralGetScaleSeparations - The time-scale separation of consecutive clusters, for `TSVSHMMSetScaleSeparations()`
+
+   Collective (sets the object up if needed)
+
+   Input Parameter:
+.  sp - the object
+
+   Output Parameters:
++  n - the number of separations: the number of clusters less one (0 in mode dns, with one
+       cluster, or where the scene has no diffusion or advection to give a rate)
+-  S - the separations, slowest pair first (owned by sp)
+
+   Notes:
+   S_j is the rate of the slowest wavenumber k > 0 of cluster j+1, mean|d| k^2 + mean|a| k, over
+   the rate of the fastest wavenumber of cluster j, max|d| k^2 + max|a| k, with d the diffusion
+   coefficient and a the velocity of the scene. A cluster spans a band of rates, and the averaging
+   error of VSHMM is set by the slowest mode of the faster cluster, while TSVSHMM's own estimate
+   (the ratio of the levels' spectral radii) sees their fastest modes. The nonlinear terms
+   (burgers, reaction) are not counted.
+
+   Level: intermediate
+
+.seealso: `TSVSHMMSetScaleSeparations()`, `VSHMMSpectralGetCluster()`, `VSHMMSpectralSetUpTS()`
+@*/
+PetscErrorCode VSHMMSpectralGetScaleSeparations(VSHMMSpectral sp, PetscInt *n, const PetscReal *S[])
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
+  PetscCall(VSHMMSpectralSetUp(sp));
+  if (n) *n = (PetscInt)sp->data->separations.size();
+  if (S) *S = sp->data->separations.empty() ? nullptr : sp->data->separations.data();
+  PetscFunctionReturn(0);
+}
+
+/*@C
    VSHMMSpectralGetModes - Every retained wavenumber, in the order of the state Vec (cluster by
    cluster, each ascending; 0..N/2 in mode dns)
 

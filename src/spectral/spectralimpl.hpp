@@ -136,6 +136,7 @@ struct VSHMMSpectral_Data {
   std::unique_ptr<spc::DenseOperator>    dense;
   std::vector<std::vector<PetscInt>>     cluster_modes; /* for VSHMMSpectralGetCluster() */
   std::vector<PetscInt>                  modes;         /* every retained wavenumber, in the layout */
+  std::vector<PetscReal>                 separations;   /* of consecutive clusters, from the linear terms (VSHMMSpectralGetScaleSeparations()) */
   std::vector<SplitCtx>                  split_ctx;
   VecScatter                             gather = nullptr;
   Vec                                    Useq   = nullptr;

@@ -151,6 +151,27 @@ static std::vector<double> BandRates(const spc::ClusterSet &bands, const std::ve
   return r;
 }
 
+/* The time-scale separation of consecutive clusters from the linear terms: the rate of the slowest
+   wavenumber k > 0 of cluster j+1, mean|d| k^2 + mean|a| k (a mode of variable coefficients decays
+   or turns at about the mean rate), over the rate of the fastest of cluster j, max|d| k^2 +
+   max|a| k (its spectral radius bound). Empty where a cluster has no such rate (no linear terms). */
+static std::vector<PetscReal> ClusterSeparations(const std::vector<std::vector<PetscInt>> &clusters, const std::vector<double> &D, const std::vector<double> &A)
+{
+  double md = 0, ma = 0, ad = 0, aa = 0;
+  for (double d : D) md = std::max(md, std::fabs(d)), ad += std::fabs(d) / D.size();
+  for (double a : A) ma = std::max(ma, std::fabs(a)), aa += std::fabs(a) / A.size();
+  std::vector<PetscReal> S;
+  for (size_t j = 0; j + 1 < clusters.size(); ++j) {
+    double fastest = 0, slowest = PETSC_INFINITY;
+    for (PetscInt k : clusters[j]) fastest = std::max(fastest, md * k * (double)k + ma * k);
+    for (PetscInt k : clusters[j + 1])
+      if (k > 0) slowest = std::min(slowest, ad * k * (double)k + aa * k);
+    if (!(fastest > 0) || !(slowest > 0) || !std::isfinite(slowest)) return {};
+    S.push_back(slowest / fastest);
+  }
+  return S;
+}
+
 /* Snapshots |c_k| (k = 0..N/2) of a short direct simulation on every rank (PETSC_COMM_SELF), TS
    options prefix <prefix>spectral_cluster_detect_: at -spectral_cluster_detect_times, or (none
    given) the largest |c_k| over every step, looked at after 64, 128, 256, ... steps until its
@@ -537,6 +558,7 @@ PetscErrorCode VSHMMSpectralSetUp(VSHMMSpectral sp)
     s->cluster_modes.push_back(m);
   }
   s->modes.assign(s->layout->modes().begin(), s->layout->modes().end());
+  s->separations = s->mode == VSHMMSPECTRAL_MODE_SPARSE ? ClusterSeparations(s->cluster_modes, D, A) : std::vector<PetscReal>();
   s->out.assign(s->layout->size(), 0.0);
   PetscCall(CalibrateProjection(sp));
   s->cache_valid                 = PETSC_FALSE;

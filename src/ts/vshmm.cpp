@@ -226,6 +226,8 @@ static PetscErrorCode TSSetUp_VSHMM(TS ts)
                (int)vs->savings.size(), nscales, K);
     vs->savings_used = vs->savings;
   }
+  PetscCheck(vs->separations.empty() || (PetscInt)vs->separations.size() == K, comm, PETSC_ERR_ARG_SIZ, "-ts_vshmm_scale_separations (TSVSHMMSetScaleSeparations()) has %d values but there are %" PetscInt_FMT " scales (RHS splits), so it needs %" PetscInt_FMT ": one separation per pair of consecutive scales, slowest pair first",
+             (int)vs->separations.size(), nscales, K);
   if (vs->subintervals.empty()) vs->subintervals_used.assign(K, 1);
   else {
     PetscCheck((PetscInt)vs->subintervals.size() == K, comm, PETSC_ERR_ARG_SIZ, "-ts_vshmm_subintervals (TSVSHMMSetSubintervals()) has %d values but there are %" PetscInt_FMT " scales (RHS splits), so it needs %" PetscInt_FMT ": one subinterval count m_j >= 1 per scale except the fastest, slowest first",
@@ -433,6 +435,10 @@ static PetscErrorCode TSSetFromOptions_VSHMM(TS ts, PetscOptionItems *PetscOptio
     PetscCall(VSHMMOptionsRealList(PetscOptionsObject, obj, "-ts_vshmm_savings_factors", "Savings factors alpha_1,...,alpha_K, slowest level first (default: all 1)", "TSVSHMMSetSavingsFactors", alpha, &set));
     if (set) PetscCall(TSVSHMMSetSavingsFactors(ts, (PetscInt)alpha.size(), alpha.data()));
 
+    std::vector<PetscReal> seps = vs->separations;
+    PetscCall(VSHMMOptionsRealList(PetscOptionsObject, obj, "-ts_vshmm_scale_separations", "Time-scale separation of each pair of consecutive scales, slowest pair first: the slowest rate of the faster scale over the fastest rate of the slower (default: ratios of the levels' spectral radii)", "TSVSHMMSetScaleSeparations", seps, &set));
+    if (set) PetscCall(TSVSHMMSetScaleSeparations(ts, (PetscInt)seps.size(), seps.data()));
+
     std::vector<PetscInt> m = vs->subintervals.empty() ? std::vector<PetscInt>(K, 1) : vs->subintervals;
     PetscCall(VSHMMOptionsIntList(PetscOptionsObject, obj, "-ts_vshmm_subintervals", "Subinterval counts m_1,...,m_K (periods of the kernel per DeltaT), slowest level first (default: all 1)", "TSVSHMMSetSubintervals", m, &set));
     if (set) PetscCall(TSVSHMMSetSubintervals(ts, (PetscInt)m.size(), m.data()));
@@ -586,6 +592,24 @@ static PetscErrorCode TSVSHMMGetSavingsFactors_VSHMM(TS ts, PetscInt *n, const P
   PetscFunctionBegin;
   if (n) *n = (PetscInt)v.size();
   if (a) *a = v.empty() ? nullptr : v.data();
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode TSVSHMMSetScaleSeparations_VSHMM(TS ts, PetscInt n, const PetscReal S[])
+{
+  PetscFunctionBegin;
+  ((TS_VSHMM *)ts->data)->separations.assign(S, S + n);
+  PetscCall(TSVSHMMInvalidateSetUp_Private(ts));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode TSVSHMMGetScaleSeparations_VSHMM(TS ts, PetscInt *n, const PetscReal *S[])
+{
+  TS_VSHMM *vs = (TS_VSHMM *)ts->data;
+
+  PetscFunctionBegin;
+  if (n) *n = (PetscInt)vs->separations.size();
+  if (S) *S = vs->separations.empty() ? nullptr : vs->separations.data();
   PetscFunctionReturn(0);
 }
 
@@ -828,6 +852,8 @@ static PetscErrorCode TSVSHMMResetStatistics_VSHMM(TS ts)
   X(TSVSHMMSetAdapt) \
   X(TSVSHMMGetAdapt) \
   X(TSVSHMMSetObservables) \
+  X(TSVSHMMSetScaleSeparations) \
+  X(TSVSHMMGetScaleSeparations) \
   X(TSVSHMMSetSeparationCheck) \
   X(TSVSHMMGetSeparationCheck) \
   X(TSVSHMMSetWarningsViewer) \
@@ -886,6 +912,7 @@ $    h_j(t) = alpha_j dt K(Theta^{-1}(((t - t_n) mod P_j) / P_j)),   P_j = Delta
 .  -ts_vshmm_check_stability_interval <N> - also check every N macro steps (default 0: never)
 .  -ts_vshmm_adapt <true,false> - choose the micro step and savings factors not set from -ts_rtol, -ts_atol (default false)
 .  -ts_vshmm_check_separation <off,warn,error> - what to do where the scales are not separated (default warn)
+.  -ts_vshmm_scale_separations <S1,...,SK> - the separation of each pair of consecutive scales where the application knows it (default: from the levels' spectral radii)
 -  -ts_vshmm_warnings_viewer <stderr,none,ascii:file> - where the warnings go (default stderr)
 
    Level: intermediate

@@ -164,7 +164,19 @@ static PetscErrorCode UpdateStableSteps(TS ts)
   PetscFunctionReturn(0);
 }
 
-/* The separation check: spectral radii of consecutive levels. */
+/* The separation of the level pair (l, l+1): as the application set it, or the ratio of the levels'
+   spectral radii. */
+static PetscReal RadiusRatio(TS_VSHMM *vs, PetscInt l)
+{
+  return vs->level_radius[l] > 0 ? vs->level_radius[l + 1] / vs->level_radius[l] : PETSC_INFINITY;
+}
+
+static PetscReal Separation(TS_VSHMM *vs, PetscInt l)
+{
+  return (PetscInt)vs->separations.size() > l ? vs->separations[l] : RadiusRatio(vs, l);
+}
+
+/* The separation check: spectral radii of consecutive levels (or the separations set). */
 PetscErrorCode TSVSHMMCheckSeparation_Private(TS ts)
 {
   TS_VSHMM      *vs      = (TS_VSHMM *)ts->data;
@@ -177,19 +189,21 @@ PetscErrorCode TSVSHMMCheckSeparation_Private(TS ts)
   PetscReal   best = 0;
   std::string figures;
   for (PetscInt l = 0; l + 1 < nscales; ++l) {
-    const PetscReal S = vs->level_radius[l] > 0 ? vs->level_radius[l + 1] / vs->level_radius[l] : PETSC_INFINITY;
+    const PetscReal S = Separation(vs, l);
     char            text[160];
-    PetscCall(PetscSNPrintf(text, sizeof(text), "%slevels %" PetscInt_FMT "/%" PetscInt_FMT ": %.3g (spectral radii %.3g, %.3g)", l ? "; " : "", l, l + 1, (double)S, (double)vs->level_radius[l], (double)vs->level_radius[l + 1]));
+    if ((PetscInt)vs->separations.size() > l) PetscCall(PetscSNPrintf(text, sizeof(text), "%slevels %" PetscInt_FMT "/%" PetscInt_FMT ": %.3g (set with -ts_vshmm_scale_separations)", l ? "; " : "", l, l + 1, (double)S));
+    else PetscCall(PetscSNPrintf(text, sizeof(text), "%slevels %" PetscInt_FMT "/%" PetscInt_FMT ": %.3g (spectral radii %.3g, %.3g)", l ? "; " : "", l, l + 1, (double)S, (double)vs->level_radius[l], (double)vs->level_radius[l + 1]));
     figures += text;
     best = PetscMax(best, S);
   }
   vs->no_separation = best < kMinSeparation ? PETSC_TRUE : PETSC_FALSE;
   PetscCall(PetscInfo(ts, "Separation check at t = %g: %s\n", (double)ts->ptime, figures.c_str()));
   if (!vs->no_separation || vs->check_separation == TSVSHMM_SEPARATION_OFF) PetscFunctionReturn(0);
-  PetscCheck(vs->check_separation != TSVSHMM_SEPARATION_ERROR, comm, PETSC_ERR_ARG_INCOMP, "TSVSHMM separation check at t = %g: the time scales of the RHS splits are not separated (ratio of the spectral radii of consecutive levels, at least %g needed: %s). VSHMM samples the faster scales statistically and would change the answer here; use a single-rate TS type (-ts_type rk) or a multirate one (-ts_type mprk), or -ts_vshmm_check_separation warn to run anyway",
-             (double)ts->ptime, (double)kMinSeparation, figures.c_str());
-  PetscCall(TSVSHMMWarn_Private(ts, "TSVSHMM warning: separation check at t = %g: the time scales of the RHS splits are not separated (ratio of the spectral radii of consecutive levels, at least %g needed: %s). VSHMM samples the faster scales statistically and %s; a single-rate TS type (-ts_type rk) or a multirate one (-ts_type mprk) is the right tool. (-ts_vshmm_check_separation error makes this an error, off silences it.)\n",
-                                (double)ts->ptime, (double)kMinSeparation, figures.c_str(), vs->adapt ? "-ts_vshmm_adapt therefore takes no savings (every level steps with the micro step)" : "its answer will be wrong by an amount it cannot estimate"));
+  const char *what = vs->separations.empty() ? "ratio of the spectral radii of consecutive levels" : "separation of consecutive levels";
+  PetscCheck(vs->check_separation != TSVSHMM_SEPARATION_ERROR, comm, PETSC_ERR_ARG_INCOMP, "TSVSHMM separation check at t = %g: the time scales of the RHS splits are not separated (%s, at least %g needed: %s). VSHMM samples the faster scales statistically and would change the answer here; use a single-rate TS type (-ts_type rk) or a multirate one (-ts_type mprk), or -ts_vshmm_check_separation warn to run anyway",
+             (double)ts->ptime, what, (double)kMinSeparation, figures.c_str());
+  PetscCall(TSVSHMMWarn_Private(ts, "TSVSHMM warning: separation check at t = %g: the time scales of the RHS splits are not separated (%s, at least %g needed: %s). VSHMM samples the faster scales statistically and %s; a single-rate TS type (-ts_type rk) or a multirate one (-ts_type mprk) is the right tool. (-ts_vshmm_check_separation error makes this an error, off silences it.)\n",
+                                (double)ts->ptime, what, (double)kMinSeparation, figures.c_str(), vs->adapt ? "-ts_vshmm_adapt therefore takes no savings (every level steps with the micro step)" : "its answer will be wrong by an amount it cannot estimate"));
   PetscFunctionReturn(0);
 }
 
@@ -242,10 +256,7 @@ PetscErrorCode TSVSHMMAdaptSetUp_Private(TS ts)
   else {
     p.ratios.assign(K, 1.0);
     if (!vs->no_separation)
-      for (PetscInt l = 0; l < K; ++l) {
-        const PetscReal S = vs->level_radius[l] > 0 ? vs->level_radius[l + 1] / vs->level_radius[l] : PETSC_INFINITY;
-        p.ratios[l]       = PetscMax(1.0, PetscMin(S / kInitialSeparation, 1e8));
-      }
+      for (PetscInt l = 0; l < K; ++l) { p.ratios[l] = PetscMax(1.0, PetscMin(RadiusRatio(vs, l) / kInitialSeparation, 1e8)); }
   }
   LimitToStableSteps(ts, p);
   const vshmm::AdaptBounds b = Bounds(ts, DeltaT);
@@ -385,8 +396,8 @@ static PetscErrorCode Calibrate(TS ts, const vshmm::AdaptParameters &p, PetscRea
     d[i] = di;
     PetscCall(PetscInfo(ts, "Adapt: calibration of parameter %" PetscInt_FMT ": dt %g, cycle %g, difference %g\n", i, (double)coarse[i].microStep, (double)vshmm::cycleLength(coarse[i]), (double)di));
   }
-  vs->adapt_model = vshmm::ErrorModel::fromDifferences(p, coarse, d, vs->tableau->order);
-  if (!(vs->adapt_model.total(p) > 0)) vs->adapt_model = vshmm::ErrorModel::equalShares(p, vs->tableau->order, 1.0);
+  vs->adapt_model = vshmm::ErrorModel::fromDifferences(p, coarse, d, vs->tableau->order, vs->separations);
+  if (!(vs->adapt_model.total(p) > 0)) vs->adapt_model = vshmm::ErrorModel::equalShares(p, vs->tableau->order, 1.0, vs->separations);
   vs->adapt_calibrations++;
   vs->adapt_calibrated_times++;
   vs->adapt_since_calibration = 0;
@@ -451,7 +462,7 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
     /* Its error, and (when calibrating, or before the first refinement) the split between the terms */
     vshmm::AdaptParameters q;
     PetscReal              d;
-    if (vs->adapt_model.c.size() != (size_t)K || !(vs->adapt_model.total(p) > 0)) vs->adapt_model = vshmm::ErrorModel::equalShares(p, order, 1.0);
+    if (vs->adapt_model.c.size() != (size_t)K || !(vs->adapt_model.total(p) > 0)) vs->adapt_model = vshmm::ErrorModel::equalShares(p, order, 1.0, vs->separations);
     PetscCall(Compare(ts, p, t0, DeltaT, &q, &d));
     PetscReal E = Estimate(vs->adapt_model, p, q, d);
     if (calibrate || (E > budget && !vs->adapt_calibrated)) {

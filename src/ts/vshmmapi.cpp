@@ -610,6 +610,73 @@ PetscErrorCode TSVSHMMSetObservables(TS ts, PetscInt n, PetscErrorCode (*f)(TS, 
 }
 
 /*@
+   TSVSHMMSetScaleSeparations - Tells TSVSHMM how far apart the time scales of consecutive levels are, where the application knows it
+
+   Logically Collective
+
+   Input Parameters:
++  ts - the `TS` of type `TSVSHMM`
+.  n - the number of separations: the number of scales less one (checked at set-up)
+-  S - the separations, positive, slowest pair first: S_l is the rate of the slowest mode of scale
+       l+1 over the rate of the fastest mode of scale l
+
+   Options Database Key:
+.  -ts_vshmm_scale_separations <S1,...,SK> - the separations
+
+   Notes:
+   Without them TSVSHMM takes S_l from the levels' estimated spectral radii: the fastest mode of
+   each level. That is the separation where each scale has one rate (the paper's examples), but
+   where a scale spans a band of rates (a cluster of Fourier modes) the separation that sets the
+   averaging error is that of its slowest mode, which can be far smaller. With
+   `TSVSHMMSetAdapt()` the separations start the savings at S_l / 10 and shape the error model:
+   a time ratio r_l of the level pair beyond S_l slows the faster scale below the slower one, and
+   the averaging error stops growing with r_l there (it saturates); the model knows this, so the
+   error estimate stays true beyond it. The separation check (`TSVSHMMSetSeparationCheck()`)
+   uses them too. `VSHMMSpectralSetUpTS()` sets them from its clusters.
+
+   Level: advanced
+
+.seealso: `TSVSHMM`, `TSVSHMMGetScaleSeparations()`, `TSVSHMMSetAdapt()`, `TSVSHMMSetSeparationCheck()`
+@*/
+PetscErrorCode TSVSHMMSetScaleSeparations(TS ts, PetscInt n, const PetscReal S[])
+{
+  MPI_Comm comm;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  comm = PetscObjectComm((PetscObject)ts);
+  PetscCheck(n >= 1, comm, PETSC_ERR_ARG_SIZ, "-ts_vshmm_scale_separations needs at least one value (one per pair of consecutive scales), got %" PetscInt_FMT, n);
+  PetscValidRealPointer(S, 3);
+  for (PetscInt i = 0; i < n; ++i) PetscCheck(std::isfinite(S[i]) && S[i] > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Scale separation %" PetscInt_FMT " is %g: -ts_vshmm_scale_separations values must be positive and finite", i + 1, (double)S[i]);
+  PetscTryMethod(ts, "TSVSHMMSetScaleSeparations_C", (TS, PetscInt, const PetscReal[]), (ts, n, S));
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   TSVSHMMGetScaleSeparations - Gets the scale separations set with `TSVSHMMSetScaleSeparations()`
+
+   Not Collective
+
+   Input Parameter:
+.  ts - the `TS` of type `TSVSHMM`
+
+   Output Parameters:
++  n - the number of separations (0 if none were set)
+-  S - the separations, slowest pair first (owned by the TS; do not free)
+
+   Level: advanced
+
+.seealso: `TSVSHMM`, `TSVSHMMSetScaleSeparations()`
+@*/
+PetscErrorCode TSVSHMMGetScaleSeparations(TS ts, PetscInt *n, const PetscReal *S[])
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  PetscUseMethod(ts, "TSVSHMMGetScaleSeparations_C", (TS, PetscInt *, const PetscReal *[]), (ts, n, S));
+  PetscFunctionReturn(0);
+}
+
+/*@
    TSVSHMMSetSeparationCheck - Sets what TSVSHMM does at set-up where the time scales of its RHS splits are not separated
 
    Logically Collective

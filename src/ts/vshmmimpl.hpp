@@ -36,6 +36,7 @@ struct TS_VSHMM {
   // Parameters (settable at any time; checked at set-up)
   PetscReal                 micro_dt = 0.0; // 0: DeltaT / kDefaultMicroStepsPerMacroStep
   std::vector<PetscReal>    savings;        // empty: all 1
+  std::vector<PetscReal>    separations;    // per level pair, as the application knows them (TSVSHMMSetScaleSeparations()); empty: from the spectral radii
   std::vector<PetscInt>     subintervals;   // empty: all 1
   TSVSHMMKernelType         kernel_type  = TSVSHMM_KERNEL_COSINE;
   PetscInt                  kernel_order = PETSC_DEFAULT; // PETSC_DEFAULT: the kernel's own

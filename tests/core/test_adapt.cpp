@@ -63,6 +63,51 @@ TEST(Adapt, ChoiceMeetsTheTargetWithEqualShares)
   EXPECT_GT(next.microStep, now.microStep);
 }
 
+// A level pair whose averaging error saturates beyond its separation s (the slowest modes of the
+// faster level slowed below the slower level): e = c x / (1 + x / s), x = r - 1. The model with
+// that s recovers c from one coarsened run, and the estimate of the comparison (every term doubled)
+// stays true where a linear model would take the small difference for the whole error.
+TEST(Adapt, SaturatingPairTermIsMeasuredAndInverted)
+{
+  EXPECT_DOUBLE_EQ(pairUnit(4.0, 0.0), 4.0); // no separation known: linear
+  EXPECT_DOUBLE_EQ(pairUnit(4.0, 4.0), 2.0);
+  EXPECT_DOUBLE_EQ(pairUnitInverse(pairUnit(30.0, 10.0), 10.0), 30.0);
+  EXPECT_TRUE(std::isinf(pairUnitInverse(10.0, 10.0))); // at or above the saturated value: any ratio
+
+  const double                 s = 70, c = 1e-3, cdt = 1e16; // e_dt = 8.7e-6
+  const std::vector<double>    sat{s};
+  const AdaptParameters        now{2.5e-5, {451}};
+  auto                         error = [&](const AdaptParameters &p) { return cdt * std::pow(p.microStep, 4) / p.ratios[0] + c * (p.ratios[0] - 1) / (1 + (p.ratios[0] - 1) / s); };
+  std::vector<AdaptParameters> coarse{coarsened(now, 0, 2.0), coarsened(now, 1, 4.0)};
+  std::vector<double>          d{error(coarse[0]) - error(now), 0.0};
+  d[1]                    = c * (pairUnit(coarse[1].ratios[0] - 1, s) - pairUnit(450, s));
+  const ErrorModel model  = ErrorModel::fromDifferences(now, coarse, d, 4, sat);
+  const ErrorModel linear = ErrorModel::fromDifferences(now, coarse, d, 4);
+  EXPECT_NEAR(model.c[0], c, 1e-12);
+  EXPECT_NEAR(model.total(now), error(now), 1e-12 * error(now));
+  const AdaptParameters q  = termsScaled(now, 2.0, 4);
+  const double          dq = error(q) - error(now); // what the comparison measures
+  // the estimate d * total(p) / (total(q) - total(p)) of each model, against the true error
+  const double est = dq * model.total(now) / (model.total(q) - model.total(now));
+  const double lin = dq * linear.total(now) / (linear.total(q) - linear.total(now));
+  EXPECT_NEAR(est, error(now), 1e-9 * error(now));
+  EXPECT_LT(lin, 0.25 * error(now)); // the blind estimate of the saturated term
+
+  // the choice: a target below the saturated value c s is met with the inverse of g; above it any
+  // ratio meets it and the ratio goes to its bound
+  AdaptBounds bounds;
+  bounds.fixedMicroStep = true;
+  bounds.maxRefine = bounds.maxGrowth = 1e3;
+  const double          target        = 0.5 * c * s;
+  const AdaptParameters next          = chooseParameters(now, model, target, bounds);
+  // (the fixed micro step's term is taken at the ratio of the pass before: within 0.2%)
+  EXPECT_NEAR(model.total(next), target, 2e-3 * target);
+  EXPECT_NEAR(next.ratios[0] - 1, pairUnitInverse((target - model.term(next, 0)) / c, s), 0.5);
+  EXPECT_NEAR(next.ratios[0] - 1, s, 0.1); // half the saturated error: at the knee, x = s
+  const AdaptParameters any = chooseParameters(now, model, 2 * c * s, bounds);
+  EXPECT_DOUBLE_EQ(any.ratios[0], 451.0 * 1e3);
+}
+
 // The comparison of the estimate scales every term by one factor whatever the coefficients; the
 // equal-share model and the share floor keep totals.
 TEST(Adapt, ScaledTermsAndEqualShares)

@@ -393,3 +393,28 @@ TEST(VSHMMSpectralStableStep, ConstantDiffusionHasItsExactStep)
   EXPECT_EQ(VSHMMSpectralSetGrowthBound(s.sp, 0.5), PETSC_ERR_ARG_OUTOFRANGE); // 0 or >= 1
   PetscPopErrorHandler();
 }
+
+// The clusters' separations: constant d = 0.5 and clusters {0..3}, {20..24}, {60..64}: the slowest
+// wavenumber of each faster cluster over the fastest of the slower one, (20/3)^2 and (60/24)^2;
+// advection a = 2 adds 2 k to each rate. Mode dns has none.
+TEST(VSHMMSpectralObject, ScaleSeparationsOfTheClusters)
+{
+  const std::string base = "-spectral_grid_points 256 -spectral_mode sparse -spectral_clusters 0:3,20:24,60:64 -spectral_diffusion_coefficient constant -spectral_diffusion_coefficient_value 0.5";
+  for (const bool adv : {false, true}) {
+    Scene            s(base + (adv ? " -spectral_terms diffusion,advection -spectral_velocity constant -spectral_velocity_value 2" : ""));
+    PetscInt         n = -1;
+    const PetscReal *S = nullptr;
+    ASSERT_EQ(s.error(), "");
+    ASSERT_EQ(VSHMMSpectralGetScaleSeparations(s.sp, &n, &S), 0);
+    ASSERT_EQ(n, 2);
+    const double a = adv ? 2 : 0;
+    EXPECT_NEAR(S[0], (0.5 * 400 + a * 20) / (0.5 * 9 + a * 3), 1e-12);
+    EXPECT_NEAR(S[1], (0.5 * 3600 + a * 60) / (0.5 * 576 + a * 24), 1e-12);
+  }
+  Scene            dns("-spectral_grid_points 64");
+  PetscInt         n = -1;
+  const PetscReal *S = nullptr;
+  ASSERT_EQ(VSHMMSpectralGetScaleSeparations(dns.sp, &n, &S), 0);
+  EXPECT_EQ(n, 0);
+  EXPECT_EQ(S, nullptr);
+}

@@ -149,6 +149,30 @@ TEST(VSHMMSeparation, UnseparatedScalesAreAnErrorOnRequest)
   EXPECT_NE(e.message.find("-ts_type rk"), std::string::npos) << e.message;
 }
 
+// Separations the application sets replace the spectral radii's: the paper's problem told that its
+// scales are only 3 apart is taken at its word (and told 1e3, 1e3, passes).
+TEST(VSHMMSeparation, SetSeparationsAreChecked)
+{
+  AdaptRun      run;
+  CapturedError e = CaptureError([&] { return SolveDissipativeAdapt("-ts_vshmm_check_separation error -ts_vshmm_micro_dt 1e-4 -ts_vshmm_savings_factors 100,10 -ts_vshmm_scale_separations 3,3", 0.2, &run); });
+  EXPECT_EQ(e.code, PETSC_ERR_ARG_INCOMP);
+  EXPECT_NE(e.message.find("not separated (separation of consecutive levels, at least 10"), std::string::npos) << e.message;
+  EXPECT_NE(e.message.find("levels 0/1: 3 (set with -ts_vshmm_scale_separations); levels 1/2: 3 (set"), std::string::npos) << e.message;
+  EXPECT_EQ(SolveDissipativeAdapt("-ts_vshmm_check_separation error -ts_vshmm_micro_dt 1e-4 -ts_vshmm_savings_factors 100,10 -ts_vshmm_scale_separations 1e3,1e3", 0.2, &run), 0);
+  PetscInt         n;
+  const PetscReal *S;
+  TS               ts;
+  ASSERT_EQ(TSCreate(PETSC_COMM_WORLD, &ts), 0);
+  ASSERT_EQ(TSSetType(ts, TSVSHMM), 0);
+  const PetscReal set[] = {12, 340};
+  ASSERT_EQ(TSVSHMMSetScaleSeparations(ts, 2, set), 0);
+  ASSERT_EQ(TSVSHMMGetScaleSeparations(ts, &n, &S), 0);
+  ASSERT_EQ(n, 2);
+  EXPECT_EQ(S[0], 12);
+  EXPECT_EQ(S[1], 340);
+  ASSERT_EQ(TSDestroy(&ts), 0);
+}
+
 // The paper's problem is separated: the same setting raises nothing.
 TEST(VSHMMSeparation, PaperProblemPasses)
 {

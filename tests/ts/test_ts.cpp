@@ -757,6 +757,11 @@ TEST(VSHMMBadInput, EachBadSettingIsAClearError)
     {"-ts_vshmm_check_separation", 3, "-ts_vshmm_check_separation is given without a value: it takes one of off, warn, error"},
     {"-ts_vshmm_warnings_viewer", 3, "-ts_vshmm_warnings_viewer is given without a value: it takes stderr, none, or an ASCII viewer ascii[:file]"},
     {"-ts_vshmm_warnings_viewer binary:warnings.bin", 3, "-ts_vshmm_warnings_viewer (TSVSHMMSetWarningsViewer()): the warnings viewer must be an ASCII viewer (stderr, none or ascii:<file>), not binary"},
+    {"-ts_vshmm_scale_separations 100", 3, "-ts_vshmm_scale_separations (TSVSHMMSetScaleSeparations()) has 1 values but there are 3 scales (RHS splits), so it needs 2"},
+    {"-ts_vshmm_scale_separations 100,-5", 3, "Scale separation 2 is -5.: -ts_vshmm_scale_separations values must be positive and finite"},
+    {"-ts_vshmm_scale_separations 0,5", 3, "Scale separation 1 is 0"},
+    {"-ts_vshmm_scale_separations inf,5", 3, "must be positive and finite"},
+    {"-ts_vshmm_scale_separations", 3, "-ts_vshmm_scale_separations is given without a value: it takes a comma-separated list of real numbers"},
     {"-ts_vshmm_warnings_viewer nowhere", 3, "-ts_vshmm_warnings_viewer nowhere: Unsupported viewer nowhere; the option takes stderr, none, or an ASCII viewer ascii[:file]"},
   };
   for (const BadInput &bad : cases) {
