@@ -108,6 +108,7 @@ PETSC_EXTERN PetscErrorCode VSHMMSpectralGetStableTimeStepAt(VSHMMSpectral, Vec,
 PETSC_EXTERN PetscErrorCode VSHMMSpectralGetSpectralRadius(VSHMMSpectral, PetscReal *, PetscReal *);
 PETSC_EXTERN PetscErrorCode VSHMMSpectralSetGrowthBound(VSHMMSpectral, PetscReal);
 PETSC_EXTERN PetscErrorCode VSHMMSpectralSetClusterTolerance(VSHMMSpectral, PetscReal);
+PETSC_EXTERN PetscErrorCode VSHMMSpectralSetClusterThreshold(VSHMMSpectral, PetscReal);
 PETSC_EXTERN PetscErrorCode VSHMMSpectralGrowthMonitor(TS, PetscInt, PetscReal, Vec, void *);
 PETSC_EXTERN PetscErrorCode VSHMMSpectralGetStatistics(VSHMMSpectral, VSHMMSpectralStatistics *);
 

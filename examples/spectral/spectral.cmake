@@ -215,16 +215,18 @@ vshmm_example_test(NAME spectral_auto_zero_tuning EXE diffusion
                    ARGS -spectral_grid_points 512 ${_sp_auto} -output_times 0.125,0.25 -ts_type vshmm -ts_vshmm_adapt -ts_rtol 1e-2 -ts_atol 1e-2
                         -compare_grid_solution ${_sp_dir}/spectral_auto_dns_ref/dns -compare_tolerance 6e-3 -no_timing
                    REGEX "K1 = {28..36,61..67,92..100,125..131}.*ts_type vshmm: sampling interval 0.125, micro step 0.0001[0-9]*, .*compare t 0.25 relative_l2_error")
-# Tolerance 1e-3 on the same scene: the examples give TSVSHMM the clusters' separations
-# (VSHMMSpectralGetScaleSeparations(): K1's slowest mode, k = 28, is 33x K0's fastest, where the
-# spectral radii are 510x apart), so adapt's error model sees the averaging error saturate beyond
-# them and refines. 7.3e-4 and 6.4e-4 with 1,852 evaluations; without the separations
-# (-ts_vshmm_scale_separations 1e12) the run was the one at 1e-2 (4.4e-3, 488), and hand-set
-# savings 10 at micro step 1.5e-4 give 8.4e-4 with 1,078.
+# Tolerance 1e-3 on the same scene. The examples give TSVSHMM the clusters' separations
+# (VSHMMSpectralGetScaleSeparations(): K1's slowest mode is 33x K0's fastest, where the spectral
+# radii are 510x apart), so adapt's error model sees the averaging error saturate beyond them and
+# refines; and the detection's threshold follows the tolerance (lambda = tol / 30: wider bands,
+# 51 wavenumbers in K1 instead of 32). 4.9e-4 and 4.9e-4 with 7,006 evaluations. Without the
+# separations (-ts_vshmm_scale_separations 1e12) 1.2e-2 with 514 (the estimate blind); with the clusters
+# of lambda 1e-4 and the separations 7.3e-4 with 1,852 (hand-set savings 10 at micro step 1.5e-4
+# on those clusters: 8.4e-4 with 1,078).
 vshmm_example_test(NAME spectral_auto_zero_tuning_tol1e-3 EXE diffusion
                    ARGS -spectral_grid_points 512 ${_sp_auto} -output_times 0.125,0.25 -ts_type vshmm -ts_vshmm_adapt -ts_rtol 1e-3 -ts_atol 1e-3
                         -compare_grid_solution ${_sp_dir}/spectral_auto_dns_ref/dns -compare_tolerance 1e-3 -no_timing
-                   REGEX "output t 0.25 rhs_evaluations 1852 .*compare t 0.25 relative_l2_error")
+                   REGEX "K1 = {27..37,60..68,92..100,124..132,159,189..195,222..226}: 51 wavenumbers.*output t 0.25 rhs_evaluations 7006 .*compare t 0.25 relative_l2_error")
 set_tests_properties(spectral_auto_dns_ref PROPERTIES FIXTURES_SETUP spectral_auto_ref LABELS "example;spectral")
 set_tests_properties(spectral_auto_zero_tuning spectral_auto_zero_tuning_tol1e-3 PROPERTIES FIXTURES_REQUIRED spectral_auto_ref LABELS "example;spectral")
 set_tests_properties(spectral_detect_dns_small spectral_detect_initial_buffers PROPERTIES LABELS "example;spectral")
@@ -244,7 +246,7 @@ vshmm_example_test(NAME spectral_detect_auto_advection EXE advection
                    ARGS ${_sp_adv_auto} -ts_type rk -output_times 0.001 -no_timing
                    REGEX "snapshots at 0.203537 0.407073 0.814147\n.*120 wavenumbers above lambda in 8 bands, 2 clusters.*the last looks agree within -spectral_cluster_tolerance 0.01: their bands widened at the edges by wavenumbers holding 0.00135[0-9]* of .*${_sp_adv_auto_clusters}.*detection dns_steps 256 evaluations 769\n")
 vshmm_example_test(NAME spectral_detect_auto_advection_merge EXE advection
-                   ARGS ${_sp_adv_auto} -ts_type rk -ts_rtol 1e-3 -ts_atol 1e-3 -output_times 0.001 -no_timing
+                   ARGS ${_sp_adv_auto} -ts_type rk -ts_rtol 1e-3 -ts_atol 1e-3 -spectral_cluster_lambda 1e-4 -output_times 0.001 -no_timing
                    REGEX "bands merged at t = 1.62829; the wavenumbers outside the bands of t = 0.814147 hold at most -spectral_cluster_tolerance 0.001 of .*120 wavenumbers above lambda in 8 bands, 2 clusters.*outside the bands hold 0.000892[0-9]* of .*${_sp_adv_auto_clusters}.*detection dns_steps 512 evaluations 1537")
 set_tests_properties(spectral_detect_auto_advection_merge PROPERTIES LABELS "example;spectral")
 # The diffusion-advection scene (diffadv_auto.yaml, N = 1024): the slow band gains a wavenumber at

@@ -417,4 +417,8 @@ TEST(VSHMMSpectralObject, ScaleSeparationsOfTheClusters)
   ASSERT_EQ(VSHMMSpectralGetScaleSeparations(dns.sp, &n, &S), 0);
   EXPECT_EQ(n, 0);
   EXPECT_EQ(S, nullptr);
+  PetscPushErrorHandler(PetscReturnErrorHandler, nullptr);
+  EXPECT_EQ(VSHMMSpectralSetClusterThreshold(dns.sp, NAN), PETSC_ERR_ARG_OUTOFRANGE);
+  PetscPopErrorHandler();
+  EXPECT_EQ(VSHMMSpectralSetClusterThreshold(dns.sp, 3e-5), 0);
 }
