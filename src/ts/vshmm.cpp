@@ -547,6 +547,15 @@ static PetscErrorCode TSView_VSHMM(TS ts, PetscViewer viewer)
     for (PetscReal r : vs->level_radius) PetscCall(PetscViewerASCIIPrintf(viewer, " %.3g", (double)r));
     PetscCall(PetscViewerASCIIPrintf(viewer, "\n"));
   }
+  if (!vs->separations.empty()) {
+    std::string list;
+    for (PetscReal S : vs->separations) {
+      char item[32];
+      PetscCall(PetscSNPrintf(item, sizeof(item), " %g", (double)S));
+      list += item;
+    }
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  scale separations (set, TSVSHMMSetScaleSeparations()):%s\n", list.c_str()));
+  }
   if (!vs->check_stability && vs->stability_interval == 0) PetscCall(PetscViewerASCIIPrintf(viewer, "  stability check: off\n"));
   else if (vs->stability_interval > 0)
     PetscCall(PetscViewerASCIIPrintf(viewer, "  stability check: %s set-up and every %" PetscInt_FMT " macro steps; %" PetscInt64_FMT " checks, %" PetscInt64_FMT " split RHS evaluations, %" PetscInt64_FMT " warnings\n", vs->check_stability ? "at" : "not at", vs->stability_interval, vs->stability_checks, vs->stability_evaluations, vs->stability_warnings));

@@ -338,11 +338,18 @@ static PetscErrorCode Compare(TS ts, const vshmm::AdaptParameters &p, PetscReal 
   PetscFunctionReturn(0);
 }
 
-/* The error of p from the difference d to the comparison q, converted with the model. */
+/* The error of p from the difference d to the comparison q, converted with the model. Where the
+   model expects no net change (a micro step held at its stability limit in the comparison, so its
+   term falls while the others rise, the rise small where a pair's term saturates), d is taken as
+   the sum of the changes' sizes. */
 static PetscReal Estimate(const vshmm::ErrorModel &model, const vshmm::AdaptParameters &p, const vshmm::AdaptParameters &q, PetscReal d)
 {
   const PetscReal before = model.total(p), predicted = model.total(q) - before;
-  return (std::isfinite(d) && predicted > 0) ? d * before / predicted : d;
+  if (!std::isfinite(d)) return d;
+  if (predicted > 0) return d * before / predicted;
+  PetscReal changes = 0;
+  for (int i = 0; i <= (int)model.c.size(); ++i) changes += PetscAbsReal(model.term(q, i) - model.term(p, i));
+  return changes > 0 ? d * before / changes : d;
 }
 
 /* The error model's split between the terms: one comparison run per parameter, the micro step

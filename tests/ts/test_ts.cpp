@@ -466,6 +466,8 @@ TEST(VSHMMSolver, ViewPrintsScalesKernelAndWork)
   ASSERT_EQ(TSVSHMMSetKernel(ts, TSVSHMM_KERNEL_POLYNOMIAL), 0);
   ASSERT_EQ(TSVSHMMSetKernelOrder(ts, 3), 0);
   ASSERT_EQ(TSVSHMMSetRKType(ts, TSRK3), 0);
+  const PetscReal separations[] = {2000, 150};
+  ASSERT_EQ(TSVSHMMSetScaleSeparations(ts, 2, separations), 0);
   ASSERT_EQ(TSSolve(ts, x), 0);
   TSVSHMMStatistics stats;
   ASSERT_EQ(TSVSHMMGetStatistics(ts, &stats), 0);
@@ -488,6 +490,7 @@ TEST(VSHMMSolver, ViewPrintsScalesKernelAndWork)
   EXPECT_NE(text.find("3 scales"), std::string::npos) << text;
   EXPECT_NE(text.find("kernel polynomial (order q = 3)"), std::string::npos) << text;
   EXPECT_NE(text.find("micro step dt = 0.0001"), std::string::npos) << text;
+  EXPECT_NE(text.find("scale separations (set, TSVSHMMSetScaleSeparations()): 2000. 150.\n"), std::string::npos) << text;
   EXPECT_NE(text.find("TSRK 3 (order 3, 3 stages; stable for h |lambda| <= 2.513 on the negative real axis, 1.732 on the imaginary axis)"), std::string::npos) << text;
   const size_t slow = text.find("slow"), medium = text.find("medium"), fast = text.find("fast");
   ASSERT_NE(slow, std::string::npos);
