@@ -216,10 +216,10 @@ vshmm_example_test(NAME spectral_auto_zero_tuning EXE diffusion
                         -compare_grid_solution ${_sp_dir}/spectral_auto_dns_ref/dns -compare_tolerance 6e-3 -no_timing
                    REGEX "K1 = {28..36,61..67,92..100,125..131}.*ts_type vshmm: sampling interval 0.125, micro step 0.0001[0-9]*, .*compare t 0.25 relative_l2_error")
 # Tolerance 1e-3 on the same scene. The examples give TSVSHMM the clusters' separations
-# (VSHMMSpectralGetScaleSeparations(): K1's slowest mode is 33x K0's fastest, where the spectral
-# radii are 510x apart), so adapt's error model sees the averaging error saturate beyond them and
-# refines; and the detection's threshold follows the tolerance (lambda = tol / 30: wider bands,
-# 51 wavenumbers in K1 instead of 32). 4.9e-4 and 4.9e-4 with 7,006 evaluations. Without the
+# (VSHMMSpectralGetScaleSeparations(): the rate of K1's slowest mode is 12.6x that of K0's
+# fastest, where the spectral radii are hundreds of times apart), so adapt's error model sees the
+# averaging error saturate beyond them and refines; and the detection's threshold follows the
+# tolerance (lambda = tol / 30: wider bands, 51 wavenumbers in K1 instead of 32). 4.9e-4 and 4.9e-4 with 7,006 evaluations. Without the
 # separations (-ts_vshmm_scale_separations 1e12) 1.2e-2 with 514 (the estimate blind); with the clusters
 # of lambda 1e-4 and the separations 7.3e-4 with 1,852 (hand-set savings 10 at micro step 1.5e-4
 # on those clusters: 8.4e-4 with 1,078).
