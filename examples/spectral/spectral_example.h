@@ -26,6 +26,7 @@
 #include <petscvshmmspectral.h>
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 
 typedef struct {
   VSHMMSpectral   sp;
@@ -303,15 +304,40 @@ static PetscErrorCode SetGridObservables(SpectralRun *run, TS ts)
     PetscCall(TSVSHMMGetAdapt(ts, &adapt));
   }
   if (adapt) { /* the clusters' separations (their slowest modes), unless given on the command line */
-    const PetscReal *S;
-    PetscInt         n;
-    const char      *prefix;
-    PetscBool        set;
+    const PetscReal   *S;
+    const char *const *scales;
+    PetscInt           n, nscales, next = 0;
+    const char        *prefix;
+    PetscBool          set, ok = PETSC_TRUE;
+    PetscReal          Sscale[64];
 
     PetscCall(TSGetOptionsPrefix(ts, &prefix));
     PetscCall(PetscOptionsHasName(NULL, prefix, "-ts_vshmm_scale_separations", &set));
     PetscCall(VSHMMSpectralGetScaleSeparations(run->sp, &n, &S));
-    if (!set && n > 0) PetscCall(TSVSHMMSetScaleSeparations(ts, n, S));
+    /* one separation per pair of scales: where a scale groups clusters (-ts_vshmm_splits K3+K4), the
+       separation at each boundary between scales is that of the clusters on either side; scales
+       that are not consecutive clusters in order get none (TSVSHMM then uses its own estimate) */
+    PetscCall(TSVSHMMGetSplitOrder(ts, &nscales, &scales));
+    ok = (n > 0 && n + 1 == run->nclusters && nscales >= 2 && nscales <= 64) ? PETSC_TRUE : PETSC_FALSE;
+    for (PetscInt l = 0; ok && l < nscales; ++l) {
+      const char *c = scales[l];
+      while (ok && *c) {
+        char *end;
+        long  k;
+        if (*c != 'K') {
+          ok = PETSC_FALSE;
+          break;
+        }
+        k = strtol(c + 1, &end, 10);
+        if (end == c + 1 || k != next) ok = PETSC_FALSE;
+        next++;
+        c = *end == '+' ? end + 1 : end;
+        if (*end && *end != '+') ok = PETSC_FALSE;
+      }
+      if (ok && l + 1 < nscales) Sscale[l] = S[next - 1];
+    }
+    if (ok && next != run->nclusters) ok = PETSC_FALSE;
+    if (!set && ok) PetscCall(TSVSHMMSetScaleSeparations(ts, nscales - 1, Sscale));
   }
   PetscCall(PetscOptionsGetBool(NULL, NULL, "-observe_state", &state, NULL));
   if (adapt && !state) PetscCall(TSVSHMMSetObservables(ts, run->N, GridObservable, run));

@@ -203,7 +203,7 @@ PetscErrorCode TSVSHMMCheckSeparation_Private(TS ts)
   PetscCheck(vs->check_separation != TSVSHMM_SEPARATION_ERROR, comm, PETSC_ERR_ARG_INCOMP, "TSVSHMM separation check at t = %g: the time scales of the RHS splits are not separated (%s, at least %g needed: %s). VSHMM samples the faster scales statistically and would change the answer here; use a single-rate TS type (-ts_type rk) or a multirate one (-ts_type mprk), or -ts_vshmm_check_separation warn to run anyway",
              (double)ts->ptime, what, (double)kMinSeparation, figures.c_str());
   PetscCall(TSVSHMMWarn_Private(ts, "TSVSHMM warning: separation check at t = %g: the time scales of the RHS splits are not separated (%s, at least %g needed: %s). VSHMM samples the faster scales statistically and %s; a single-rate TS type (-ts_type rk) or a multirate one (-ts_type mprk) is the right tool. (-ts_vshmm_check_separation error makes this an error, off silences it.)\n",
-                                (double)ts->ptime, what, (double)kMinSeparation, figures.c_str(), vs->adapt ? "-ts_vshmm_adapt therefore takes no savings (every level steps with the micro step)" : "its answer will be wrong by an amount it cannot estimate"));
+                                (double)ts->ptime, what, (double)kMinSeparation, figures.c_str(), vs->adapt && vs->savings.empty() ? "-ts_vshmm_adapt therefore takes no savings (every level steps with the micro step)" : "its answer will be wrong by an amount it cannot estimate"));
   PetscFunctionReturn(0);
 }
 
