@@ -299,6 +299,7 @@ static PetscErrorCode SetGridObservables(SpectralRun *run, TS ts)
 
     PetscCall(VSHMMSpectralGetSizes(run->sp, NULL, NULL, &nclusters));
     run->nclusters = nclusters;
+    PetscCheck(nclusters != 0, PETSC_COMM_WORLD, PETSC_ERR_ARG_INCOMP, "-ts_type vshmm needs the scene's time scales as clusters, but the scene is in mode dns (every wavenumber, no clusters): use -spectral_mode sparse (with -spectral_clusters, or the detection) or another TS type");
     PetscCheck(nclusters != 1, PETSC_COMM_WORLD, PETSC_ERR_ARG_INCOMP, "-ts_type vshmm needs at least two clusters (time scales), but the scene has one%s: there is nothing to separate. Use -ts_type rk (the explicit sparse method, or -spectral_mode dns) or give -spectral_clusters",
                nclusters == 1 && run->detected ? " (the detection found one band of wavenumbers)" : "");
     PetscCall(TSVSHMMGetAdapt(ts, &adapt));
