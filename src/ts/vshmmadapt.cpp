@@ -18,7 +18,11 @@
   stability region of the inner Runge-Kutta method, using each level's estimated eigenvalues
   (estimated again at the state of each calibration and of a step that blew up).
 
-  The separation check compares the spectral radii of consecutive levels. VSHMM samples a faster
+  Where the application set the levels' separations (TSVSHMMSetScaleSeparations()), each pair's
+  error term in the model saturates beyond its separation (src/core/adapt.hpp), so that the
+  comparison's small difference of two saturated runs is read as the large error it is.
+
+  The separation check compares the spectral radii of consecutive levels (or the separations set). VSHMM samples a faster
   level statistically; where no pair of levels is separated by at least kMinSeparation the faster
   components are part of the answer and VSHMM is the wrong tool.
 */
@@ -256,7 +260,7 @@ PetscErrorCode TSVSHMMAdaptSetUp_Private(TS ts)
   else {
     p.ratios.assign(K, 1.0);
     if (!vs->no_separation)
-      for (PetscInt l = 0; l < K; ++l) { p.ratios[l] = PetscMax(1.0, PetscMin(RadiusRatio(vs, l) / kInitialSeparation, 1e8)); }
+      for (PetscInt l = 0; l < K; ++l) p.ratios[l] = PetscMax(1.0, PetscMin(RadiusRatio(vs, l) / kInitialSeparation, 1e8));
   }
   LimitToStableSteps(ts, p);
   const vshmm::AdaptBounds b = Bounds(ts, DeltaT);
