@@ -547,6 +547,17 @@ static PetscErrorCode TSView_VSHMM(TS ts, PetscViewer viewer)
     for (PetscReal r : vs->level_radius) PetscCall(PetscViewerASCIIPrintf(viewer, " %.3g", (double)r));
     PetscCall(PetscViewerASCIIPrintf(viewer, "\n"));
   }
+  bool slowest = false;
+  for (PetscReal r : vs->level_slowest) slowest = slowest || r > 0;
+  if (slowest) {
+    std::string list;
+    for (PetscReal r : vs->level_slowest) {
+      char item[32];
+      PetscCall(PetscSNPrintf(item, sizeof(item), r > 0 ? " %.3g" : " -", (double)r));
+      list += item;
+    }
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  slowest rate of each level's own components (component splits; -ts_vshmm_adapt):%s\n", list.c_str()));
+  }
   if (!vs->separations.empty()) {
     std::string list;
     for (PetscReal S : vs->separations) {

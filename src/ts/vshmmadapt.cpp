@@ -180,6 +180,23 @@ static PetscReal Separation(TS_VSHMM *vs, PetscInt l)
   return (PetscInt)vs->separations.size() > l ? vs->separations[l] : RadiusRatio(vs, l);
 }
 
+/* The saturation scale of each level pair's error term in adapt's model: the separation set by the
+   application; otherwise, where the faster level's own components have a band of rates (their
+   slowest rate is more than kInitialSeparation times closer to the slower level than the level's
+   spectral radius), that slowest rate over the slower level's radius; otherwise none (linear). */
+static std::vector<double> Saturations(TS_VSHMM *vs, PetscInt K)
+{
+  std::vector<double> s(K, 0.0);
+  for (PetscInt l = 0; l < K; ++l) {
+    if ((PetscInt)vs->separations.size() > l) s[l] = vs->separations[l];
+    else if ((PetscInt)vs->level_slowest.size() > l + 1 && vs->level_slowest[l + 1] > 0 && vs->level_radius[l] > 0) {
+      const double S = vs->level_slowest[l + 1] / vs->level_radius[l];
+      if (S < RadiusRatio(vs, l) / kInitialSeparation) s[l] = S;
+    }
+  }
+  return s;
+}
+
 /* The separation check: spectral radii of consecutive levels (or the separations set). */
 PetscErrorCode TSVSHMMCheckSeparation_Private(TS ts)
 {
@@ -407,8 +424,8 @@ static PetscErrorCode Calibrate(TS ts, const vshmm::AdaptParameters &p, PetscRea
     d[i] = di;
     PetscCall(PetscInfo(ts, "Adapt: calibration of parameter %" PetscInt_FMT ": dt %g, cycle %g, difference %g\n", i, (double)coarse[i].microStep, (double)vshmm::cycleLength(coarse[i]), (double)di));
   }
-  vs->adapt_model = vshmm::ErrorModel::fromDifferences(p, coarse, d, vs->tableau->order, vs->separations);
-  if (!(vs->adapt_model.total(p) > 0)) vs->adapt_model = vshmm::ErrorModel::equalShares(p, vs->tableau->order, 1.0, vs->separations);
+  vs->adapt_model = vshmm::ErrorModel::fromDifferences(p, coarse, d, vs->tableau->order, Saturations(vs, K));
+  if (!(vs->adapt_model.total(p) > 0)) vs->adapt_model = vshmm::ErrorModel::equalShares(p, vs->tableau->order, 1.0, Saturations(vs, K));
   vs->adapt_calibrations++;
   vs->adapt_calibrated_times++;
   vs->adapt_since_calibration = 0;
@@ -473,7 +490,7 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
     /* Its error, and (when calibrating, or before the first refinement) the split between the terms */
     vshmm::AdaptParameters q;
     PetscReal              d;
-    if (vs->adapt_model.c.size() != (size_t)K || !(vs->adapt_model.total(p) > 0)) vs->adapt_model = vshmm::ErrorModel::equalShares(p, order, 1.0, vs->separations);
+    if (vs->adapt_model.c.size() != (size_t)K || !(vs->adapt_model.total(p) > 0)) vs->adapt_model = vshmm::ErrorModel::equalShares(p, order, 1.0, Saturations(vs, K));
     PetscCall(Compare(ts, p, t0, DeltaT, &q, &d));
     PetscReal E = Estimate(vs->adapt_model, p, q, d);
     if (calibrate || (E > budget && !vs->adapt_calibrated)) {

@@ -72,6 +72,7 @@ struct TS_VSHMM {
   std::vector<PetscReal>                         level_max_step;                // largest stable step of the inner RK for its limiting modes (inf: none)
   std::vector<std::complex<double>>              level_worst;                   // the mode that sets it
   std::vector<std::vector<std::complex<double>>> level_limiting;                // decaying or oscillating Ritz values
+  std::vector<PetscReal>                         level_slowest;                 // smallest |Ritz value| of the block of the level's own components (0: not estimated)
   PetscReal                                      spectra_time = PETSC_MIN_REAL; // when they were estimated
 
   // Accuracy control (-ts_vshmm_adapt)

@@ -36,7 +36,7 @@ static constexpr PetscReal kCouplingTarget     = 1.01; /* what suggested savings
    field: an orthonormal basis V[0..k-1] of a Krylov space (V has m + 1 vectors, m = min(16, N),
    destroyed by the caller with VecDestroyVecs(m + 1, &V)) and the k x k Hessenberg matrix
    V^T J V (column-major, leading dimension m + 1, in H). k = 0 where the field is not finite near X. */
-static PetscErrorCode LevelArnoldi(TS ts, PetscInt level, PetscReal t, Vec X, Vec **Vout, PetscInt *mout, std::vector<PetscScalar> &H, PetscInt *kout, PetscReal *delta_out)
+static PetscErrorCode LevelArnoldi(TS ts, PetscInt level, PetscReal t, Vec X, Vec **Vout, PetscInt *mout, std::vector<PetscScalar> &H, PetscInt *kout, PetscReal *delta_out, Vec mask = nullptr)
 {
   TS_VSHMM    *vs = (TS_VSHMM *)ts->data;
   PetscInt     N, rstart, rend;
@@ -57,6 +57,7 @@ static PetscErrorCode LevelArnoldi(TS ts, PetscInt level, PetscReal t, Vec X, Ve
   PetscCall(VecGetArray(V[0], &v));
   for (PetscInt i = rstart; i < rend; ++i) v[i - rstart] = 1.0 + 0.5 * std::sin(1.7 * (double)i + 0.3);
   PetscCall(VecRestoreArray(V[0], &v));
+  if (mask) PetscCall(VecPointwiseMult(V[0], V[0], mask));
   PetscReal beta;
   PetscCall(VecNormalize(V[0], &beta));
 
@@ -73,6 +74,7 @@ static PetscErrorCode LevelArnoldi(TS ts, PetscInt level, PetscReal t, Vec X, Ve
     PetscCall(TSVSHMMEvaluateLevel_Private(vs, level, t, Xp, W));
     PetscCall(VecAXPY(W, -1.0, G0));
     PetscCall(VecScale(W, 1.0 / delta));
+    if (mask) PetscCall(VecPointwiseMult(W, W, mask)); /* the block of the masked components */
     /* Gram-Schmidt, twice */
     for (int pass = 0; pass < 2; ++pass) {
       PetscCall(VecMDot(W, j + 1, V, h.data()));
@@ -142,8 +144,9 @@ static PetscErrorCode Eigenvalues(PetscInt k, PetscInt lda, const PetscScalar *A
   PetscFunctionReturn(0);
 }
 
-/* Ritz values of the Jacobian of level l's field at (t, X). */
-static PetscErrorCode LevelRitzValues(TS ts, PetscInt level, PetscReal t, Vec X, std::vector<std::complex<double>> &ritz, PetscBool *finite)
+/* Ritz values of the Jacobian of level l's field at (t, X) (with a mask: of its block on the
+   masked components). */
+static PetscErrorCode LevelRitzValues(TS ts, PetscInt level, PetscReal t, Vec X, std::vector<std::complex<double>> &ritz, PetscBool *finite, Vec mask = nullptr)
 {
   Vec                     *V;
   PetscInt                 m, k;
@@ -151,7 +154,7 @@ static PetscErrorCode LevelRitzValues(TS ts, PetscInt level, PetscReal t, Vec X,
 
   PetscFunctionBegin;
   ritz.clear();
-  PetscCall(LevelArnoldi(ts, level, t, X, &V, &m, H, &k, NULL));
+  PetscCall(LevelArnoldi(ts, level, t, X, &V, &m, H, &k, NULL, mask));
   PetscCall(VecDestroyVecs(m + 1, &V));
   *finite = k > 0 ? PETSC_TRUE : PETSC_FALSE;
   if (!k) PetscFunctionReturn(0);
@@ -256,6 +259,29 @@ PetscErrorCode TSVSHMMLevelSpectra_Private(TS ts)
       }
       vs->level_limiting[level].push_back(lambda);
     }
+  }
+  /* The slowest rate of each faster level's own components (component splits only): Arnoldi on the
+     block of the level's Jacobian on the components its new splits write. A scale that is a band
+     of rates (relaxation rates 10 to 1000) has its slowest one here, which the level's spectral
+     radius does not show; -ts_vshmm_adapt's error model uses it (vshmmadapt.cpp). */
+  vs->level_slowest.assign(nscales, 0.0);
+  for (PetscInt level = 1; vs->adapt && level < nscales; ++level) {
+    PetscBool component = PETSC_TRUE;
+    for (PetscInt k = vs->level_end[level - 1]; k < vs->level_end[level]; ++k) component = (vs->splits[k].additive || !vs->splits[k].is) ? PETSC_FALSE : component;
+    if (!component) continue;
+    Vec mask;
+    PetscCall(VecDuplicate(ts->vec_sol, &mask));
+    PetscCall(VecSet(mask, 0.0));
+    for (PetscInt k = vs->level_end[level - 1]; k < vs->level_end[level]; ++k) PetscCall(VecISSet(mask, vs->splits[k].is, 1.0));
+    PetscBool finite = PETSC_FALSE;
+    PetscCall(LevelRitzValues(ts, level, ts->ptime, ts->vec_sol, ritz, &finite, mask));
+    PetscCall(VecDestroy(&mask));
+    if (!finite) continue;
+    double slowest = PETSC_INFINITY, largest = 0;
+    for (const std::complex<double> &lambda : ritz) largest = std::max(largest, std::abs(lambda));
+    for (const std::complex<double> &lambda : ritz)
+      if (std::abs(lambda) > 1e-8 * largest) slowest = std::min(slowest, std::abs(lambda));
+    if (std::isfinite(slowest)) vs->level_slowest[level] = slowest;
   }
   vs->spectra_time = ts->ptime;
   PetscFunctionReturn(0);
