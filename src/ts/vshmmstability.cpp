@@ -4,7 +4,9 @@
 
   Eigenvalues: a few Arnoldi steps on the Jacobian of G_l = f_0 + ... + f_l, applied by finite
   differences of the split functions (no user Jacobian); the Ritz values approximate the extreme
-  eigenvalues, the ones that limit an explicit step.
+  eigenvalues, the ones that limit an explicit step. With -ts_vshmm_adapt and component splits,
+  also the block of each faster level's Jacobian on its own components: its slowest rate shows a
+  scale that is a band of rates (the accuracy control's separations, vshmmadapt.cpp).
 
   Verdict, for every Ritz value lambda except growing modes (Re lambda > 0.1 |lambda|), with a
   step allowed to grow a mode as much as the exact flow does (|R(z)| <= max(1, |exp(z)|), which
