@@ -175,9 +175,19 @@ static PetscReal RadiusRatio(TS_VSHMM *vs, PetscInt l)
   return vs->level_radius[l] > 0 ? vs->level_radius[l + 1] / vs->level_radius[l] : PETSC_INFINITY;
 }
 
+/* The slowest rate of level l+1's own components over level l's spectral radius (0: not estimated,
+   additive splits). */
+static PetscReal OwnRatio(TS_VSHMM *vs, PetscInt l)
+{
+  if ((PetscInt)vs->level_slowest.size() <= l + 1 || !(vs->level_slowest[l + 1] > 0)) return 0;
+  return vs->level_radius[l] > 0 ? vs->level_slowest[l + 1] / vs->level_radius[l] : PETSC_INFINITY;
+}
+
 static PetscReal Separation(TS_VSHMM *vs, PetscInt l)
 {
-  return (PetscInt)vs->separations.size() > l ? vs->separations[l] : RadiusRatio(vs, l);
+  if ((PetscInt)vs->separations.size() > l) return vs->separations[l];
+  const PetscReal own = OwnRatio(vs, l);
+  return own > 0 ? PetscMin(own, RadiusRatio(vs, l)) : RadiusRatio(vs, l);
 }
 
 /* The saturation scale of each level pair's error term in adapt's model: the separation set by the
@@ -189,10 +199,7 @@ static std::vector<double> Saturations(TS_VSHMM *vs, PetscInt K)
   std::vector<double> s(K, 0.0);
   for (PetscInt l = 0; l < K; ++l) {
     if ((PetscInt)vs->separations.size() > l) s[l] = vs->separations[l];
-    else if ((PetscInt)vs->level_slowest.size() > l + 1 && vs->level_slowest[l + 1] > 0 && vs->level_radius[l] > 0) {
-      const double S = vs->level_slowest[l + 1] / vs->level_radius[l];
-      if (S < RadiusRatio(vs, l) / kInitialSeparation) s[l] = S;
-    }
+    else if (OwnRatio(vs, l) > 0 && OwnRatio(vs, l) < RadiusRatio(vs, l) / kInitialSeparation) s[l] = OwnRatio(vs, l);
   }
   return s;
 }
@@ -211,8 +218,11 @@ PetscErrorCode TSVSHMMCheckSeparation_Private(TS ts)
   std::string figures;
   for (PetscInt l = 0; l + 1 < nscales; ++l) {
     const PetscReal S = Separation(vs, l);
-    char            text[160];
+    char            text[256];
     if ((PetscInt)vs->separations.size() > l) PetscCall(PetscSNPrintf(text, sizeof(text), "%slevels %" PetscInt_FMT "/%" PetscInt_FMT ": %.3g (set with -ts_vshmm_scale_separations)", l ? "; " : "", l, l + 1, (double)S));
+    else if (OwnRatio(vs, l) > 0 && OwnRatio(vs, l) < RadiusRatio(vs, l))
+      PetscCall(PetscSNPrintf(text, sizeof(text), "%slevels %" PetscInt_FMT "/%" PetscInt_FMT ": %.3g (spectral radius %.3g, slowest rate of level %" PetscInt_FMT "'s own components %.3g)", l ? "; " : "", l, l + 1, (double)S, (double)vs->level_radius[l], l + 1,
+                              (double)vs->level_slowest[l + 1]));
     else PetscCall(PetscSNPrintf(text, sizeof(text), "%slevels %" PetscInt_FMT "/%" PetscInt_FMT ": %.3g (spectral radii %.3g, %.3g)", l ? "; " : "", l, l + 1, (double)S, (double)vs->level_radius[l], (double)vs->level_radius[l + 1]));
     figures += text;
     best = PetscMax(best, S);
@@ -220,7 +230,9 @@ PetscErrorCode TSVSHMMCheckSeparation_Private(TS ts)
   vs->no_separation = best < kMinSeparation ? PETSC_TRUE : PETSC_FALSE;
   PetscCall(PetscInfo(ts, "Separation check at t = %g: %s\n", (double)ts->ptime, figures.c_str()));
   if (!vs->no_separation || vs->check_separation == TSVSHMM_SEPARATION_OFF) PetscFunctionReturn(0);
-  const char *what = vs->separations.empty() ? "ratio of the spectral radii of consecutive levels" : "separation of consecutive levels";
+  bool own = false;
+  for (PetscInt l = 0; l + 1 < nscales; ++l) own = own || (OwnRatio(vs, l) > 0 && OwnRatio(vs, l) < RadiusRatio(vs, l));
+  const char *what = (vs->separations.empty() && !own) ? "ratio of the spectral radii of consecutive levels" : "separation of consecutive levels";
   PetscCheck(vs->check_separation != TSVSHMM_SEPARATION_ERROR, comm, PETSC_ERR_ARG_INCOMP, "TSVSHMM separation check at t = %g: the time scales of the RHS splits are not separated (%s, at least %g needed: %s). VSHMM samples the faster scales statistically and would change the answer here; use a single-rate TS type (-ts_type rk) or a multirate one (-ts_type mprk), or -ts_vshmm_check_separation warn to run anyway",
              (double)ts->ptime, what, (double)kMinSeparation, figures.c_str());
   PetscCall(TSVSHMMWarn_Private(ts, "TSVSHMM warning: separation check at t = %g: the time scales of the RHS splits are not separated (%s, at least %g needed: %s). VSHMM samples the faster scales statistically and %s; a single-rate TS type (-ts_type rk) or a multirate one (-ts_type mprk) is the right tool. (-ts_vshmm_check_separation error makes this an error, off silences it.)\n",

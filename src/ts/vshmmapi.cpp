@@ -627,12 +627,14 @@ PetscErrorCode TSVSHMMSetObservables(TS ts, PetscInt n, PetscErrorCode (*f)(TS, 
    Without them TSVSHMM takes S_l from the levels' estimated spectral radii: the fastest mode of
    each level. That is the separation where each scale has one rate (the paper's examples), but
    where a scale spans a band of rates (a cluster of Fourier modes) the separation that sets the
-   averaging error is that of its slowest mode, which can be far smaller. With
-   `TSVSHMMSetAdapt()` the separations start the savings at S_l / 10 and shape the error model:
-   a time ratio r_l of the level pair beyond S_l slows the faster scale below the slower one, and
-   the averaging error stops growing with r_l there (it saturates); the model knows this, so the
-   error estimate stays true beyond it. The separation check (`TSVSHMMSetSeparationCheck()`)
-   uses them too. `VSHMMSpectralSetUpTS()` sets them from its clusters.
+   averaging error is that of its slowest mode, which can be far smaller. For component splits
+   (`TSRHSSplitSetIS()` with the components each scale writes) TSVSHMM also estimates the slowest
+   rate of each faster level's own components itself; with additive splits it cannot. With
+   `TSVSHMMSetAdapt()` the separations shape the error model: a time ratio r_l of the level pair
+   beyond S_l slows the faster scale below the slower one, and the averaging error stops growing
+   with r_l there (it saturates); the model knows this, so the error estimate stays true beyond
+   it. The separation check (`TSVSHMMSetSeparationCheck()`) uses them too. The spectral examples
+   pass the clusters' figures from `VSHMMSpectralGetScaleSeparations()`.
 
    Level: advanced
 
@@ -690,7 +692,11 @@ PetscErrorCode TSVSHMMGetScaleSeparations(TS ts, PetscInt *n, const PetscReal *S
 
    Notes:
    The check estimates the spectral radius of each level's field (the scales 0..l) and compares
-   consecutive levels. VSHMM samples the faster scales statistically; if no pair of levels is at
+   consecutive levels; for component splits it also estimates the slowest rate of each faster
+   level's own components (the block of its Jacobian on them: a transport block, such as a fine
+   finite-volume region, shows its slow crossing time there), and the separation of a pair is the
+   smaller figure; separations set with `TSVSHMMSetScaleSeparations()` replace both. VSHMM samples
+   the faster scales statistically; if no pair of levels is at
    least 10 apart, the components the faster splits write are part of the answer (for example a
    multirate finite-volume scheme whose fast region is twice as fast as the slow one) and VSHMM
    would return a wrong answer without knowing it. Then the check warns (on the warnings viewer,

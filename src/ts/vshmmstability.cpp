@@ -265,16 +265,36 @@ PetscErrorCode TSVSHMMLevelSpectra_Private(TS ts)
   /* The slowest rate of each faster level's own components (component splits only): Arnoldi on the
      block of the level's Jacobian on the components its new splits write. A scale that is a band
      of rates (relaxation rates 10 to 1000) has its slowest one here, which the level's spectral
-     radius does not show; -ts_vshmm_adapt's error model uses it (vshmmadapt.cpp). */
+     radius does not show; so has a transport block (a fine finite-volume region: its eigenvalues
+     are all fast, but a perturbation crosses the region in the slow time, and the Krylov space
+     sees that as small Ritz values). The separation check and -ts_vshmm_adapt's error model use
+     it (vshmmadapt.cpp). */
   vs->level_slowest.assign(nscales, 0.0);
-  for (PetscInt level = 1; vs->adapt && level < nscales; ++level) {
+  for (PetscInt level = 1; level < nscales; ++level) {
     PetscBool component = PETSC_TRUE;
     for (PetscInt k = vs->level_end[level - 1]; k < vs->level_end[level]; ++k) component = (vs->splits[k].additive || !vs->splits[k].is) ? PETSC_FALSE : component;
     if (!component) continue;
     Vec mask;
     PetscCall(VecDuplicate(ts->vec_sol, &mask));
     PetscCall(VecSet(mask, 0.0));
-    for (PetscInt k = vs->level_end[level - 1]; k < vs->level_end[level]; ++k) PetscCall(VecISSet(mask, vs->splits[k].is, 1.0));
+    for (PetscInt k = vs->level_end[level - 1]; k < vs->level_end[level]; ++k) { /* 1 on the split's components, added as its output is */
+      VSHMMSplit &split = vs->splits[k];
+      PetscCall(VecSet(split.F, 1.0));
+      if (split.local) {
+        const PetscScalar *f;
+        PetscScalar       *m;
+        PetscInt           n;
+        PetscCall(VecGetLocalSize(split.F, &n));
+        PetscCall(VecGetArrayRead(split.F, &f));
+        PetscCall(VecGetArray(mask, &m));
+        for (PetscInt i = 0; i < n; ++i) m[split.offset + i] = f[i];
+        PetscCall(VecRestoreArray(mask, &m));
+        PetscCall(VecRestoreArrayRead(split.F, &f));
+      } else {
+        PetscCall(VecScatterBegin(split.scatter, split.F, mask, INSERT_VALUES, SCATTER_FORWARD));
+        PetscCall(VecScatterEnd(split.scatter, split.F, mask, INSERT_VALUES, SCATTER_FORWARD));
+      }
+    }
     PetscBool finite = PETSC_FALSE;
     PetscCall(LevelRitzValues(ts, level, ts->ptime, ts->vec_sol, ritz, &finite, mask));
     PetscCall(VecDestroy(&mask));
