@@ -179,7 +179,65 @@ PetscErrorCode SolveBand(const char *options, PetscReal DeltaT, PetscReal T, Ada
   PetscFunctionReturn(0);
 }
 
+// First-order upwind advection (a = 1, periodic) on [0, 1) with 16 coarse cells (h = 1/20) and, in
+// place of 4 of them, 48 cells 12 times finer: the slow split writes the coarse cells, the fast
+// split the fine ones (as PETSc's multirate finite-volume tutorials with -hratio 12). The radii of
+// the two levels are about 12 apart, but the fine cells carry the transported solution.
+constexpr int kCoarse = 16, kFine = 48, kFvCells = kCoarse + kFine;
+bool          FineCell(int i)
+{
+  return i >= 8 && i < 8 + kFine;
+}
+double CellWidth(int i)
+{
+  return FineCell(i) ? 0.05 / 12 : 0.05;
+}
+void FvSlow(const void *, PetscReal, const PetscScalar *u, PetscScalar *f)
+{
+  for (int i = 0; i < kFvCells; ++i) f[i] = FineCell(i) ? 0.0 : -(u[i] - u[(i + kFvCells - 1) % kFvCells]) / CellWidth(i);
+}
+void FvFast(const void *, PetscReal, const PetscScalar *u, PetscScalar *f)
+{
+  for (int i = 0; i < kFvCells; ++i) f[i] = FineCell(i) ? -(u[i] - u[(i + kFvCells - 1) % kFvCells]) / CellWidth(i) : 0.0;
+}
+
+PetscErrorCode SetUpFv(const char *options)
+{
+  Guard        guard(options);
+  SplitProblem p;
+  TS           ts;
+  Vec          x;
+
+  PetscFunctionBeginUser;
+  p.n     = kFvCells;
+  p.terms = {FvSlow, FvFast};
+  std::vector<PetscReal> u0(kFvCells);
+  double                 xc = 0;
+  for (int i = 0; i < kFvCells; ++i) u0[i] = std::sin(2 * M_PI * (xc + 0.5 * CellWidth(i))), xc += CellWidth(i);
+  PetscCall(CreateSplitTS(PETSC_COMM_WORLD, &p, SplitKind::Component, u0, {"slow", "fast"}, &ts, &x));
+  PetscCall(TSSetTimeStep(ts, 0.025));
+  PetscCall(TSSetMaxTime(ts, 0.025));
+  PetscCall(TSVSHMMSetMicroStep(ts, 1e-4));
+  PetscCall(TSSetFromOptions(ts));
+  PetscCall(TSSetUp(ts));
+  PetscCall(TSSolve(ts, x));
+  PetscCall(DestroySplitTS(&p, &ts, &x));
+  PetscFunctionReturn(0);
+}
+
 } // namespace
+
+// The radii of a fine finite-volume region and the coarse cells are about 12 apart, which passed
+// the check when it compared radii only; the fine cells' own block (a transport: its eigenvalues
+// are all -1/h_f, its Krylov space holds the slow crossing) has Ritz values far below that, and
+// the check now finds the scales not separated.
+TEST(VSHMMSeparation, AFineTransportRegionIsNotSeparated)
+{
+  const CapturedError e = CaptureError([&] { return SetUpFv("-ts_vshmm_check_separation error"); });
+  EXPECT_EQ(e.code, PETSC_ERR_ARG_INCOMP);
+  EXPECT_NE(e.message.find("not separated (separation of consecutive levels"), std::string::npos) << e.message;
+  EXPECT_NE(e.message.find("slowest rate of level 1's own components"), std::string::npos) << e.message;
+}
 
 // A band of fast rates, 10 to 1000, against a slow rate of 1/2 (DeltaT = 0.5, to t = 4, x(4) of
 // RK4 with h = 1e-4; h = 5e-5 agrees to 12 digits). The spectral radii say the levels are 1000
