@@ -556,7 +556,7 @@ static PetscErrorCode TSView_VSHMM(TS ts, PetscViewer viewer)
       PetscCall(PetscSNPrintf(item, sizeof(item), r > 0 ? " %.3g" : " -", (double)r));
       list += item;
     }
-    PetscCall(PetscViewerASCIIPrintf(viewer, "  slowest rate of each level's own components (component splits; -ts_vshmm_adapt):%s\n", list.c_str()));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  slowest rate of each level's own components (component splits):%s\n", list.c_str()));
   }
   if (!vs->separations.empty()) {
     std::string list;
