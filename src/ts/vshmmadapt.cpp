@@ -164,6 +164,7 @@ static PetscErrorCode UpdateStableSteps(TS ts)
   PetscFunctionBegin;
   if (vs->spectra_time == ts->ptime) PetscFunctionReturn(0);
   PetscCall(TSVSHMMLevelSpectra_Private(ts));
+  PetscCall(TSVSHMMLevelOwnRates_Private(ts));
   LimitToStableSteps(ts, vs->adapt_params);
   PetscFunctionReturn(0);
 }
@@ -214,6 +215,7 @@ PetscErrorCode TSVSHMMCheckSeparation_Private(TS ts)
   PetscFunctionBegin;
   if (vs->check_separation == TSVSHMM_SEPARATION_OFF && !vs->adapt) PetscFunctionReturn(0);
   if (vs->spectra_time != ts->ptime || (PetscInt)vs->level_radius.size() != nscales) PetscCall(TSVSHMMLevelSpectra_Private(ts));
+  PetscCall(TSVSHMMLevelOwnRates_Private(ts));
   PetscReal   best = 0;
   std::string figures;
   for (PetscInt l = 0; l + 1 < nscales; ++l) {

@@ -68,12 +68,13 @@ struct TS_VSHMM {
   std::vector<PetscLogEvent>                 level_events;
 
   // What each level's field looks like near the state (stability and separation checks, adapt)
-  std::vector<PetscReal>                         level_radius;                  // spectral radius estimate of the Jacobian of G_l
-  std::vector<PetscReal>                         level_max_step;                // largest stable step of the inner RK for its limiting modes (inf: none)
-  std::vector<std::complex<double>>              level_worst;                   // the mode that sets it
-  std::vector<std::vector<std::complex<double>>> level_limiting;                // decaying or oscillating Ritz values
-  std::vector<PetscReal>                         level_slowest;                 // smallest |Ritz value| of the block of the level's own components (0: not estimated)
-  PetscReal                                      spectra_time = PETSC_MIN_REAL; // when they were estimated
+  std::vector<PetscReal>                         level_radius;                    // spectral radius estimate of the Jacobian of G_l
+  std::vector<PetscReal>                         level_max_step;                  // largest stable step of the inner RK for its limiting modes (inf: none)
+  std::vector<std::complex<double>>              level_worst;                     // the mode that sets it
+  std::vector<std::vector<std::complex<double>>> level_limiting;                  // decaying or oscillating Ritz values
+  std::vector<PetscReal>                         level_slowest;                   // smallest |Ritz value| of the block of the level's own components (0: not estimated)
+  PetscReal                                      own_rates_time = PETSC_MIN_REAL; // when level_slowest was estimated (with the spectra of that time)
+  PetscReal                                      spectra_time   = PETSC_MIN_REAL; // when they were estimated
 
   // Accuracy control (-ts_vshmm_adapt)
   vshmm::AdaptParameters adapt_params; // micro step and time ratios for the next macro step
@@ -128,6 +129,7 @@ PETSC_INTERN PetscErrorCode TSCreate_VSHMM(TS);
 PETSC_INTERN PetscErrorCode TSVSHMMWarn_Private(TS, const char[], ...) PETSC_ATTRIBUTE_FORMAT(2, 3);
 /* vshmmlevel.cpp: the levels' fields and steps, their log events */
 PETSC_INTERN PetscErrorCode TSVSHMMEvaluateLevel_Private(TS_VSHMM *, PetscInt, PetscReal, Vec, Vec);
+PETSC_INTERN PetscErrorCode TSVSHMMAddSplit_Private(TS_VSHMM *, PetscInt, PetscReal, Vec, Vec); /* G += output F of split k, in place or by its scatter */
 PETSC_INTERN PetscErrorCode TSVSHMMCreateSchedule_Private(TS, PetscReal, std::unique_ptr<vshmm::MesoscopicSchedule> &);
 PETSC_INTERN PetscErrorCode TSVSHMMRunMacroStep_Private(TS, const vshmm::MesoscopicSchedule &, PetscReal, PetscReal, Vec, vshmm::MacroStepCounts *);
 PETSC_INTERN PetscErrorCode TSVSHMMGetLevelEvent_Private(PetscInt, PetscLogEvent *);
@@ -135,6 +137,7 @@ PETSC_INTERN PetscErrorCode TSVSHMMResetLevelEvents_Private(void);
 /* vshmmstability.cpp: spectra of the levels, the stability check */
 PETSC_INTERN PetscErrorCode TSVSHMMCheckStability_Private(TS);
 PETSC_INTERN PetscErrorCode TSVSHMMLevelSpectra_Private(TS);
+PETSC_INTERN PetscErrorCode TSVSHMMLevelOwnRates_Private(TS);
 /* vshmmadapt.cpp: the separation check, accuracy control */
 PETSC_INTERN PetscErrorCode TSVSHMMCheckSeparation_Private(TS);
 PETSC_INTERN PetscErrorCode TSVSHMMAdaptStep_Private(TS, PetscReal, PetscReal);

@@ -60,7 +60,7 @@ static inline bool AllFinite(const PetscScalar *f, PetscInt n)
 
 /* G += F, the output of split k (one split: a scale may be a group of them), checking F for Inf/NaN
    locally (no reduction) while no fault is known. */
-static PetscErrorCode AddSplit(TS_VSHMM *vs, PetscInt k, PetscReal t, Vec F, Vec G)
+PetscErrorCode TSVSHMMAddSplit_Private(TS_VSHMM *vs, PetscInt k, PetscReal t, Vec F, Vec G)
 {
   VSHMMSplit        &split = vs->splits[k];
   const PetscScalar *f;
@@ -124,7 +124,7 @@ PetscErrorCode TSVSHMMEvaluateLevel_Private(TS_VSHMM *vs, PetscInt level, PetscR
     if (k == 0) PetscCall(VecZeroEntries(G));
     PetscCall(TSComputeRHSFunction(split.subts, t, Y, split.F));
     if (counting) vs->rhs_evaluations[k]++;
-    PetscCall(AddSplit(vs, k, t, split.F, G));
+    PetscCall(TSVSHMMAddSplit_Private(vs, k, t, split.F, G));
   }
   PetscFunctionReturn(0);
 }

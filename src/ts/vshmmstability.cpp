@@ -4,9 +4,9 @@
 
   Eigenvalues: a few Arnoldi steps on the Jacobian of G_l = f_0 + ... + f_l, applied by finite
   differences of the split functions (no user Jacobian); the Ritz values approximate the extreme
-  eigenvalues, the ones that limit an explicit step. With -ts_vshmm_adapt and component splits,
-  also the block of each faster level's Jacobian on its own components: its slowest rate shows a
-  scale that is a band of rates (the accuracy control's separations, vshmmadapt.cpp).
+  eigenvalues, the ones that limit an explicit step. For the separation check and
+  -ts_vshmm_adapt, with component splits, also the block of each faster level's Jacobian on its
+  own components: its slowest rate shows a scale that is a band of rates (vshmmadapt.cpp).
 
   Verdict, for every Ritz value lambda except growing modes (Re lambda > 0.1 |lambda|), with a
   step allowed to grow a mode as much as the exact flow does (|R(z)| <= max(1, |exp(z)|), which
@@ -262,38 +262,38 @@ PetscErrorCode TSVSHMMLevelSpectra_Private(TS ts)
       vs->level_limiting[level].push_back(lambda);
     }
   }
-  /* The slowest rate of each faster level's own components (component splits only): Arnoldi on the
-     block of the level's Jacobian on the components its new splits write. A scale that is a band
-     of rates (relaxation rates 10 to 1000) has its slowest one here, which the level's spectral
-     radius does not show; so has a transport block (a fine finite-volume region: its eigenvalues
-     are all fast, but a perturbation crosses the region in the slow time, and the Krylov space
-     sees that as small Ritz values). The separation check and -ts_vshmm_adapt's error model use
-     it (vshmmadapt.cpp). */
+  vs->spectra_time   = ts->ptime;
+  vs->own_rates_time = PETSC_MIN_REAL; /* made again with these spectra where it is used */
+  PetscFunctionReturn(0);
+}
+
+/* The slowest rate of each faster level's own components (component splits only), at the present
+   state (ts->vec_sol at ts->ptime, as the levels' spectra): Arnoldi on the block of the level's Jacobian on the components its new
+   splits write. A scale that is a band of rates (relaxation rates 10 to 1000) has its slowest one
+   here, which the level's spectral radius does not show; so has a transport block (a fine
+   finite-volume region: its eigenvalues are all fast, but a perturbation crosses the region in
+   the slow time, and the Krylov space sees that as small Ritz values). Made only where it is used:
+   the separation check and -ts_vshmm_adapt's error model (vshmmadapt.cpp). */
+PetscErrorCode TSVSHMMLevelOwnRates_Private(TS ts)
+{
+  TS_VSHMM                         *vs      = (TS_VSHMM *)ts->data;
+  const PetscInt                    nscales = (PetscInt)vs->level_end.size();
+  std::vector<std::complex<double>> ritz;
+
+  PetscFunctionBegin;
+  if (vs->own_rates_time == vs->spectra_time && (PetscInt)vs->level_slowest.size() == nscales) PetscFunctionReturn(0);
+  const StabilityCounting counting(vs);
   vs->level_slowest.assign(nscales, 0.0);
   for (PetscInt level = 1; level < nscales; ++level) {
     PetscBool component = PETSC_TRUE;
-    for (PetscInt k = vs->level_end[level - 1]; k < vs->level_end[level]; ++k) component = (vs->splits[k].additive || !vs->splits[k].is) ? PETSC_FALSE : component;
+    for (PetscInt k = vs->level_end[level - 1]; k < vs->level_end[level]; ++k) component = vs->splits[k].additive ? PETSC_FALSE : component;
     if (!component) continue;
-    Vec mask;
+    Vec mask; /* 1 on the components the level's new splits write, added as their outputs are */
     PetscCall(VecDuplicate(ts->vec_sol, &mask));
     PetscCall(VecSet(mask, 0.0));
-    for (PetscInt k = vs->level_end[level - 1]; k < vs->level_end[level]; ++k) { /* 1 on the split's components, added as its output is */
-      VSHMMSplit &split = vs->splits[k];
-      PetscCall(VecSet(split.F, 1.0));
-      if (split.local) {
-        const PetscScalar *f;
-        PetscScalar       *m;
-        PetscInt           n;
-        PetscCall(VecGetLocalSize(split.F, &n));
-        PetscCall(VecGetArrayRead(split.F, &f));
-        PetscCall(VecGetArray(mask, &m));
-        for (PetscInt i = 0; i < n; ++i) m[split.offset + i] = f[i];
-        PetscCall(VecRestoreArray(mask, &m));
-        PetscCall(VecRestoreArrayRead(split.F, &f));
-      } else {
-        PetscCall(VecScatterBegin(split.scatter, split.F, mask, INSERT_VALUES, SCATTER_FORWARD));
-        PetscCall(VecScatterEnd(split.scatter, split.F, mask, INSERT_VALUES, SCATTER_FORWARD));
-      }
+    for (PetscInt k = vs->level_end[level - 1]; k < vs->level_end[level]; ++k) {
+      PetscCall(VecSet(vs->splits[k].F, 1.0));
+      PetscCall(TSVSHMMAddSplit_Private(vs, k, ts->ptime, vs->splits[k].F, mask));
     }
     PetscBool finite = PETSC_FALSE;
     PetscCall(LevelRitzValues(ts, level, ts->ptime, ts->vec_sol, ritz, &finite, mask));
@@ -305,7 +305,7 @@ PetscErrorCode TSVSHMMLevelSpectra_Private(TS ts)
       if (std::abs(lambda) > 1e-8 * largest) slowest = std::min(slowest, std::abs(lambda));
     if (std::isfinite(slowest)) vs->level_slowest[level] = slowest;
   }
-  vs->spectra_time = ts->ptime;
+  vs->own_rates_time = vs->spectra_time;
   PetscFunctionReturn(0);
 }
 
