@@ -315,10 +315,10 @@ vshmm_example_test(NAME spectral_auto_advection_zero_tuning EXE advection
 set_tests_properties(spectral_auto_advection_dns_ref PROPERTIES FIXTURES_SETUP spectral_auto_advection_ref LABELS "example;spectral")
 set_tests_properties(spectral_auto_advection_zero_tuning PROPERTIES FIXTURES_REQUIRED spectral_auto_advection_ref LABELS "example;spectral")
 set_tests_properties(spectral_detect_auto_advection PROPERTIES LABELS "example;spectral")
-vshmm_mpiexec_command(_sp_launch_adv 1)
-add_test(NAME spectral_detect_auto_advection_tol1e-4 COMMAND ${_sp_launch_adv} $<TARGET_FILE:advection> ${_sp_adv_auto} -spectral_grid_points 2048 -ts_rtol 1e-4 -ts_atol 1e-4 -output_times 0.001)
-set_tests_properties(spectral_detect_auto_advection_tol1e-4 PROPERTIES LABELS "example;spectral" TIMEOUT 60
-                     PASS_REGULAR_EXPRESSION "-ts_type vshmm needs at least two clusters \\(time scales\\), but the scene has one \\(the detection found one band of wavenumbers\\)")
+vshmm_example_test(NAME spectral_detect_auto_advection_tol1e-4 EXE advection
+                   ARGS ${_sp_adv_auto} -spectral_grid_points 2048 -ts_rtol 1e-4 -ts_atol 1e-4 -output_times 0.001
+                   STDERR_REGEX "-ts_type vshmm needs at least two clusters \\(time scales\\), but the scene has one \\(the detection found one band of wavenumbers\\)"
+                   EXPECT_FAILURE LABELS example spectral TIMEOUT 60)
 
 # The stable step at u0 too large later (burgers_growth.yaml: viscous Burgers whose amplitude
 # grows e-fold per unit time, max|u| 0.1 -> 1.9 at t = 3): the RK3 step estimated at u0 (0.0597)
@@ -334,8 +334,8 @@ vshmm_example_test(NAME spectral_stable_recheck EXE diffusion
                    REGEX "ts_type rk 3: time step 0.0596681\n.*stable step at t = 2.96143: 0.0220296 .*output t 3 rhs_evaluations 198 .*compare t 3 relative_l2_error.*stable step rechecks 8 [^\n]*lowered from 0.0596681 to 0.0220296")
 set_tests_properties(spectral_stable_recheck_ref PROPERTIES FIXTURES_SETUP spectral_stable_recheck_ref LABELS "example;spectral")
 set_tests_properties(spectral_stable_recheck PROPERTIES FIXTURES_REQUIRED spectral_stable_recheck_ref LABELS "example;spectral")
-add_test(NAME spectral_stable_recheck_off COMMAND ${_sp_launch_adv} $<TARGET_FILE:diffusion> ${_sp_burgers_growth} -stable_step_recheck false)
-set_tests_properties(spectral_stable_recheck_off PROPERTIES LABELS "example;spectral" PASS_REGULAR_EXPRESSION "The solution blew up at t = 3")
+vshmm_example_test(NAME spectral_stable_recheck_off EXE diffusion ARGS ${_sp_burgers_growth} -stable_step_recheck false
+                   STDERR_REGEX "The solution blew up at t = 3" EXPECT_FAILURE LABELS example spectral TIMEOUT 60)
 
 # --- the paper's scenes parse and run (a short time: the full runs are in docs/spectral.md) ----
 vshmm_example_test(NAME spectral_scene_diffusion EXE diffusion
@@ -360,11 +360,12 @@ vshmm_example_test(NAME spectral_output_times_300 EXE diffusion
                    ARGS -spectral_grid_points 64 -output_times ${_sp_many_times} -no_timing
                    REGEX "output t 0.256 [^\n]*\noutput t 0.257 .*output t 0.3 rhs_evaluations")
 
-# --- bad scene input: a clear error (the regular expression must match the PETSc error) -------
-vshmm_mpiexec_command(_sp_launch 1)
+# --- bad scene input: a clear error (the regular expression must match the PETSc error, on the
+# standard error, and the program must exit with a non-zero status: EXPECT_FAILURE; a run that
+# prints the message and exits 0 fails) ---------------------------------------------------------
 function(_spectral_error_test name regex)
-  add_test(NAME spectral_error_${name} COMMAND ${_sp_launch} $<TARGET_FILE:diffusion> ${ARGN})
-  set_tests_properties(spectral_error_${name} PROPERTIES PASS_REGULAR_EXPRESSION "${regex}" LABELS "example;spectral" TIMEOUT 60)
+  vshmm_example_test(NAME spectral_error_${name} EXE diffusion ARGS ${ARGN}
+                     STDERR_REGEX "${regex}" EXPECT_FAILURE LABELS example spectral TIMEOUT 60)
 endfunction()
 _spectral_error_test(unknown_term "Unknown term 'convection' in -spectral_terms: the known terms are diffusion" -spectral_terms diffusion,convection)
 _spectral_error_test(vshmm_mode_dns "-ts_type vshmm needs the scene's time scales as clusters, but the scene is in mode dns" -spectral_grid_points 64 -spectral_mode dns -ts_type vshmm -output_times 0.001)
@@ -390,10 +391,12 @@ _spectral_error_test(output_times_order "-output_times must be increasing" -spec
 # -spectral_growth_bound 0 all three exit 0 with solutions of norm 1e1 to 1e2 and growing)
 _spectral_error_test(growth_diffusion_dns "The solution blew up at t = .* exceeds .* -spectral_growth_bound 10.? times the bound 0.446622 .*initial norm 0.446622.*stable step is 0.000174654 for TSRK3"
                      -spectral_grid_points 256 -spectral_diffusion_coefficient_wavenumbers 16,64 -output_times 0.25 -ts_dt 2.2e-4)
-add_test(NAME spectral_error_growth_advection_sparse COMMAND ${_sp_launch} $<TARGET_FILE:advection> ${_sp_adv} ${_sp_adv_sparse} -ts_dt 0.05)
-add_test(NAME spectral_error_growth_vshmm COMMAND ${_sp_launch} $<TARGET_FILE:advection> ${_sp_adv} ${_sp_adv_sparse} ${_sp_adv_vshmm} -ts_vshmm_micro_dt 0.05 -ts_vshmm_check_stability false)
-set_tests_properties(spectral_error_growth_advection_sparse spectral_error_growth_vshmm PROPERTIES
-  PASS_REGULAR_EXPRESSION "The solution blew up at t = .* times the bound 0.999995 that the scene's terms allow" LABELS "example;spectral" TIMEOUT 60)
+set(_sp_growth_adv_regex "The solution blew up at t = .* times the bound 0.999995 that the scene's terms allow")
+vshmm_example_test(NAME spectral_error_growth_advection_sparse EXE advection ARGS ${_sp_adv} ${_sp_adv_sparse} -ts_dt 0.05
+                   STDERR_REGEX "${_sp_growth_adv_regex}" EXPECT_FAILURE LABELS example spectral TIMEOUT 60)
+vshmm_example_test(NAME spectral_error_growth_vshmm EXE advection
+                   ARGS ${_sp_adv} ${_sp_adv_sparse} ${_sp_adv_vshmm} -ts_vshmm_micro_dt 0.05 -ts_vshmm_check_stability false
+                   STDERR_REGEX "${_sp_growth_adv_regex}" EXPECT_FAILURE LABELS example spectral TIMEOUT 60)
 _spectral_error_test(growth_bound_option "-spectral_growth_bound must be 0 \\(no check\\) or a finite factor >= 1, got 0.5" -spectral_growth_bound 0.5)
 # issue 9 (fuzzing): checked against N before anything is built; a ',' or '+' at an end refused
 _spectral_error_test(cluster_range_huge "cluster item '0:999999999' has wavenumber 999999999, outside 0..128" -spectral_grid_points 256 -spectral_mode sparse -spectral_clusters 0:999999999)
