@@ -320,6 +320,55 @@ vshmm_example_test(NAME spectral_detect_auto_advection_tol1e-4 EXE advection
                    STDERR_REGEX "-ts_type vshmm needs at least two clusters \\(time scales\\), but the scene has one \\(the detection found one band of wavenumbers\\)"
                    EXPECT_FAILURE LABELS example spectral TIMEOUT 60)
 
+# The other zero-tuning scene files as they are, to a reduced final time, against a DNS of the same
+# scene: the detected clusters (as in docs/spectral.md, "Zero tuning: measured") and the relative
+# L2 error within a bound about 1.5x the measured one, at the scene's tolerance 1e-2 and at 1e-3
+# (the detection's threshold then tol / 30: wider clusters). The errors agree with the full runs'
+# first output times in docs/spectral.md.
+# diffusion_auto.yaml (N = 2048) to t = 0.0625, 0.125 against RK3 dt = 2.5e-6 (dt = 1.25e-6
+# differs by 2.2e-13): tol 1e-2: 4.3e-3, 4.4e-3 (bound 7e-3); tol 1e-3: 5.7e-4, 4.9e-4 (bound 1e-3).
+set(_sp_diff_auto -options_file_yaml ${PROJECT_SOURCE_DIR}/examples/scenes/diffusion_auto.yaml -output_times 0.0625,0.125)
+vshmm_example_test(NAME spectral_auto_diffusion_dns_ref EXE diffusion
+                   ARGS ${_sp_diff_auto} -spectral_mode dns -ts_type rk -ts_rk_type 3 -ts_dt 2.5e-6 -grid_solution_file dns -no_timing
+                   REGEX "output t 0.125 rhs_evaluations 150000 ")
+vshmm_example_test(NAME spectral_auto_diffusion_zero_tuning EXE diffusion
+                   ARGS ${_sp_diff_auto} -compare_grid_solution ${_sp_dir}/spectral_auto_diffusion_dns_ref/dns -compare_tolerance 7e-3 -no_timing
+                   REGEX "K0 = {0..5}: 6 wavenumbers.*K1 = {60..68,126..130,189..195,253..259,318..322}: 33 wavenumbers.*detection dns_steps 512 evaluations 1537\n.*compare t 0.125 relative_l2_error")
+vshmm_example_test(NAME spectral_auto_diffusion_zero_tuning_tol1e-3 EXE diffusion
+                   ARGS ${_sp_diff_auto} -ts_rtol 1e-3 -ts_atol 1e-3 -compare_grid_solution ${_sp_dir}/spectral_auto_diffusion_dns_ref/dns -compare_tolerance 1e-3 -no_timing
+                   REGEX "K0 = {0..6}: 7 wavenumbers.*K1 = {60..68,125..131,189..195,252..260,317..323,511..513}: 42 wavenumbers.*detection dns_steps 256 evaluations 769\n.*compare t 0.125 relative_l2_error")
+# diffusion3_auto.yaml (N = 1024) to t = 0.125, 0.25 against RK3 dt = 1e-5 (dt = 5e-6 differs by
+# 6e-14): tol 1e-2: 8.8e-3, 9.9e-3 (bound 1.5e-2); tol 1e-3: 7.8e-4, 5.7e-4 (bound 1.2e-3).
+set(_sp_diff3_auto -options_file_yaml ${PROJECT_SOURCE_DIR}/examples/scenes/diffusion3_auto.yaml -output_times 0.125,0.25)
+vshmm_example_test(NAME spectral_auto_diffusion3_dns_ref EXE diffusion
+                   ARGS ${_sp_diff3_auto} -spectral_mode dns -ts_type rk -ts_rk_type 3 -ts_dt 1e-5 -grid_solution_file dns -no_timing
+                   REGEX "output t 0.25 rhs_evaluations 75000 ")
+vshmm_example_test(NAME spectral_auto_diffusion3_zero_tuning EXE diffusion
+                   ARGS ${_sp_diff3_auto} -compare_grid_solution ${_sp_dir}/spectral_auto_diffusion3_dns_ref/dns -compare_tolerance 1.5e-2 -no_timing
+                   REGEX "K0 = {0..5}: 6 wavenumbers.*K1 = {36..44,77..83,117..123,158..162,238..242,358..362}: 38 wavenumbers.*detection dns_steps 256 evaluations 769\n.*compare t 0.25 relative_l2_error")
+vshmm_example_test(NAME spectral_auto_diffusion3_zero_tuning_tol1e-3 EXE diffusion
+                   ARGS ${_sp_diff3_auto} -ts_rtol 1e-3 -ts_atol 1e-3 -compare_grid_solution ${_sp_dir}/spectral_auto_diffusion3_dns_ref/dns -compare_tolerance 1.2e-3 -no_timing
+                   REGEX "K0 = {0..6}: 7 wavenumbers.*K1 = {36..44,76..83,116..124,157..163,198..202,237..243,279..282,317..322,357..363,398..402,478..482}: 72 wavenumbers.*detection dns_steps 512 evaluations 1537\n.*compare t 0.25 relative_l2_error")
+# advection2_auto.yaml (N = 512) to t = 2, 4 against RK3 dt = 1e-3 (dt = 2e-4 differs by 9e-7):
+# the scales are not separated (4.8; at 1e-3 3.89) and the run says so; tol 1e-2: 2.2e-3, 3.5e-3
+# (bound 6e-3); tol 1e-3: 6.4e-4, 7.0e-4 (bound 1.2e-3).
+set(_sp_adv2_auto -options_file_yaml ${PROJECT_SOURCE_DIR}/examples/scenes/advection2_auto.yaml -output_times 2,4)
+vshmm_example_test(NAME spectral_auto_advection2_dns_ref EXE advection
+                   ARGS ${_sp_adv2_auto} -spectral_mode dns -ts_type rk -ts_rk_type 3 -ts_dt 1e-3 -grid_solution_file dns -no_timing
+                   REGEX "output t 4 rhs_evaluations 12000 ")
+vshmm_example_test(NAME spectral_auto_advection2_zero_tuning EXE advection
+                   ARGS ${_sp_adv2_auto} -compare_grid_solution ${_sp_dir}/spectral_auto_advection2_dns_ref/dns -compare_tolerance 6e-3 -no_timing
+                   REGEX "K0 = {0..5}: 6 wavenumbers.*K1 = {36..44,76..84,117..123,158..162}: 30 wavenumbers.*detection dns_steps 256 evaluations 769\n.*compare t 4 relative_l2_error"
+                   STDERR_REGEX "not separated.*levels 0/1: 4.8")
+vshmm_example_test(NAME spectral_auto_advection2_zero_tuning_tol1e-3 EXE advection
+                   ARGS ${_sp_adv2_auto} -ts_rtol 1e-3 -ts_atol 1e-3 -compare_grid_solution ${_sp_dir}/spectral_auto_advection2_dns_ref/dns -compare_tolerance 1.2e-3 -no_timing
+                   REGEX "K0 = {0..6}: 7 wavenumbers.*K1 = {35..45,76..84,116..124,157..163,198..203}: 42 wavenumbers.*detection dns_steps 256 evaluations 769\n.*compare t 4 relative_l2_error")
+foreach(_scene diffusion diffusion3 advection2)
+  set_tests_properties(spectral_auto_${_scene}_dns_ref PROPERTIES FIXTURES_SETUP spectral_auto_${_scene}_ref LABELS "example;spectral")
+  set_tests_properties(spectral_auto_${_scene}_zero_tuning spectral_auto_${_scene}_zero_tuning_tol1e-3 PROPERTIES
+                       FIXTURES_REQUIRED spectral_auto_${_scene}_ref LABELS "example;spectral")
+endforeach()
+
 # The stable step at u0 too large later (burgers_growth.yaml: viscous Burgers whose amplitude
 # grows e-fold per unit time, max|u| 0.1 -> 1.9 at t = 3): the RK3 step estimated at u0 (0.0597)
 # is lowered 8 times as sum |c_k| grows, to 0.0220; against RK3 at dt = 1e-4 (which dt = 5e-5
