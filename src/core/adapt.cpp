@@ -102,6 +102,19 @@ double pairUnitInverse(double u, double s)
   return u < s ? u / (1.0 - u / s) : std::numeric_limits<double>::infinity();
 }
 
+std::vector<double> layerSaturations(const AdaptParameters &p, double macroStep, const std::vector<double> &rate)
+{
+  const int           K = (int)p.ratios.size();
+  std::vector<double> s(K, 0.0);
+  double              slowed = 1.0; // r_0 ... r_{l-1}
+  for (int l = 0; l < K; ++l) {
+    const double r = l + 1 < (int)rate.size() ? rate[l + 1] : 0.0;
+    if (r > 0 && std::isfinite(r)) s[l] = macroStep * r / slowed;
+    slowed *= p.ratios[l];
+  }
+  return s;
+}
+
 double ErrorModel::unit(const AdaptParameters &p, int l) const
 {
   return pairUnit(p.ratios[l] - 1.0, l < (int)saturation.size() ? saturation[l] : 0.0);

@@ -61,6 +61,15 @@ void limitWorkChange(AdaptParameters &next, const AdaptParameters &now, double m
 double pairUnit(double x, double s);
 double pairUnitInverse(double u, double s);
 
+// Where each pair's term saturates by the time the faster level has (an initial layer): level
+// l+1, slowed by r_l relative to level l, relaxes (or turns) over r_l / rate[l+1] of level l's
+// time, rate[l+1] > 0 its slowest own rate; level l acts for macroStep / (r_0 ... r_{l-1}) of its
+// own time in a macro step. Beyond s_l = macroStep rate[l+1] / (r_0 ... r_{l-1}) the slowed
+// transient outlasts the macro step and a larger r_l changes the slow values no further. rate has
+// K + 1 entries (rate[0] is not used); a rate that is not positive and finite gives s_l = 0
+// (none: linear).
+std::vector<double> layerSaturations(const AdaptParameters &p, double macroStep, const std::vector<double> &rate);
+
 // The error model: e_dt = cMicro dt^order / prod r_l, e_l = c[l] g(r_l - 1, saturation[l]).
 struct ErrorModel {
   double              cMicro = 0.0;

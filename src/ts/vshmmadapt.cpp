@@ -31,22 +31,25 @@
 #include <algorithm>
 #include <cmath>
 
-static constexpr PetscReal kMinSeparation     = 10;   /* a pair of levels this far apart in spectral radius is separated */
-static constexpr PetscReal kInitialSeparation = 10;   /* effective separation sigma_l of the first parameters */
-static constexpr PetscReal kSafety            = 0.8;  /* the parameters aim at this fraction of a step's share */
-static constexpr PetscInt  kRecalibrate       = 10;   /* macro steps between full measurements of the model */
-static constexpr PetscInt  kMaxAttempts       = 12;   /* tries of one macro step */
-static constexpr PetscInt  kMinCycles         = 20;   /* micro cycles per macro step at least */
-static constexpr PetscReal kStableFraction    = 0.9;  /* of the largest stable step */
-static constexpr PetscReal kFloorFactor       = 0.7;  /* a refinement that lowers the estimate by less than this has hit its floor */
-static constexpr PetscReal kMinShare          = 1e-3; /* no error term is taken as less than this share of the estimate */
-static constexpr PetscReal kRatioCoarsening   = 4;    /* a calibration's coarser r_l - 1 */
-static constexpr PetscReal kMaxCheaper        = 8;    /* after an accepted step the work may fall by this factor at most */
-static constexpr PetscInt  kCoherenceSteps    = 4;    /* accepted steps before the budget measures how the errors add */
-static constexpr PetscReal kNegligibleSavings = 0.05; /* a time ratio below 1 + this takes no savings */
-static constexpr PetscReal kWarn              = 2;    /* a step accepted with an estimate above this many shares is warned of */
-static constexpr PetscReal kFloorAccept       = 4;    /* an estimate above this many shares is never taken as a noise floor */
-static constexpr PetscReal kMaxDearer         = 4;    /* and rise by this factor at most per try (the estimate is noisy: refining in steps wastes less) */
+static constexpr PetscReal kMinSeparation          = 10;   /* a pair of levels this far apart in spectral radius is separated */
+static constexpr PetscReal kInitialSeparation      = 10;   /* effective separation sigma_l of the first parameters */
+static constexpr PetscReal kInitialDecaySeparation = 2;    /* the same where the faster level only decays */
+static constexpr PetscReal kSafety                 = 0.8;  /* the parameters aim at this fraction of a step's share */
+static constexpr PetscInt  kRecalibrate            = 10;   /* macro steps between full measurements of the model */
+static constexpr PetscInt  kMaxAttempts            = 12;   /* tries of one macro step */
+static constexpr PetscInt  kMinCycles              = 5;    /* micro cycles per macro step at least */
+static constexpr PetscReal kCompareCycles          = 2;    /* a comparison's cycle is at most this times the longer of the step's and DeltaT / kMinCycles */
+static constexpr PetscReal kStableFraction         = 0.9;  /* of the largest stable step */
+static constexpr PetscReal kFloorFactor            = 0.7;  /* a refinement that lowers the estimate by less than this has hit its floor */
+static constexpr PetscReal kMinShare               = 1e-3; /* no error term is taken as less than this share of the estimate */
+static constexpr PetscReal kRatioCoarsening        = 4;    /* a calibration's coarser r_l - 1 */
+static constexpr PetscReal kMaxCheaper             = 8;    /* after an accepted step the work may fall by this factor at most */
+static constexpr PetscInt  kCoherenceSteps         = 4;    /* accepted steps before the budget measures how the errors add */
+static constexpr PetscReal kNegligibleSavings      = 0.05; /* a time ratio below 1 + this takes no savings */
+static constexpr PetscReal kWarn                   = 2;    /* a step accepted with an estimate above this many shares is warned of */
+static constexpr PetscReal kFloorAccept            = 4;    /* an estimate above this many shares is never taken as a noise floor */
+static constexpr PetscReal kMissFactor             = 2;    /* a retry whose estimate is this many times the model's prediction measures the split again */
+static constexpr PetscReal kMaxDearer              = 4;    /* and rise by this factor at most per try (the estimate is noisy: refining in steps wastes less) */
 
 const char *const TSVSHMMSeparationChecks[] = {"off", "warn", "error", "TSVSHMMSeparationCheck", "TSVSHMM_SEPARATION_", nullptr};
 
@@ -192,15 +195,23 @@ static PetscReal Separation(TS_VSHMM *vs, PetscInt l)
 }
 
 /* The saturation scale of each level pair's error term in adapt's model: the separation set by the
-   application; otherwise, where the faster level's own components have a band of rates (their
-   slowest rate is more than kInitialSeparation times closer to the slower level than the level's
-   spectral radius), that slowest rate over the slower level's radius; otherwise none (linear). */
-static std::vector<double> Saturations(TS_VSHMM *vs, PetscInt K)
+   application; otherwise where the faster level's transient, slowed by the time ratio, outlasts
+   the macro step (vshmm::layerSaturations(): an initial layer; the chain's measured s_0 = 10 =
+   DeltaT / e, docs/accuracy.md section 3), with the slowest rate of the faster level's own
+   components (component splits) or its spectral radius. Where those components have a band of
+   rates (their slowest rate more than kInitialSeparation times closer to the slower level than its
+   spectral radius), the term saturates beyond that slowest rate over the slower level's radius,
+   if that is smaller. */
+static std::vector<double> Saturations(TS ts, const vshmm::AdaptParameters &p)
 {
-  std::vector<double> s(K, 0.0);
+  TS_VSHMM           *vs = (TS_VSHMM *)ts->data;
+  const PetscInt      K  = (PetscInt)p.ratios.size();
+  std::vector<double> rate(K + 1, 0.0);
+  for (PetscInt l = 1; l <= K; ++l) rate[l] = ((PetscInt)vs->level_slowest.size() > l && vs->level_slowest[l] > 0) ? vs->level_slowest[l] : ((PetscInt)vs->level_radius.size() > l ? vs->level_radius[l] : 0);
+  std::vector<double> s = vshmm::layerSaturations(p, ts->time_step, rate);
   for (PetscInt l = 0; l < K; ++l) {
     if ((PetscInt)vs->separations.size() > l) s[l] = vs->separations[l];
-    else if (OwnRatio(vs, l) > 0 && OwnRatio(vs, l) < RadiusRatio(vs, l) / kInitialSeparation) s[l] = OwnRatio(vs, l);
+    else if (OwnRatio(vs, l) > 0 && OwnRatio(vs, l) < RadiusRatio(vs, l) / kInitialSeparation) s[l] = s[l] > 0 ? PetscMin(s[l], OwnRatio(vs, l)) : OwnRatio(vs, l);
   }
   return s;
 }
@@ -291,7 +302,22 @@ PetscErrorCode TSVSHMMAdaptSetUp_Private(TS ts)
   else {
     p.ratios.assign(K, 1.0);
     if (!vs->no_separation)
-      for (PetscInt l = 0; l < K; ++l) p.ratios[l] = PetscMax(1.0, PetscMin(RadiusRatio(vs, l) / kInitialSeparation, 1e8));
+      for (PetscInt l = 0; l < K; ++l) {
+        /* Where the application set the separations, sigma_l = kInitialSeparation (its
+           separations are the pairs' saturation scales, and the estimate sees them). Otherwise a
+           faster level that only decays starts at sigma_l = kInitialDecaySeparation, but no deeper
+           than its pair's saturation scale (Saturations(): beyond it a coarser comparison changes
+           nothing, and an error there, an initial layer, could not be seen); one that oscillates
+           at kInitialSeparation. */
+        const std::complex<double> w     = vs->level_worst.size() == (size_t)nscales ? vs->level_worst[l + 1] : std::complex<double>(0.0);
+        const PetscBool            given = (PetscInt)vs->separations.size() > l ? PETSC_TRUE : PETSC_FALSE;
+        const PetscBool            decay = (!given && vs->level_limiting[l + 1].size() && std::abs(w.imag()) <= std::abs(w.real())) ? PETSC_TRUE : PETSC_FALSE;
+        p.ratios[l]                      = PetscMax(1.0, PetscMin(RadiusRatio(vs, l) / (decay ? kInitialDecaySeparation : kInitialSeparation), 1e8));
+        if (decay) {
+          const std::vector<double> sat = Saturations(ts, p);
+          if (sat[l] > 0) p.ratios[l] = PetscMin(p.ratios[l], 1.0 + sat[l]);
+        }
+      }
   }
   LimitToStableSteps(ts, p);
   const vshmm::AdaptBounds b = Bounds(ts, DeltaT);
@@ -344,7 +370,12 @@ static void DiscardTry(TS_VSHMM *vs, const std::vector<PetscInt64> &rhs0, const 
    parameter (a comparison may coarsen a parameter the user set: it only measures). */
 static vshmm::AdaptParameters Comparison(TS ts, const vshmm::AdaptParameters &p, vshmm::AdaptParameters q)
 {
+  /* at least kMinCycles / kCompareCycles micro cycles per macro step: with many levels, every
+     ratio doubled multiplies the cycle by about 2^K, and a comparison with less than one cycle per
+     macro step measures nothing */
+  const PetscReal maxCycle = kCompareCycles * PetscMax(vshmm::cycleLength(p), ts->time_step / kMinCycles);
   LimitAllToStableSteps((TS_VSHMM *)ts->data, q);
+  vshmm::fitCycle(q, maxCycle, false, true);
   q.microStep = PetscMax(q.microStep, p.microStep);
   for (size_t l = 0; l < q.ratios.size(); ++l) q.ratios[l] = PetscMax(q.ratios[l], p.ratios[l]);
   return q;
@@ -355,11 +386,23 @@ static vshmm::AdaptParameters Comparison(TS ts, const vshmm::AdaptParameters &p,
    (Estimate); the faster levels' phase at the sampling time makes it noisy (a factor 3 either way
    on the oscillators). A comparison that is not finite is tried again with the micro step of p;
    if that is not finite either, d is infinite (no estimate). */
-static PetscErrorCode Compare(TS ts, const vshmm::AdaptParameters &p, PetscReal t0, PetscReal DeltaT, vshmm::AdaptParameters *q, PetscReal *d)
+static PetscErrorCode Compare(TS ts, const vshmm::AdaptParameters &p, PetscReal t0, PetscReal DeltaT, PetscBool predict, vshmm::AdaptParameters *q, PetscReal *d)
 {
   TS_VSHMM *vs = (TS_VSHMM *)ts->data;
   PetscFunctionBegin;
   *q = Comparison(ts, p, vshmm::termsScaled(p, 2.0, vs->tableau->order));
+  if (!(q->microStep > p.microStep * 1.01 || vshmm::cycleLength(*q) > vshmm::cycleLength(p) * 1.01)) {
+    /* every parameter at its stability bound: no coarser run exists, and the same run would differ
+       by nothing (an estimate of 0 that the choice would read as room to coarsen). Where the model
+       has been measured the estimate is its prediction (no run: *d < 0); otherwise the comparison
+       is the step with the micro step halved (a finer run, about twice the step's cost; Estimate()
+       reads it with the model's split) */
+    if (predict) {
+      *d = -1;
+      PetscFunctionReturn(0);
+    }
+    *q = vshmm::coarsened(p, 0, 0.5);
+  }
   PetscCall(TrialStep(ts, *q, t0, DeltaT, vs->Xtrial));
   PetscCall(ObservableDifference(ts, t0 + DeltaT, vs->Xbase, vs->Xtrial, d));
   if (!std::isfinite(*d) && q->microStep > p.microStep) {
@@ -438,8 +481,8 @@ static PetscErrorCode Calibrate(TS ts, const vshmm::AdaptParameters &p, PetscRea
     d[i] = di;
     PetscCall(PetscInfo(ts, "Adapt: calibration of parameter %" PetscInt_FMT ": dt %g, cycle %g, difference %g\n", i, (double)coarse[i].microStep, (double)vshmm::cycleLength(coarse[i]), (double)di));
   }
-  vs->adapt_model = vshmm::ErrorModel::fromDifferences(p, coarse, d, vs->tableau->order, Saturations(vs, K));
-  if (!(vs->adapt_model.total(p) > 0)) vs->adapt_model = vshmm::ErrorModel::equalShares(p, vs->tableau->order, 1.0, Saturations(vs, K));
+  vs->adapt_model = vshmm::ErrorModel::fromDifferences(p, coarse, d, vs->tableau->order, Saturations(ts, p));
+  if (!(vs->adapt_model.total(p) > 0)) vs->adapt_model = vshmm::ErrorModel::equalShares(p, vs->tableau->order, 1.0, Saturations(ts, p));
   vs->adapt_calibrations++;
   vs->adapt_calibrated_times++;
   vs->adapt_since_calibration = 0;
@@ -466,9 +509,10 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
   /* the levels' stable steps follow the state: estimated again with each calibration (an initial
      state off the slow manifold can have other eigenvalues than the solution a step later) */
   if (calibrate) PetscCall(UpdateStableSteps(ts));
-  vshmm::AdaptBounds bounds  = Bounds(ts, DeltaT);
-  PetscReal          Eprev   = PETSC_MAX_REAL;
-  PetscInt           stalled = 0;
+  vshmm::AdaptBounds bounds    = Bounds(ts, DeltaT);
+  PetscReal          Eprev     = PETSC_MAX_REAL;
+  PetscInt           stalled   = 0;
+  PetscReal          predicted = PETSC_MAX_REAL; /* the model's error of the try after a rejection */
   for (PetscInt attempt = 0;; ++attempt) {
     vshmm::AdaptParameters &p = vs->adapt_params;
     vs->nonfinite_split       = -1;
@@ -504,10 +548,10 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
     /* Its error, and (when calibrating, or before the first refinement) the split between the terms */
     vshmm::AdaptParameters q;
     PetscReal              d;
-    if (vs->adapt_model.c.size() != (size_t)K || !(vs->adapt_model.total(p) > 0)) vs->adapt_model = vshmm::ErrorModel::equalShares(p, order, 1.0, Saturations(vs, K));
-    PetscCall(Compare(ts, p, t0, DeltaT, &q, &d));
-    PetscReal E = Estimate(vs->adapt_model, p, q, d);
-    if (calibrate || (E > budget && !vs->adapt_calibrated)) {
+    if (vs->adapt_model.c.size() != (size_t)K || !(vs->adapt_model.total(p) > 0)) vs->adapt_model = vshmm::ErrorModel::equalShares(p, order, 1.0, Saturations(ts, p));
+    PetscCall(Compare(ts, p, t0, DeltaT, (vs->adapt_calibrated && !calibrate && attempt == 0 && vs->adapt_model.total(p) > 0) ? PETSC_TRUE : PETSC_FALSE, &q, &d));
+    PetscReal E = d < 0 ? vs->adapt_model.total(p) : Estimate(vs->adapt_model, p, q, d);
+    if (calibrate || (E > budget && !vs->adapt_calibrated) || (attempt > 0 && (E > kFloorAccept * budget || (E > budget && E > kMissFactor * predicted)))) {
       PetscCall(Calibrate(ts, p, t0, DeltaT, bounds));
       calibrate = PETSC_FALSE;
       E         = Estimate(vs->adapt_model, p, q, d);
@@ -548,7 +592,8 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
     Eprev                 = E;
     if (E > budget && refinable && !floor && attempt + 1 < kMaxAttempts) { /* redo with finer parameters */
       DiscardTry(vs, rhs0, lev0);
-      p = next;
+      predicted = vs->adapt_model.total(next);
+      p         = next;
       continue;
     }
     if (E > budget) {

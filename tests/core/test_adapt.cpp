@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "adapt.hpp"
 #include "kernel.hpp"
@@ -106,6 +107,25 @@ TEST(Adapt, SaturatingPairTermIsMeasuredAndInverted)
   EXPECT_NEAR(next.ratios[0] - 1, s, 0.1); // half the saturated error: at the knee, x = s
   const AdaptParameters any = chooseParameters(now, model, 2 * c * s, bounds);
   EXPECT_DOUBLE_EQ(any.ratios[0], 451.0 * 1e3);
+}
+
+// The chain's initial layer (docs/accuracy.md section 3): x1 relaxes at rate 1/e = 100, DeltaT =
+// 0.1, and the error of x0 saturates at r_0 - 1 = 10 (measured: C (r_0 - 1) / (r_0 + 9)). A faster
+// pair's transient has the slow level's share of the macro step only: rate 1e4 gives 1000 / r_0.
+TEST(Adapt, LayerSaturations)
+{
+  AdaptParameters p;
+  p.microStep                 = 1e-6;
+  p.ratios                    = {5.0, 20.0, 3.0};
+  const std::vector<double> s = layerSaturations(p, 0.1, {0.5, 100.0, 1e4, 1e6});
+  ASSERT_EQ(s.size(), 3u);
+  EXPECT_DOUBLE_EQ(s[0], 10.0);
+  EXPECT_DOUBLE_EQ(s[1], 1000.0 / 5.0);
+  EXPECT_DOUBLE_EQ(s[2], 1e5 / (5.0 * 20.0));
+  const std::vector<double> none = layerSaturations(p, 0.1, {0.5, 0.0, std::numeric_limits<double>::infinity(), 1e6});
+  EXPECT_EQ(none[0], 0.0); // no rate known: linear
+  EXPECT_EQ(none[1], 0.0);
+  EXPECT_DOUBLE_EQ(none[2], 1e5 / (5.0 * 20.0));
 }
 
 // The comparison of the estimate scales every term by one factor whatever the coefficients; the
