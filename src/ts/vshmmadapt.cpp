@@ -202,12 +202,21 @@ static PetscReal Separation(TS_VSHMM *vs, PetscInt l)
    rates (their slowest rate more than kInitialSeparation times closer to the slower level than its
    spectral radius), the term saturates beyond that slowest rate over the slower level's radius,
    if that is smaller. */
+/* Whether level l's limiting modes only decay (no oscillating one sets its stable step): its
+   transients end, an initial layer among them. */
+static PetscBool LevelDecays(TS_VSHMM *vs, PetscInt l)
+{
+  if ((PetscInt)vs->level_worst.size() <= l || (PetscInt)vs->level_limiting.size() <= l || vs->level_limiting[l].empty()) return PETSC_FALSE;
+  return std::abs(vs->level_worst[l].imag()) <= std::abs(vs->level_worst[l].real()) ? PETSC_TRUE : PETSC_FALSE;
+}
+
 static std::vector<double> Saturations(TS ts, const vshmm::AdaptParameters &p)
 {
   TS_VSHMM           *vs = (TS_VSHMM *)ts->data;
   const PetscInt      K  = (PetscInt)p.ratios.size();
-  std::vector<double> rate(K + 1, 0.0);
-  for (PetscInt l = 1; l <= K; ++l) rate[l] = ((PetscInt)vs->level_slowest.size() > l && vs->level_slowest[l] > 0) ? vs->level_slowest[l] : ((PetscInt)vs->level_radius.size() > l ? vs->level_radius[l] : 0);
+  std::vector<double> rate(K + 1, 0.0); /* decaying levels only: an oscillation's averaging error does not saturate */
+  for (PetscInt l = 1; l <= K; ++l)
+    if (LevelDecays(vs, l)) rate[l] = ((PetscInt)vs->level_slowest.size() > l && vs->level_slowest[l] > 0) ? vs->level_slowest[l] : ((PetscInt)vs->level_radius.size() > l ? vs->level_radius[l] : 0);
   std::vector<double> s = vshmm::layerSaturations(p, ts->time_step, rate);
   for (PetscInt l = 0; l < K; ++l) {
     if ((PetscInt)vs->separations.size() > l) s[l] = vs->separations[l];
@@ -309,10 +318,9 @@ PetscErrorCode TSVSHMMAdaptSetUp_Private(TS ts)
            than its pair's saturation scale (Saturations(): beyond it a coarser comparison changes
            nothing, and an error there, an initial layer, could not be seen); one that oscillates
            at kInitialSeparation. */
-        const std::complex<double> w     = vs->level_worst.size() == (size_t)nscales ? vs->level_worst[l + 1] : std::complex<double>(0.0);
-        const PetscBool            given = (PetscInt)vs->separations.size() > l ? PETSC_TRUE : PETSC_FALSE;
-        const PetscBool            decay = (!given && vs->level_limiting[l + 1].size() && std::abs(w.imag()) <= std::abs(w.real())) ? PETSC_TRUE : PETSC_FALSE;
-        p.ratios[l]                      = PetscMax(1.0, PetscMin(RadiusRatio(vs, l) / (decay ? kInitialDecaySeparation : kInitialSeparation), 1e8));
+        const PetscBool given = (PetscInt)vs->separations.size() > l ? PETSC_TRUE : PETSC_FALSE;
+        const PetscBool decay = (!given && LevelDecays(vs, l + 1)) ? PETSC_TRUE : PETSC_FALSE;
+        p.ratios[l]           = PetscMax(1.0, PetscMin(RadiusRatio(vs, l) / (decay ? kInitialDecaySeparation : kInitialSeparation), 1e8));
         if (decay) {
           const std::vector<double> sat = Saturations(ts, p);
           if (sat[l] > 0) p.ratios[l] = PetscMin(p.ratios[l], 1.0 + sat[l]);
