@@ -551,16 +551,16 @@ def ode_sweeps(b, quick):
         K = n - 1
         dt = e ** K
         ladder = []
-        for f in ([1.0] if Q else [1.0, 0.5, 0.25]):
-            alpha = [f * (e / 2) / dt] + [e ** (j - 1) / dt for j in range(2, K + 1)]
-            ladder.append(('dt %g, h1 = %g e/2' % (dt, f), ['-ts_vshmm_micro_dt', '%g' % dt,
+        for f in ([1.0] if Q else [1.0, 0.5, 0.25, 0]):  # f = 0: alpha_1 = 1, the slow pair all but merged
+            alpha = [f * (e / 2) / dt if f > 0 else 1.0] + [e ** (j - 1) / dt for j in range(2, K + 1)]
+            ladder.append(('dt %g, h1 = %g e/2' % (dt, f) if f > 0 else 'dt %g, alpha_1 = 1' % dt, ['-ts_vshmm_micro_dt', '%g' % dt,
                            '-ts_vshmm_savings_factors', ','.join('%g' % a for a in alpha)]))
         base = ['-scales', str(n), '-e', '%g' % e, '-print_interval', '0.5']
         sun = lambda m, ts: ('sundials', m[0], ['-problem', 'chain', '-scales', str(n), '-eps', '%g' % e, '-method', m[1]] + sun_cap,
                              [('tol %g' % t, ['-rtol', '%g' % t, '-atol', '%g' % t]) for t in ts])
         methods = [
             ('vshmm', 'VSHMM ladder', ladder),
-            ('vshmm-adapt', 'VSHMM adapt', [] if Q else [1e-2]),
+            ('vshmm-adapt', 'VSHMM adapt', [1e-2] if Q else [1e-1, 1e-2, 1e-3]),
             ('rk-stable', 'RK4 largest stable', '4', 2.785 * e ** K),
             ('rk-adapt', 'RK 5dp adaptive', '5dp', [1e-4]),
             ('imex', 'ARKIMEX (fast implicit)', ['-problem', 'chain', '-scales', str(n), '-eps', '%g' % e] + pet_cap, [1e-4] if Q else [1e-2, 1e-4, 1e-6]),
