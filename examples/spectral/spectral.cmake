@@ -330,47 +330,48 @@ vshmm_example_test(NAME spectral_detect_auto_advection_tol1e-4 EXE advection
 # first output times in docs/spectral.md.
 # diffusion_auto.yaml (N = 2048) to t = 0.0625, 0.125 against RK3 dt = 2.5e-6 (dt = 1.25e-6
 # differs by 2.2e-13): tol 1e-2: 6.9e-3, 8.7e-3 (bound 1.3e-2); tol 1e-3: 6.9e-4, 5.7e-4 (bound 1e-3).
-set(_sp_diff_auto -options_file_yaml ${PROJECT_SOURCE_DIR}/examples/scenes/diffusion_auto.yaml -output_times 0.0625,0.125)
-vshmm_example_test(NAME spectral_auto_diffusion_dns_ref EXE diffusion
-                   ARGS ${_sp_diff_auto} -spectral_mode dns -ts_type rk -ts_rk_type 3 -ts_dt 2.5e-6 -grid_solution_file dns -no_timing
-                   REGEX "output t 0.125 rhs_evaluations 150000 ")
-vshmm_example_test(NAME spectral_auto_diffusion_zero_tuning EXE diffusion
-                   ARGS ${_sp_diff_auto} -compare_grid_solution ${_sp_dir}/spectral_auto_diffusion_dns_ref/dns -compare_tolerance 1.3e-2 -no_timing
-                   REGEX "K0 = {0..5}: 6 wavenumbers.*K1 = {60..68,126..130,189..195,253..259,318..322}: 33 wavenumbers.*detection dns_steps 512 evaluations 1537\n.*compare t 0.125 relative_l2_error")
-vshmm_example_test(NAME spectral_auto_diffusion_zero_tuning_tol1e-3 EXE diffusion
-                   ARGS ${_sp_diff_auto} -ts_rtol 1e-3 -ts_atol 1e-3 -compare_grid_solution ${_sp_dir}/spectral_auto_diffusion_dns_ref/dns -compare_tolerance 1e-3 -no_timing
-                   REGEX "K0 = {0..6}: 7 wavenumbers.*K1 = {60..68,125..131,189..195,252..260,317..323,511..513}: 42 wavenumbers.*detection dns_steps 256 evaluations 769\n.*compare t 0.125 relative_l2_error")
+# spectral_auto_scene(SCENE EXE OUTPUT_TIMES LAST DNS_DT DNS_EVALUATIONS BOUND_1e-2 REGEX_1e-2
+#                     BOUND_1e-3 REGEX_1e-3 [STDERR_REGEX_1e-2]): the DNS reference of
+# examples/scenes/SCENE_auto.yaml (RK3, DNS_DT) and the zero-tuning runs at the scene's tolerance
+# and at 1e-3, each compared with it at the output times (relative L2 error at most the bound) and
+# checked by a regex ending with the comparison at the LAST output time.
+function(spectral_auto_scene scene exe times last dns_dt dns_evaluations bound2 regex2 bound3 regex3)
+  set(_args -options_file_yaml ${PROJECT_SOURCE_DIR}/examples/scenes/${scene}_auto.yaml -output_times ${times})
+  set(_ref ${_sp_dir}/spectral_auto_${scene}_dns_ref/dns)
+  vshmm_example_test(NAME spectral_auto_${scene}_dns_ref EXE ${exe}
+                     ARGS ${_args} -spectral_mode dns -ts_type rk -ts_rk_type 3 -ts_dt ${dns_dt} -grid_solution_file dns -no_timing
+                     REGEX "output t ${last} rhs_evaluations ${dns_evaluations} ")
+  set(_stderr)
+  if(ARGC GREATER 10)
+    set(_stderr STDERR_REGEX "${ARGV10}")
+  endif()
+  vshmm_example_test(NAME spectral_auto_${scene}_zero_tuning EXE ${exe}
+                     ARGS ${_args} -compare_grid_solution ${_ref} -compare_tolerance ${bound2} -no_timing
+                     REGEX "${regex2}.*compare t ${last} relative_l2_error" ${_stderr})
+  vshmm_example_test(NAME spectral_auto_${scene}_zero_tuning_tol1e-3 EXE ${exe}
+                     ARGS ${_args} -ts_rtol 1e-3 -ts_atol 1e-3 -compare_grid_solution ${_ref} -compare_tolerance ${bound3} -no_timing
+                     REGEX "${regex3}.*compare t ${last} relative_l2_error")
+  set_tests_properties(spectral_auto_${scene}_dns_ref PROPERTIES FIXTURES_SETUP spectral_auto_${scene}_ref LABELS "example;spectral")
+  set_tests_properties(spectral_auto_${scene}_zero_tuning spectral_auto_${scene}_zero_tuning_tol1e-3 PROPERTIES
+                       FIXTURES_REQUIRED spectral_auto_${scene}_ref LABELS "example;spectral")
+endfunction()
+# diffusion_auto.yaml (N = 2048) to t = 0.0625, 0.125 against RK3 dt = 2.5e-6 (dt = 1.25e-6
+# differs by 2.2e-13): tol 1e-2: 6.9e-3, 8.7e-3 (bound 1.3e-2); tol 1e-3: 6.9e-4, 5.7e-4 (bound 1e-3).
+spectral_auto_scene(diffusion diffusion 0.0625,0.125 0.125 2.5e-6 150000
+                    1.3e-2 "K0 = {0..5}: 6 wavenumbers.*K1 = {60..68,126..130,189..195,253..259,318..322}: 33 wavenumbers.*detection dns_steps 512 evaluations 1537\n"
+                    1e-3 "K0 = {0..6}: 7 wavenumbers.*K1 = {60..68,125..131,189..195,252..260,317..323,511..513}: 42 wavenumbers.*detection dns_steps 256 evaluations 769\n")
 # diffusion3_auto.yaml (N = 1024) to t = 0.125, 0.25 against RK3 dt = 1e-5 (dt = 5e-6 differs by
 # 6e-14): tol 1e-2: 9.7e-3, 1.14e-2 (bound 1.5e-2); tol 1e-3: 7.8e-4, 5.6e-4 (bound 1.2e-3).
-set(_sp_diff3_auto -options_file_yaml ${PROJECT_SOURCE_DIR}/examples/scenes/diffusion3_auto.yaml -output_times 0.125,0.25)
-vshmm_example_test(NAME spectral_auto_diffusion3_dns_ref EXE diffusion
-                   ARGS ${_sp_diff3_auto} -spectral_mode dns -ts_type rk -ts_rk_type 3 -ts_dt 1e-5 -grid_solution_file dns -no_timing
-                   REGEX "output t 0.25 rhs_evaluations 75000 ")
-vshmm_example_test(NAME spectral_auto_diffusion3_zero_tuning EXE diffusion
-                   ARGS ${_sp_diff3_auto} -compare_grid_solution ${_sp_dir}/spectral_auto_diffusion3_dns_ref/dns -compare_tolerance 1.5e-2 -no_timing
-                   REGEX "K0 = {0..5}: 6 wavenumbers.*K1 = {36..44,77..83,117..123,158..162,238..242,358..362}: 38 wavenumbers.*detection dns_steps 256 evaluations 769\n.*compare t 0.25 relative_l2_error")
-vshmm_example_test(NAME spectral_auto_diffusion3_zero_tuning_tol1e-3 EXE diffusion
-                   ARGS ${_sp_diff3_auto} -ts_rtol 1e-3 -ts_atol 1e-3 -compare_grid_solution ${_sp_dir}/spectral_auto_diffusion3_dns_ref/dns -compare_tolerance 1.2e-3 -no_timing
-                   REGEX "K0 = {0..6}: 7 wavenumbers.*K1 = {36..44,76..83,116..124,157..163,198..202,237..243,279..282,317..322,357..363,398..402,478..482}: 72 wavenumbers.*detection dns_steps 512 evaluations 1537\n.*compare t 0.25 relative_l2_error")
+spectral_auto_scene(diffusion3 diffusion 0.125,0.25 0.25 1e-5 75000
+                    1.5e-2 "K0 = {0..5}: 6 wavenumbers.*K1 = {36..44,77..83,117..123,158..162,238..242,358..362}: 38 wavenumbers.*detection dns_steps 256 evaluations 769\n"
+                    1.2e-3 "K0 = {0..6}: 7 wavenumbers.*K1 = {36..44,76..83,116..124,157..163,198..202,237..243,279..282,317..322,357..363,398..402,478..482}: 72 wavenumbers.*detection dns_steps 512 evaluations 1537\n")
 # advection2_auto.yaml (N = 512) to t = 2, 4 against RK3 dt = 1e-3 (dt = 2e-4 differs by 9e-7):
 # the scales are not separated (4.8; at 1e-3 3.89) and the run says so; tol 1e-2: 2.2e-3, 3.5e-3
 # (bound 6e-3); tol 1e-3: 6.4e-4, 7.0e-4 (bound 1.2e-3).
-set(_sp_adv2_auto -options_file_yaml ${PROJECT_SOURCE_DIR}/examples/scenes/advection2_auto.yaml -output_times 2,4)
-vshmm_example_test(NAME spectral_auto_advection2_dns_ref EXE advection
-                   ARGS ${_sp_adv2_auto} -spectral_mode dns -ts_type rk -ts_rk_type 3 -ts_dt 1e-3 -grid_solution_file dns -no_timing
-                   REGEX "output t 4 rhs_evaluations 12000 ")
-vshmm_example_test(NAME spectral_auto_advection2_zero_tuning EXE advection
-                   ARGS ${_sp_adv2_auto} -compare_grid_solution ${_sp_dir}/spectral_auto_advection2_dns_ref/dns -compare_tolerance 6e-3 -no_timing
-                   REGEX "K0 = {0..5}: 6 wavenumbers.*K1 = {36..44,76..84,117..123,158..162}: 30 wavenumbers.*detection dns_steps 256 evaluations 769\n.*compare t 4 relative_l2_error"
-                   STDERR_REGEX "not separated.*levels 0/1: 4.8")
-vshmm_example_test(NAME spectral_auto_advection2_zero_tuning_tol1e-3 EXE advection
-                   ARGS ${_sp_adv2_auto} -ts_rtol 1e-3 -ts_atol 1e-3 -compare_grid_solution ${_sp_dir}/spectral_auto_advection2_dns_ref/dns -compare_tolerance 1.2e-3 -no_timing
-                   REGEX "K0 = {0..6}: 7 wavenumbers.*K1 = {35..45,76..84,116..124,157..163,198..203}: 42 wavenumbers.*detection dns_steps 256 evaluations 769\n.*compare t 4 relative_l2_error")
-foreach(_scene diffusion diffusion3 advection2)
-  set_tests_properties(spectral_auto_${_scene}_dns_ref PROPERTIES FIXTURES_SETUP spectral_auto_${_scene}_ref LABELS "example;spectral")
-  set_tests_properties(spectral_auto_${_scene}_zero_tuning spectral_auto_${_scene}_zero_tuning_tol1e-3 PROPERTIES
-                       FIXTURES_REQUIRED spectral_auto_${_scene}_ref LABELS "example;spectral")
-endforeach()
+spectral_auto_scene(advection2 advection 2,4 4 1e-3 12000
+                    6e-3 "K0 = {0..5}: 6 wavenumbers.*K1 = {36..44,76..84,117..123,158..162}: 30 wavenumbers.*detection dns_steps 256 evaluations 769\n"
+                    1.2e-3 "K0 = {0..6}: 7 wavenumbers.*K1 = {35..45,76..84,116..124,157..163,198..203}: 42 wavenumbers.*detection dns_steps 256 evaluations 769\n"
+                    "not separated.*levels 0/1: 4.8")
 
 # The stable step at u0 too large later (burgers_growth.yaml: viscous Burgers whose amplitude
 # grows e-fold per unit time, max|u| 0.1 -> 1.9 at t = 3): the RK3 step estimated at u0 (0.0597)
