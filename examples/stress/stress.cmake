@@ -82,6 +82,12 @@ vshmm_example_test(NAME stress_chain_4scales_adapt EXE chain LABELS stress
 vshmm_example_test(NAME stress_chain_5scales_adapt EXE chain LABELS stress
                    ARGS -scales 5 -ts_type vshmm -ts_vshmm_adapt -ts_rtol 1e-2 -ts_atol 1e-2 -no_timing
                    OUTPUT output/chain_5scales_adapt.out RTOL 0 ATOL 4.3e-2)
+# -ts_view shows where adapt's error model lets each pair's term saturate: the chain's slow pair at
+# r_0 - 1 = DeltaT / e = 10 (x1 relaxes at rate 100 within the macro step 0.1), the faster pairs
+# at DeltaT lambda_{l+1} / (r_0 ... r_{l-1}) = 1e3 (r_0 = 1 once the layer has merged the pair).
+vshmm_example_test(NAME stress_chain_4scales_adapt_view EXE chain LABELS stress
+                   ARGS -scales 4 -ts_type vshmm -ts_vshmm_adapt -ts_rtol 1e-3 -ts_atol 1e-3 -ts_view -no_timing
+                   REGEX "error model: each level pair's term saturates at r_l - 1 = +10 +1e\\+03 +[0-9.e+]+ +[(]- linear; time ratios of the last macro step: +1 ")
 # The 6-scale chain at tol 1e-3: the initial layer (x1 relaxes at rate 100 from 0 to x0) saturates
 # the slow pair's error at r_0 - 1 = DeltaT / e = 10; with that in the model the first macro step
 # merges the pair and the later ones run at the levels' stability limits. Measured 0.056 of the

@@ -541,6 +541,18 @@ static PetscErrorCode TSView_VSHMM(TS ts, PetscViewer viewer)
       PetscViewerASCIIPrintf(viewer, "  accuracy control (-ts_vshmm_adapt): rtol %g, atol %g on %s; savings factors %s\n", (double)ts->rtol, (double)ts->atol, vs->observables ? "the observables" : "the whole state (weighted norm)", vs->savings.empty() ? (vs->no_separation ? "none (scales not separated)" : "chosen") : "set"));
     PetscCall(PetscViewerASCIIPrintf(viewer, "    error estimate: last macro step %g, sum over the run %g (1 = the tolerance); %" PetscInt64_FMT " calibrations, %" PetscInt64_FMT " rejected macro steps, %" PetscInt64_FMT " split RHS evaluations for estimates and rejected steps\n",
                                      (double)vs->error_estimate, (double)vs->error_estimate_total, vs->adapt_calibrations, vs->adapt_rejections, vs->adapt_evaluations));
+    bool saturating = false;
+    for (double x : vs->adapt_model.saturation) saturating = saturating || (x > 0 && std::isfinite(x));
+    if (saturating) { /* where each pair's error term stops growing (an initial layer, a band of rates, the separations set) */
+      PetscCall(PetscViewerASCIIPrintf(viewer, "    error model: each level pair's term saturates at r_l - 1 ="));
+      for (double x : vs->adapt_model.saturation) {
+        if (x > 0 && std::isfinite(x)) PetscCall(PetscViewerASCIIPrintf(viewer, " %.3g", x));
+        else PetscCall(PetscViewerASCIIPrintf(viewer, " -"));
+      }
+      PetscCall(PetscViewerASCIIPrintf(viewer, " (- linear; time ratios of the last macro step:"));
+      for (double r : vs->adapt_used.ratios) PetscCall(PetscViewerASCIIPrintf(viewer, " %.4g", r));
+      PetscCall(PetscViewerASCIIPrintf(viewer, ")\n"));
+    }
   }
   if (!vs->level_radius.empty() && vs->level_radius.size() == vs->level_end.size()) {
     PetscCall(PetscViewerASCIIPrintf(viewer, "  spectral radius of each level's Jacobian (t = %g):", (double)vs->spectra_time));
