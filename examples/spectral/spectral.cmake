@@ -332,8 +332,6 @@ vshmm_example_test(NAME spectral_detect_auto_advection_tol1e-4 EXE advection
 # L2 error within a bound about 1.5x the measured one, at the scene's tolerance 1e-2 and at 1e-3
 # (the detection's threshold then tol / 30: wider clusters). The errors agree with the full runs'
 # first output times in docs/spectral.md.
-# diffusion_auto.yaml (N = 2048) to t = 0.0625, 0.125 against RK3 dt = 2.5e-6 (dt = 1.25e-6
-# differs by 2.2e-13): tol 1e-2: 6.9e-3, 8.7e-3 (bound 1.3e-2); tol 1e-3: 6.9e-4, 5.7e-4 (bound 1e-3).
 # spectral_auto_scene(SCENE EXE OUTPUT_TIMES LAST DNS_DT DNS_EVALUATIONS BOUND_1e-2 REGEX_1e-2
 #                     BOUND_1e-3 REGEX_1e-3 [STDERR_REGEX_1e-2]): the DNS reference of
 # examples/scenes/SCENE_auto.yaml (RK3, DNS_DT) and the zero-tuning runs at the scene's tolerance
