@@ -120,13 +120,14 @@ struct VSHMMSpectral_Data {
   spc::Normalization       norm = spc::Normalization::Relative;
   std::vector<PetscReal>   detect_times;
   std::string              detect_file;
-  PetscReal                detect_dt        = 0;
-  PetscInt                 detect_max_steps = 32768;
-  PetscReal                cluster_tol      = 1e-2; /* merged bands are undone if what the merge adds holds at most this of ||u|| */
-  VSHMMSpectralProjection  projection       = VSHMMSPECTRAL_PROJECTION_AUTO;
-  VSHMMSpectralEvaluation  evaluation       = VSHMMSPECTRAL_EVALUATION_FFT;
-  VSHMMSpectralPlanner     planner          = VSHMMSPECTRAL_PLANNER_ESTIMATE;
-  PetscReal                growth_factor    = 10; /* -spectral_growth_bound (0: no check) */
+  PetscReal                detect_dt          = 0;
+  PetscInt                 detect_max_steps   = 32768;
+  PetscInt                 detect_first_steps = 64;   /* steps before the first automatic look (then doubled) */
+  PetscReal                cluster_tol        = 1e-2; /* merged bands are undone if what the merge adds holds at most this of ||u|| */
+  VSHMMSpectralProjection  projection         = VSHMMSPECTRAL_PROJECTION_AUTO;
+  VSHMMSpectralEvaluation  evaluation         = VSHMMSPECTRAL_EVALUATION_FFT;
+  VSHMMSpectralPlanner     planner            = VSHMMSPECTRAL_PLANNER_ESTIMATE;
+  PetscReal                growth_factor      = 10; /* -spectral_growth_bound (0: no check) */
 
   /* set-up */
   spc::ClusterSet                        clusters;

@@ -174,7 +174,8 @@ static std::vector<PetscReal> ClusterSeparations(const std::vector<std::vector<P
 
 /* Snapshots |c_k| (k = 0..N/2) of a short direct simulation on every rank (PETSC_COMM_SELF), TS
    options prefix <prefix>spectral_cluster_detect_: at -spectral_cluster_detect_times, or (none
-   given) the largest |c_k| over every step, looked at after 64, 128, 256, ... steps until its
+   given) the largest |c_k| over every step, looked at after 64, 128, 256, ... steps
+   (-spectral_cluster_detect_first_steps, then doubled) until its
    clusters agree three times in a row (two doublings of the time bring nothing new) or
    -spectral_cluster_detect_max_steps is reached. Looks agree when their clusters are the same,
    or when the bands of the first of them only widened at their edges by wavenumbers that hold at
@@ -234,7 +235,7 @@ static PetscErrorCode DetectionDNS(VSHMMSpectral sp, DetectCtx *dctx, const std:
     if (!automatic) {
       if (i == s->detect_times.size()) break;
       t = s->detect_times[i];
-    } else t = PetscMin(64.0 * std::ldexp(1.0, (int)PetscMin(i, (size_t)60)), (double)s->detect_max_steps) * dt;
+    } else t = PetscMin((double)s->detect_first_steps * std::ldexp(1.0, (int)PetscMin(i, (size_t)60)), (double)s->detect_max_steps) * dt;
     if (t > 0) {
       PetscCall(TSSetMaxTime(ts, t));
       PetscCall(TSSetTimeStep(ts, dt));
