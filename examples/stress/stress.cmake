@@ -96,6 +96,10 @@ vshmm_example_test(NAME stress_chain_4scales_adapt_view EXE chain LABELS stress
 vshmm_example_test(NAME stress_chain_6scales_adapt_tol1e-3 EXE chain LABELS stress
                    ARGS -scales 6 -ts_type vshmm -ts_vshmm_adapt -ts_rtol 1e-3 -ts_atol 1e-3 -no_timing
                    OUTPUT output/chain_6scales_adapt_tol1e-3.out RTOL 0 ATOL 4.3e-3)
+# the same on two ranks: the same choices, work counts and values
+vshmm_example_test(NAME stress_chain_6scales_adapt_tol1e-3_np2 EXE chain NP 2 LABELS stress
+                   ARGS -scales 6 -ts_type vshmm -ts_vshmm_adapt -ts_rtol 1e-3 -ts_atol 1e-3 -no_timing
+                   OUTPUT output/chain_6scales_adapt_tol1e-3.out RTOL 0 ATOL 4.3e-3)
 # 6 scales on 2 ranks, additive and component splits mixed: the same evaluation counts
 vshmm_example_test(NAME stress_chain_6scales_mixed_np2 EXE chain NP 2 LABELS stress
                    ARGS -scales 6 -split_kind mixed -ts_type vshmm -ts_dt 0.1 ${_chain_rule_6} -print_interval 0.1 ${_stress_check}
