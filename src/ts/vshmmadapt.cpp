@@ -6,21 +6,27 @@
   with the same macro step from the same state taken with coarser parameters; the difference of
   the observables (or of the whole state), in the TS's weighted norm (-ts_rtol, -ts_atol), gives
   the error estimate:
-  - at a calibration (the first macro step, every kRecalibrate macro steps, after a rejection),
-    one coarser run per parameter (dt -> 2 dt, r_l -> 2 r_l) measures each parameter's own error
-    term (the error model of adapt.hpp);
-  - in between, one run with every parameter coarser at once rescales that model.
-  A macro step whose estimate exceeds its share of the tolerance, sqrt(DeltaT / (t_final - t_start))
-  (errors of the sampled slow values add up partly like random ones), is
+  - at a calibration (the first macro step, after 1, 2, 4, 8 more, then every kRecalibrate; and
+    on a retry far above its share or far above the model's prediction), one coarser run per
+    parameter (dt -> 2 dt, r_l - 1 -> kRatioCoarsening (r_l - 1)) measures each parameter's own
+    error term (the error model of adapt.hpp);
+  - in between, one run with every term doubled rescales that model (at least kMinCycles /
+    kCompareCycles cycles per macro step; where no parameter can be coarsened, the model's
+    prediction or a run with dt halved).
+  A macro step whose estimate exceeds its share of the tolerance, (DeltaT / (t_final - t_start))^gamma
+  (errors of the sampled slow values add up partly like random ones, gamma = 1/2, up to coherently,
+  gamma = 1, as measured from the signed estimates), is
   redone with finer parameters; after each accepted step the parameters for the next one are
   chosen as the cheapest the model allows for kSafety of that share. Where refining no longer
   lowers the estimate, the step is accepted and the user told once. Every step is kept inside the
   stability region of the inner Runge-Kutta method, using each level's estimated eigenvalues
   (estimated again at the state of each calibration and of a step that blew up).
 
-  Where the application set the levels' separations (TSVSHMMSetScaleSeparations()), each pair's
-  error term in the model saturates beyond its separation (src/core/adapt.hpp), so that the
-  comparison's small difference of two saturated runs is read as the large error it is.
+  Each pair's error term in the model saturates (src/core/adapt.hpp), so that the comparison's
+  small difference of two saturated runs is read as the large error it is: beyond the separation
+  the application set (TSVSHMMSetScaleSeparations()), or, where the faster level only decays,
+  where its transient slowed by the time ratio outlasts the macro step (an initial layer:
+  vshmm::layerSaturations()); a decaying level's first ratio stays below that.
 
   The separation check compares the spectral radii of consecutive levels (or the separations set). VSHMM samples a faster
   level statistically; where no pair of levels is separated by at least kMinSeparation the faster
