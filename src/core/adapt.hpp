@@ -15,7 +15,9 @@
 //   e_l  = c_l g_l(r_l - 1)     (level pair l: averaging error ~ 1/sigma_l, none when merged),
 // g_l(x) = x / (1 + x / s_l): linear while the effective separation sigma_l stays above 1, and
 // saturating where the method slows level l+1 below level l's time scale (r_l beyond the pair's
-// separation s_l, when that is known: TSVSHMMSetScaleSeparations(); s_l = inf otherwise).
+// separation s_l, when that is known: TSVSHMMSetScaleSeparations()), or where level l+1's
+// transient, slowed by r_l, outlasts the macro step (layerSaturations(): an initial layer);
+// s_l = inf otherwise.
 // The c's are measured by comparing the macro step with one whose parameter is coarsened
 // (dt -> 2 dt, r_l - 1 -> 2 (r_l - 1)). Work per macro step is proportional to
 // 1 / A_0 = 1 / (dt prod r_l), so the cheapest parameters for a total error E give each free ratio
