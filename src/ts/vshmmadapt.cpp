@@ -200,14 +200,6 @@ static PetscReal Separation(TS_VSHMM *vs, PetscInt l)
   return own > 0 ? PetscMin(own, RadiusRatio(vs, l)) : RadiusRatio(vs, l);
 }
 
-/* The saturation scale of each level pair's error term in adapt's model: the separation set by the
-   application; otherwise where the faster level's transient, slowed by the time ratio, outlasts
-   the macro step (vshmm::layerSaturations(): an initial layer; the chain's measured s_0 = 10 =
-   DeltaT / e, docs/accuracy.md section 3), with the slowest rate of the faster level's own
-   components (component splits) or its spectral radius. Where those components have a band of
-   rates (their slowest rate more than kInitialSeparation times closer to the slower level than its
-   spectral radius), the term saturates beyond that slowest rate over the slower level's radius,
-   if that is smaller. */
 /* Whether level l's limiting modes only decay (no oscillating one sets its stable step): its
    transients end, an initial layer among them. */
 static PetscBool LevelDecays(TS_VSHMM *vs, PetscInt l)
@@ -216,6 +208,14 @@ static PetscBool LevelDecays(TS_VSHMM *vs, PetscInt l)
   return std::abs(vs->level_worst[l].imag()) <= std::abs(vs->level_worst[l].real()) ? PETSC_TRUE : PETSC_FALSE;
 }
 
+/* The saturation scale of each level pair's error term in adapt's model: the separation set by the
+   application; otherwise where the faster level's transient, slowed by the time ratio, outlasts
+   the macro step (vshmm::layerSaturations(): an initial layer; the chain's measured s_0 = 10 =
+   DeltaT / e, docs/accuracy.md section 3), with the slowest rate of the faster level's own
+   components (component splits) or its spectral radius. Where those components have a band of
+   rates (their slowest rate more than kInitialSeparation times closer to the slower level than its
+   spectral radius), the term saturates beyond that slowest rate over the slower level's radius,
+   if that is smaller. */
 static std::vector<double> Saturations(TS ts, const vshmm::AdaptParameters &p)
 {
   TS_VSHMM           *vs = (TS_VSHMM *)ts->data;
@@ -307,9 +307,8 @@ PetscErrorCode TSVSHMMAdaptSetUp_Private(TS ts)
     /* an oscillating fastest mode must be followed accurately: dt |lambda| <= tol^(1/p); one that
        only decays need not (its error decays with it), and the micro step starts at the
        stability limit */
-    const std::complex<double> worst       = vs->level_worst.size() == (size_t)nscales ? vs->level_worst[K] : std::complex<double>(0.0);
-    const PetscBool            oscillating = (std::abs(worst.imag()) > std::abs(worst.real()) || vs->level_limiting[K].empty()) ? PETSC_TRUE : PETSC_FALSE;
-    p.microStep                            = DeltaT / kDefaultMicroStepsPerMacroStep;
+    const PetscBool oscillating = LevelDecays(vs, K) ? PETSC_FALSE : PETSC_TRUE;
+    p.microStep                 = DeltaT / kDefaultMicroStepsPerMacroStep;
     if (rho > 0 && oscillating) p.microStep = PetscMin(p.microStep, std::pow(tol, 1.0 / vs->tableau->order) / rho);
     p.microStep = PetscMin(p.microStep, kStableFraction * vs->level_max_step[K]);
   }
