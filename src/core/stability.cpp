@@ -111,6 +111,44 @@ LevelAmplification levelAmplification(const StabilityFunction &R, const Mesoscop
   return a;
 }
 
+double slowestRate(const std::vector<std::complex<double>> &modes)
+{
+  double largest = 0, slowest = std::numeric_limits<double>::infinity();
+  for (const std::complex<double> &lambda : modes) largest = std::max(largest, std::abs(lambda));
+  for (const std::complex<double> &lambda : modes) {
+    const double size = std::abs(lambda), re = std::fabs(lambda.real());
+    if (!(size > 1e-8 * largest)) continue;
+    const bool amplitude = std::fabs(lambda.imag()) > re && re > kAmplitudeRateNoise * size;
+    slowest              = std::min(slowest, amplitude ? re : size);
+  }
+  return std::isfinite(slowest) ? slowest : 0.0;
+}
+
+double amplitudeError(const StabilityFunction &R, std::complex<double> lambda, double h)
+{
+  const double a = std::abs(R(h * lambda));
+  if (!(a > 0)) return std::numeric_limits<double>::infinity();
+  return std::fabs(std::log(a) - h * lambda.real());
+}
+
+double largestAccurateStep(const StabilityFunction &R, const std::vector<std::complex<double>> &modes, double hMax, double stepsPerUnitStep, double allowed)
+{
+  auto error = [&](double h) {
+    double e = 0;
+    for (const std::complex<double> &lambda : modes) e = std::max(e, amplitudeError(R, lambda, h));
+    return e * stepsPerUnitStep / h;
+  };
+  if (!(hMax > 0) || modes.empty() || error(hMax) <= allowed) return hMax;
+  double lo = hMax, hi = hMax;
+  while (lo > hMax * 1e-12 && error(lo) > allowed) lo *= 0.5;
+  if (error(lo) > allowed) return lo;
+  while (hi / lo > 1.001) {
+    const double mid                  = std::sqrt(lo * hi);
+    (error(mid) <= allowed ? lo : hi) = mid;
+  }
+  return lo;
+}
+
 double largestStableSavingsFactor(const StabilityFunction &R, const Kernel &kernel, double microStep, std::vector<double> savings, const std::vector<int> &subintervals, double macroStep, int j, std::complex<double> lambda, double dampingTarget, double maxGrowth)
 {
   double lo = 0, hi = savings.at(j - 1);

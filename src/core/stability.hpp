@@ -49,6 +49,24 @@ struct LevelAmplification {
 };
 LevelAmplification levelAmplification(const StabilityFunction &R, const MesoscopicSchedule &schedule, double macroStep, int level, std::complex<double> lambda);
 
+// The slowest rate of a level's modes: |lambda| for each mode, except that an oscillation whose
+// amplitude changes (|Im| > |Re| > kAmplitudeRateNoise |lambda|) changes on the time scale of its
+// amplitude, |Re lambda|. Modes below 1e-8 of the largest |lambda| (zero modes) are not counted;
+// 0 where none is left.
+double           slowestRate(const std::vector<std::complex<double>> &modes);
+constexpr double kAmplitudeRateNoise = 1e-6; // below this fraction of |lambda| a real part is the estimate's noise
+
+// The amplitude error of one step of size h on the mode y' = lambda y: |log |R(h lambda)| - h Re lambda|
+// (what the step takes from, or adds to, the mode's amplitude beyond the exact flow, relative).
+double amplitudeError(const StabilityFunction &R, std::complex<double> lambda, double h);
+
+// The largest step h <= hMax for which the amplitude error of every mode in `modes`, summed over
+// the stepsPerUnitStep / h steps of a span (a span of length T stepped with steps h c takes
+// T / (h c) of them: stepsPerUnitStep = T / c), is at most `allowed`: where the amplitude of an
+// oscillating mode is lost (or gained) by the steps, no comparison of two such runs sees it, the
+// energy is gone from both. hMax where it already passes; bisection to 1e-3 relative otherwise.
+double largestAccurateStep(const StabilityFunction &R, const std::vector<std::complex<double>> &modes, double hMax, double stepsPerUnitStep, double allowed);
+
 // The largest savings factor alpha_j, 0 <= alpha_j <= savings[j-1] (j = 1..K), with which the
 // steps of level j - 1 damp the mode lambda by at least dampingTarget over a macro step
 // (logAmplification <= log dampingTarget) and grow it by at most maxGrowth on the way

@@ -36,6 +36,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 static constexpr PetscReal kMinSeparation          = 10;   /* a pair of levels this far apart in spectral radius is separated */
 static constexpr PetscReal kInitialSeparation      = 10;   /* effective separation sigma_l of the first parameters */
@@ -55,6 +56,8 @@ static constexpr PetscReal kNegligibleSavings      = 0.05; /* a time ratio below
 static constexpr PetscReal kWarn                   = 2;    /* a step accepted with an estimate above this many shares is warned of */
 static constexpr PetscReal kFloorAccept            = 4;    /* an estimate above this many shares is never taken as a noise floor */
 static constexpr PetscReal kMissFactor             = 2;    /* a retry whose estimate is this many times the model's prediction measures the split again */
+static constexpr PetscReal kOscillationShare       = 1.0;  /* of the tolerance: the fastest level's oscillations' amplitude error over the run */
+static constexpr PetscReal kOscillationSpanSteps   = 100;  /* macro steps taken as the run where it has no final time */
 static constexpr PetscReal kMaxDearer              = 4;    /* and rise by this factor at most per try (the estimate is noisy: refining in steps wastes less) */
 
 const char *const TSVSHMMSeparationChecks[] = {"off", "warn", "error", "TSVSHMMSeparationCheck", "TSVSHMM_SEPARATION_", nullptr};
@@ -124,6 +127,31 @@ static PetscErrorCode TrialStep(TS ts, const vshmm::AdaptParameters &p, PetscRea
   PetscFunctionReturn(0);
 }
 
+/* The largest micro step that keeps the amplitude of the fastest level's oscillating modes (its
+   limiting Ritz values with |Im| > |Re|) within kOscillationShare of the tolerance over the whole
+   run, with the time ratios of p: a micro step near the stability limit of an oscillation damps
+   it (RK4 at |lambda| dt = 2.5 takes half its amplitude per step), and once the fast energy is gone
+   from the run and from its comparisons alike, no estimate sees the error it leaves in the slow
+   quantities (a slow variable driven by the fast energy, u' = -v/eps, v' = u/eps, y' = -y + u^2).
+   Infinite where the fastest level has no oscillating mode. */
+static PetscReal AccurateMicroStep(TS ts, const vshmm::AdaptParameters &p, PetscReal dtMax)
+{
+  TS_VSHMM                         *vs = (TS_VSHMM *)ts->data;
+  std::vector<std::complex<double>> modes;
+
+  if (vs->level_limiting.empty() || !(dtMax > 0) || !std::isfinite(dtMax)) return dtMax;
+  for (const std::complex<double> &lambda : vs->level_limiting.back())
+    if (std::abs(lambda.imag()) > std::abs(lambda.real())) modes.push_back(lambda);
+  if (modes.empty()) return dtMax;
+  PetscReal span = ts->max_time - vs->adapt_tstart;
+  if (!(span > 0) || !std::isfinite(span) || span >= PETSC_MAX_REAL / 2) span = kOscillationSpanSteps * ts->time_step;
+  span             = PetscMax(span, ts->time_step);
+  PetscReal ratios = 1;
+  for (double r : p.ratios) ratios *= r;
+  const PetscReal tol = PetscMax(PetscMax(ts->rtol, ts->atol), 1e-12);
+  return vshmm::largestAccurateStep(vshmm::StabilityFunction(*vs->tableau), modes, dtMax, span / ratios, kOscillationShare * tol);
+}
+
 /* The bounds of the choice: user-set parameters, stability, enough cycles per macro step. */
 static vshmm::AdaptBounds Bounds(TS ts, PetscReal DeltaT)
 {
@@ -134,6 +162,7 @@ static vshmm::AdaptBounds Bounds(TS ts, PetscReal DeltaT)
   b.fixedRatios    = !vs->savings.empty() || vs->no_separation;
   b.maxMicroStep   = kStableFraction * vs->level_max_step.back();
   if (!std::isfinite(b.maxMicroStep) || b.maxMicroStep > DeltaT / kMinCycles) b.maxMicroStep = DeltaT / kMinCycles;
+  if (!b.fixedMicroStep) b.maxMicroStep = AccurateMicroStep(ts, vs->adapt_params, b.maxMicroStep);
   b.maxCycle = DeltaT / kMinCycles;
   for (size_t l = 0; l < vs->adapt_no_savings.size(); ++l)
     if (vs->adapt_no_savings[l]) {
@@ -161,6 +190,7 @@ static void LimitToStableSteps(TS ts, vshmm::AdaptParameters &p)
   const double dt = p.microStep;
   LimitAllToStableSteps(vs, p);
   if (vs->micro_dt > 0) p.microStep = dt;
+  else p.microStep = AccurateMicroStep(ts, p, p.microStep);
   if (!vs->savings.empty()) p.ratios = vshmm::timeRatiosFromSavings(vs->savings);
 }
 
@@ -185,12 +215,21 @@ static PetscReal RadiusRatio(TS_VSHMM *vs, PetscInt l)
   return vs->level_radius[l] > 0 ? vs->level_radius[l + 1] / vs->level_radius[l] : PETSC_INFINITY;
 }
 
-/* The slowest rate of level l+1's own components over level l's spectral radius (0: not estimated,
-   additive splits). */
+/* The slowest rate of the own components of the levels faster than l (every one of them is slowed
+   by r_l) over level l's spectral radius (0: not estimated, additive splits). */
+static PetscInt SlowestFasterLevel(TS_VSHMM *vs, PetscInt l)
+{
+  PetscInt slowest = -1;
+  for (PetscInt j = l + 1; j < (PetscInt)vs->level_slowest.size(); ++j)
+    if (vs->level_slowest[j] > 0 && (slowest < 0 || vs->level_slowest[j] < vs->level_slowest[slowest])) slowest = j;
+  return slowest;
+}
+
 static PetscReal OwnRatio(TS_VSHMM *vs, PetscInt l)
 {
-  if ((PetscInt)vs->level_slowest.size() <= l + 1 || !(vs->level_slowest[l + 1] > 0)) return 0;
-  return vs->level_radius[l] > 0 ? vs->level_slowest[l + 1] / vs->level_radius[l] : PETSC_INFINITY;
+  const PetscInt j = SlowestFasterLevel(vs, l);
+  if (j < 0) return 0;
+  return vs->level_radius[l] > 0 ? vs->level_slowest[j] / vs->level_radius[l] : PETSC_INFINITY;
 }
 
 static PetscReal Separation(TS_VSHMM *vs, PetscInt l)
@@ -249,8 +288,8 @@ PetscErrorCode TSVSHMMCheckSeparation_Private(TS ts)
     char            text[256];
     if ((PetscInt)vs->separations.size() > l) PetscCall(PetscSNPrintf(text, sizeof(text), "%slevels %" PetscInt_FMT "/%" PetscInt_FMT ": %.3g (set with -ts_vshmm_scale_separations)", l ? "; " : "", l, l + 1, (double)S));
     else if (OwnRatio(vs, l) > 0 && OwnRatio(vs, l) < RadiusRatio(vs, l))
-      PetscCall(PetscSNPrintf(text, sizeof(text), "%slevels %" PetscInt_FMT "/%" PetscInt_FMT ": %.3g (spectral radius %.3g, slowest rate of level %" PetscInt_FMT "'s own components %.3g)", l ? "; " : "", l, l + 1, (double)S, (double)vs->level_radius[l], l + 1,
-                              (double)vs->level_slowest[l + 1]));
+      PetscCall(PetscSNPrintf(text, sizeof(text), "%slevels %" PetscInt_FMT "/%" PetscInt_FMT ": %.3g (spectral radius %.3g, slowest rate of level %" PetscInt_FMT "'s own components %.3g)", l ? "; " : "", l, l + 1, (double)S, (double)vs->level_radius[l], SlowestFasterLevel(vs, l),
+                              (double)vs->level_slowest[SlowestFasterLevel(vs, l)]));
     else PetscCall(PetscSNPrintf(text, sizeof(text), "%slevels %" PetscInt_FMT "/%" PetscInt_FMT ": %.3g (spectral radii %.3g, %.3g)", l ? "; " : "", l, l + 1, (double)S, (double)vs->level_radius[l], (double)vs->level_radius[l + 1]));
     figures += text;
     best = PetscMax(best, S);
@@ -325,7 +364,8 @@ PetscErrorCode TSVSHMMAdaptSetUp_Private(TS ts)
            at kInitialSeparation. */
         const PetscBool given = (PetscInt)vs->separations.size() > l ? PETSC_TRUE : PETSC_FALSE;
         const PetscBool decay = (!given && LevelDecays(vs, l + 1)) ? PETSC_TRUE : PETSC_FALSE;
-        p.ratios[l]           = PetscMax(1.0, PetscMin(RadiusRatio(vs, l) / (decay ? kInitialDecaySeparation : kInitialSeparation), 1e8));
+        const PetscReal S     = given ? RadiusRatio(vs, l) : Separation(vs, l); /* a slow rate inside a faster level (OwnRatio()) starts the ratio low */
+        p.ratios[l]           = PetscMax(1.0, PetscMin(S / (decay ? kInitialDecaySeparation : kInitialSeparation), 1e8));
         if (decay) {
           const std::vector<double> sat = Saturations(ts, p);
           if (sat[l] > 0) p.ratios[l] = PetscMin(p.ratios[l], 1.0 + sat[l]);
@@ -594,7 +634,10 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
       refinable = (next.microStep < p.microStep || vshmm::cycleLength(next) < vshmm::cycleLength(p)) ? PETSC_TRUE : PETSC_FALSE;
     }
     LimitToStableSteps(ts, next);
-    PetscCall(PetscInfo(ts, "Adapt: macro step [%g, %g] try %" PetscInt_FMT ": dt %g, cycle %g, %" PetscInt64_FMT " cycles; estimate %g of its share %g\n", (double)t0, (double)t1, attempt, (double)p.microStep, (double)vshmm::cycleLength(p), counts.cycles, (double)E, (double)budget));
+    std::string ratios;
+    for (double r : p.ratios) ratios += (ratios.empty() ? "" : ",") + std::to_string(r);
+    PetscCall(PetscInfo(ts, "Adapt: macro step [%g, %g] try %" PetscInt_FMT ": dt %g, time ratios %s, cycle %g, %" PetscInt64_FMT " cycles; estimate %g of its share %g\n", (double)t0, (double)t1, attempt, (double)p.microStep, ratios.c_str(), (double)vshmm::cycleLength(p),
+                        counts.cycles, (double)E, (double)budget));
     /* a floor: twice, finer parameters did not lower an estimate that is near the share (or the
        savings cannot be taken back any further); far above it, the savings go on falling (their
        limit, no savings, is a single-rate Runge-Kutta method with the micro step) */

@@ -272,7 +272,9 @@ PetscErrorCode TSVSHMMLevelSpectra_Private(TS ts)
    splits write. A scale that is a band of rates (relaxation rates 10 to 1000) has its slowest one
    here, which the level's spectral radius does not show; so has a transport block (a fine
    finite-volume region: its eigenvalues are all fast, but a perturbation crosses the region in
-   the slow time, and the Krylov space sees that as small Ritz values). Made only where it is used:
+   the slow time, and the Krylov space sees that as small Ritz values); so has an oscillation whose
+   amplitude decays or grows slowly (vshmm::slowestRate(): a damping at rate 0.1 of a rotation at
+   1e4 is a slow process inside the fast level, which VSHMM slows with the level). Made only where it is used:
    the separation check and -ts_vshmm_adapt's error model (vshmmadapt.cpp). */
 PetscErrorCode TSVSHMMLevelOwnRates_Private(TS ts)
 {
@@ -299,11 +301,8 @@ PetscErrorCode TSVSHMMLevelOwnRates_Private(TS ts)
     PetscCall(LevelRitzValues(ts, level, ts->ptime, ts->vec_sol, ritz, &finite, mask));
     PetscCall(VecDestroy(&mask));
     if (!finite) continue;
-    double slowest = PETSC_INFINITY, largest = 0;
-    for (const std::complex<double> &lambda : ritz) largest = std::max(largest, std::abs(lambda));
-    for (const std::complex<double> &lambda : ritz)
-      if (std::abs(lambda) > 1e-8 * largest) slowest = std::min(slowest, std::abs(lambda));
-    if (std::isfinite(slowest)) vs->level_slowest[level] = slowest;
+    const double slowest = vshmm::slowestRate(ritz);
+    if (slowest > 0) vs->level_slowest[level] = slowest;
   }
   vs->own_rates_time = vs->spectra_time;
   PetscFunctionReturn(0);

@@ -164,4 +164,33 @@ TEST(LargestStableSavingsFactor, IsTheEdgeOfTheCriterion)
   EXPECT_EQ(vshmm::largestStableSavingsFactor(R, *kernel, 1e-4, savings, subintervals, 0.1, 2, 10.0, target, growth), 0.0);
 }
 
+TEST(SlowestRate, AnOscillationsAmplitudeRateCounts)
+{
+  using C = std::complex<double>;
+  // a relaxation at 100 and a rotation at 1e4 damped at 0.1: the damping is the slow process
+  EXPECT_DOUBLE_EQ(vshmm::slowestRate({C(-100, 0), C(-0.1, 1e4), C(-0.1, -1e4)}), 0.1);
+  // an undamped rotation (a real part at the estimate's noise) changes on its own time scale
+  EXPECT_DOUBLE_EQ(vshmm::slowestRate({C(5e-7, 1e3), C(5e-7, -1e3)}), std::abs(C(5e-7, 1e3)));
+  // a decaying mode: its modulus; zero modes are left out; nothing left: 0
+  EXPECT_DOUBLE_EQ(vshmm::slowestRate({C(-30, 10), C(1e-12, 0), C(-1000, 0)}), std::abs(C(-30, 10)));
+  EXPECT_EQ(vshmm::slowestRate({}), 0.0);
+}
+
+TEST(LargestAccurateStep, KeepsTheAmplitudeOverTheSpan)
+{
+  vshmm::StabilityFunction   R(RK4());
+  const std::complex<double> omega(0, 1e3);
+  // RK4 on a rotation: 1 - |R(iy)| = y^6 / 144 + O(y^8)
+  EXPECT_NEAR(vshmm::amplitudeError(R, omega, 1e-4), std::pow(0.1, 6) / 144, 1e-2 * std::pow(0.1, 6) / 144);
+  EXPECT_EQ(vshmm::amplitudeError(R, std::complex<double>(-50, 0), 1e-3), std::fabs(std::log(std::abs(R(-0.05))) + 0.05));
+  // 2 / h steps (span 2, cycle = h) with at most 1e-2 of amplitude lost in all
+  const double h = vshmm::largestAccurateStep(R, {omega}, 2.5e-3, 2.0, 1e-2);
+  EXPECT_LT(h, 2.5e-3);
+  EXPECT_LE(vshmm::amplitudeError(R, omega, h) * 2.0 / h, 1e-2);
+  EXPECT_GT(vshmm::amplitudeError(R, omega, 1.01 * h) * 2.0 / (1.01 * h), 1e-2);
+  // a bound that already holds is kept; no mode: no bound
+  EXPECT_EQ(vshmm::largestAccurateStep(R, {omega}, 1e-5, 2.0, 1e-2), 1e-5);
+  EXPECT_EQ(vshmm::largestAccurateStep(R, {}, 2.5e-3, 2.0, 1e-2), 2.5e-3);
+}
+
 } // namespace
