@@ -200,6 +200,26 @@ void RotationFast(const void *ctx, PetscReal, const PetscScalar *x, PetscScalar 
   f[2]                    = x[1] / p->eps - p->damping * x[2];
 }
 
+// The same rotation, damped, as the fastest of three levels: y' = -y + z + u^2 (slow {y}),
+// z' = (cos y - z) / 1e-2 (medium {z}), the rotation (fast {u, v}) at 1 / eps^2 = 1e4.
+void TriSlow(const void *, PetscReal, const PetscScalar *x, PetscScalar *f)
+{
+  f[0] = -x[0] + x[1] + x[2] * x[2];
+  f[1] = f[2] = f[3] = 0;
+}
+void TriMedium(const void *, PetscReal, const PetscScalar *x, PetscScalar *f)
+{
+  f[0] = f[2] = f[3] = 0;
+  f[1]               = (std::cos(x[0]) - x[1]) / 1e-2;
+}
+void TriFast(const void *ctx, PetscReal, const PetscScalar *x, PetscScalar *f)
+{
+  const RotationParams *p = (const RotationParams *)ctx;
+  f[0] = f[1] = 0;
+  f[2]        = -x[3] / (p->eps * p->eps) - p->damping * x[2];
+  f[3]        = x[2] / (p->eps * p->eps) - p->damping * x[3];
+}
+
 // y(T) of the rotation problem from (0.5, 1, 0) by RK4 with step h.
 double RotationReference(const RotationParams &params, double T, double h)
 {
@@ -373,6 +393,35 @@ TEST(VSHMMSeparation, ASlowDampingInsideTheFastLevelIsNotSeparated)
   AdaptRun run;
   ASSERT_EQ(SolveRotation("-ts_vshmm_adapt -ts_rtol 1e-2 -ts_atol 1e-2 -ts_vshmm_warnings_viewer none", params, T, &run), 0);
   EXPECT_LE(std::abs(run.x[0] - ref), tol * (1 + std::abs(ref))) << "y(2) = " << run.x[0] << ", reference " << ref;
+}
+
+// The slow damping in the fastest of three levels is slowed by every time ratio, r_0 too: the pair
+// 0/1 is judged by it as well (the slowest own rate of every faster level), and neither pair is
+// separated (the radii alone: 99.5 and 100).
+TEST(VSHMMSeparation, ASlowRateTwoLevelsUpCountsForThePairBelow)
+{
+  RotationParams params;
+  params.eps            = 1e-2;
+  params.damping        = 0.1;
+  const CapturedError e = CaptureError([&] {
+    Guard        guard("-ts_vshmm_micro_dt 1e-5 -ts_vshmm_savings_factors 10,10 -ts_vshmm_check_separation error");
+    SplitProblem p;
+    TS           ts;
+    Vec          x;
+    p.n      = 4;
+    p.terms  = {TriSlow, TriMedium, TriFast};
+    p.params = &params;
+    PetscCall(CreateSplitTS(PETSC_COMM_WORLD, &p, SplitKind::Component, {0.5, 0, 1, 0}, {"slow", "medium", "fast"}, &ts, &x));
+    PetscCall(TSSetTimeStep(ts, 0.1));
+    PetscCall(TSSetMaxTime(ts, 0.1));
+    PetscCall(TSSetFromOptions(ts));
+    const PetscErrorCode ierr = TSSolve(ts, x);
+    PetscCall(DestroySplitTS(&p, &ts, &x));
+    return ierr;
+  });
+  EXPECT_EQ(e.code, PETSC_ERR_ARG_INCOMP);
+  EXPECT_NE(e.message.find("levels 0/1: 0.1 (spectral radius 1, slowest rate of level 2's own components 0.1)"), std::string::npos) << e.message;
+  EXPECT_NE(e.message.find("levels 1/2: 0.001"), std::string::npos) << e.message;
 }
 
 // Tolerance in, accuracy out: the sampled slow variable is within the tolerance of the converged
