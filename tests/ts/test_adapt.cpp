@@ -1,7 +1,6 @@
 // PETSc-level tests of the accuracy control (-ts_vshmm_adapt) and the separation check.
 #include <gtest/gtest.h>
 
-#include <array>
 #include <cmath>
 #include <numeric>
 
@@ -120,29 +119,42 @@ void BandFast(const void *, PetscReal, const PetscScalar *x, PetscScalar *f)
   for (int i = 1; i <= kBand; ++i) f[i] = 10.0 * std::pow(10.0, 0.5 * (i - 1)) * (0.5 * x[0] - x[i]);
 }
 
-// x(t) of the band problem by RK4 with step h from x = 1, y_i = 1/2 (on the slow manifold).
-double BandReference(double T, double h)
+// x[0] at T of x' = sum of the terms (with params) from x by RK4 with step h.
+double Rk4Reference(const std::vector<SplitProblem::Term> &terms, const void *params, std::vector<double> x, double T, double h)
 {
-  std::vector<double> x(kBand + 1, 0.5), k[4], y(kBand + 1), f(kBand + 1), g(kBand + 1);
-  x[0]     = 1;
-  auto rhs = [&](const std::vector<double> &z, std::vector<double> &out) {
-    BandSlow(nullptr, 0, z.data(), f.data());
-    BandFast(nullptr, 0, z.data(), g.data());
-    for (int i = 0; i <= kBand; ++i) out[i] = f[i] + g[i];
+  const size_t        n = x.size();
+  std::vector<double> k[4], y(n), f(n);
+  auto                rhs = [&](const std::vector<double> &z, std::vector<double> &out) {
+    out.assign(n, 0.0);
+    for (SplitProblem::Term term : terms) {
+      term(params, 0, z.data(), f.data());
+      for (size_t i = 0; i < n; ++i) out[i] += f[i];
+    }
   };
-  const long n = std::lround(T / h);
-  for (int j = 0; j < 4; ++j) k[j].resize(kBand + 1);
-  for (long s = 0; s < n; ++s) {
+  const long steps = std::lround(T / h);
+  for (long s = 0; s < steps; ++s) {
     rhs(x, k[0]);
-    for (int i = 0; i <= kBand; ++i) y[i] = x[i] + 0.5 * h * k[0][i];
+    for (size_t i = 0; i < n; ++i) y[i] = x[i] + 0.5 * h * k[0][i];
     rhs(y, k[1]);
-    for (int i = 0; i <= kBand; ++i) y[i] = x[i] + 0.5 * h * k[1][i];
+    for (size_t i = 0; i < n; ++i) y[i] = x[i] + 0.5 * h * k[1][i];
     rhs(y, k[2]);
-    for (int i = 0; i <= kBand; ++i) y[i] = x[i] + h * k[2][i];
+    for (size_t i = 0; i < n; ++i) y[i] = x[i] + h * k[2][i];
     rhs(y, k[3]);
-    for (int i = 0; i <= kBand; ++i) x[i] += h / 6 * (k[0][i] + 2 * k[1][i] + 2 * k[2][i] + k[3][i]);
+    for (size_t i = 0; i < n; ++i) x[i] += h / 6 * (k[0][i] + 2 * k[1][i] + 2 * k[2][i] + k[3][i]);
   }
   return x[0];
+}
+
+// x(t) of the band problem by RK4 with step h from x = 1, y_i = 1/2 (on the slow manifold).
+std::vector<double> BandInitial()
+{
+  std::vector<double> x0(kBand + 1, 0.5);
+  x0[0] = 1;
+  return x0;
+}
+double BandReference(double T, double h)
+{
+  return Rk4Reference({BandSlow, BandFast}, nullptr, BandInitial(), T, h);
 }
 
 PetscErrorCode X0Observable(TS, PetscReal, Vec X, PetscReal q[], void *ctx)
@@ -155,19 +167,17 @@ PetscErrorCode X0Observable(TS, PetscReal, Vec X, PetscReal q[], void *ctx)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SolveBand(const char *options, PetscReal DeltaT, PetscReal T, AdaptRun *run)
+// Solves p (component splits `names`) from x0 with the sampling interval DeltaT to T, x[0] the
+// observable of -ts_vshmm_adapt.
+PetscErrorCode SolveObservingX0(const char *options, SplitProblem &p, const std::vector<PetscReal> &x0, const std::vector<std::string> &names, PetscReal DeltaT, PetscReal T, AdaptRun *run)
 {
-  Guard        guard(options);
-  SplitProblem p;
-  TS           ts;
-  Vec          x;
+  Guard guard(options);
+  TS    ts;
+  Vec   x;
 
   PetscFunctionBeginUser;
-  p.n     = kBand + 1;
-  p.terms = {BandSlow, BandFast};
-  std::vector<PetscReal> x0(kBand + 1, 0.5);
-  x0[0] = 1;
-  PetscCall(CreateSplitTS(PETSC_COMM_WORLD, &p, SplitKind::Component, x0, {"slow", "fast"}, &ts, &x));
+  p.n = (PetscInt)x0.size();
+  PetscCall(CreateSplitTS(PETSC_COMM_WORLD, &p, SplitKind::Component, x0, names, &ts, &x));
   PetscCall(TSSetTimeStep(ts, DeltaT));
   PetscCall(TSSetMaxTime(ts, T));
   PetscCall(TSVSHMMSetObservables(ts, 1, X0Observable, &p));
@@ -178,6 +188,13 @@ PetscErrorCode SolveBand(const char *options, PetscReal DeltaT, PetscReal T, Ada
   run->evaluations = std::accumulate(run->stats.rhs_evaluations, run->stats.rhs_evaluations + run->stats.nsplits, (PetscInt64)0);
   PetscCall(DestroySplitTS(&p, &ts, &x));
   PetscFunctionReturn(0);
+}
+
+PetscErrorCode SolveBand(const char *options, PetscReal DeltaT, PetscReal T, AdaptRun *run)
+{
+  SplitProblem p;
+  p.terms = {BandSlow, BandFast};
+  return SolveObservingX0(options, p, BandInitial(), {"slow", "fast"}, DeltaT, T, run);
 }
 
 // A slow variable driven by the energy of a fast rotation: y' = -y + u^2 + 0.3 sin(y),
@@ -223,48 +240,15 @@ void TriFast(const void *ctx, PetscReal, const PetscScalar *x, PetscScalar *f)
 // y(T) of the rotation problem from (0.5, 1, 0) by RK4 with step h.
 double RotationReference(const RotationParams &params, double T, double h)
 {
-  std::array<double, 3> x   = {0.5, 1, 0}, k[4], y, f, g;
-  auto                  rhs = [&](const std::array<double, 3> &z, std::array<double, 3> &out) {
-    RotationSlow(&params, 0, z.data(), f.data());
-    RotationFast(&params, 0, z.data(), g.data());
-    for (int i = 0; i < 3; ++i) out[i] = f[i] + g[i];
-  };
-  const long n = std::lround(T / h);
-  for (long s = 0; s < n; ++s) {
-    rhs(x, k[0]);
-    for (int i = 0; i < 3; ++i) y[i] = x[i] + 0.5 * h * k[0][i];
-    rhs(y, k[1]);
-    for (int i = 0; i < 3; ++i) y[i] = x[i] + 0.5 * h * k[1][i];
-    rhs(y, k[2]);
-    for (int i = 0; i < 3; ++i) y[i] = x[i] + h * k[2][i];
-    rhs(y, k[3]);
-    for (int i = 0; i < 3; ++i) x[i] += h / 6 * (k[0][i] + 2 * k[1][i] + 2 * k[2][i] + k[3][i]);
-  }
-  return x[0];
+  return Rk4Reference({RotationSlow, RotationFast}, &params, {0.5, 1, 0}, T, h);
 }
 
 PetscErrorCode SolveRotation(const char *options, const RotationParams &params, PetscReal T, AdaptRun *run)
 {
-  Guard        guard(options);
   SplitProblem p;
-  TS           ts;
-  Vec          x;
-
-  PetscFunctionBeginUser;
-  p.n      = 3;
   p.terms  = {RotationSlow, RotationFast};
   p.params = &params;
-  PetscCall(CreateSplitTS(PETSC_COMM_WORLD, &p, SplitKind::Component, {0.5, 1, 0}, {"slow", "fast"}, &ts, &x));
-  PetscCall(TSSetTimeStep(ts, 0.1));
-  PetscCall(TSSetMaxTime(ts, T));
-  PetscCall(TSVSHMMSetObservables(ts, 1, X0Observable, &p));
-  PetscCall(TSSetFromOptions(ts));
-  PetscCall(TSSolve(ts, x));
-  PetscCall(GatherState(&p, x, run->x));
-  PetscCall(TSVSHMMGetStatistics(ts, &run->stats));
-  run->evaluations = std::accumulate(run->stats.rhs_evaluations, run->stats.rhs_evaluations + run->stats.nsplits, (PetscInt64)0);
-  PetscCall(DestroySplitTS(&p, &ts, &x));
-  PetscFunctionReturn(0);
+  return SolveObservingX0(options, p, {0.5, 1, 0}, {"slow", "fast"}, 0.1, T, run);
 }
 
 // First-order upwind advection (a = 1, periodic) on [0, 1) with 16 coarse cells (h = 1/20) and, in
