@@ -339,6 +339,7 @@ PetscErrorCode TSVSHMMAdaptSetUp_Private(TS ts)
   if (vs->spectra_time != ts->ptime || (PetscInt)vs->level_radius.size() != nscales) PetscCall(TSVSHMMLevelSpectra_Private(ts));
   const PetscReal DeltaT = ts->time_step, tol = PetscMax(PetscMax(ts->rtol, ts->atol), 1e-12);
   const PetscReal rho = vs->level_radius[K];
+  vs->adapt_tstart    = ts->ptime; /* the error budget and the micro step's amplitude bound run from here */
 
   vshmm::AdaptParameters &p = vs->adapt_params;
   if (vs->micro_dt > 0) p.microStep = vs->micro_dt;
@@ -375,9 +376,14 @@ PetscErrorCode TSVSHMMAdaptSetUp_Private(TS ts)
   LimitToStableSteps(ts, p);
   const vshmm::AdaptBounds b = Bounds(ts, DeltaT);
   vshmm::fitCycle(p, b.maxCycle, b.fixedRatios, true); /* enough cycles per macro step */
+  if (vs->micro_dt > 0) {                              /* a micro step the user set is kept: said where it damps the fastest oscillation beyond the tolerance */
+    const PetscReal dtOk = AccurateMicroStep(ts, p, vs->micro_dt);
+    if (dtOk < 0.999 * vs->micro_dt)
+      PetscCall(TSVSHMMWarn_Private(ts, "TSVSHMM warning (-ts_vshmm_adapt): the micro step set (-ts_vshmm_micro_dt %g) loses more than the tolerance %g of the amplitude of the fastest scale's oscillation (frequency %g) over the run, and the error estimate cannot see that loss (the energy leaves every comparison too). A micro step of at most %g keeps it; leave the micro step to -ts_vshmm_adapt.\n",
+                                    (double)vs->micro_dt, (double)(kOscillationShare * tol), (double)vs->level_radius[K], (double)dtOk));
+  }
   vs->savings_used   = vshmm::savingsFromTimeRatios(p.ratios);
   vs->adapt_model    = vshmm::ErrorModel();
-  vs->adapt_tstart   = ts->ptime;
   vs->adapt_ready    = PETSC_TRUE;
   vs->error_estimate = vs->error_estimate_total = 0;
   vs->adapt_signed.clear();

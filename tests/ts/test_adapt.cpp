@@ -355,6 +355,27 @@ TEST(VSHMMAdapt, AFastRotationKeepsItsEnergy)
   }
 }
 
+// A micro step the user sets is kept, but where it damps the fast rotation beyond the tolerance
+// over the run (omega dt = 2.5: half the amplitude per step) the user is told at set-up; a micro
+// step within the bound raises nothing.
+TEST(VSHMMAdapt, AUserMicroStepThatDampsTheRotationIsWarnedOf)
+{
+  const RotationParams params;
+  PetscMPIInt          rank;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  const char *warning = "TSVSHMM warning (-ts_vshmm_adapt): the micro step set (-ts_vshmm_micro_dt 0.0025) loses more than the tolerance 0.1 of the amplitude of the fastest scale's oscillation (frequency 1000.";
+  for (const char *dt : {"0.0025", "2e-05"}) {
+    const std::string options = std::string("-ts_vshmm_adapt -ts_rtol 1e-1 -ts_atol 1e-1 -ts_vshmm_micro_dt ") + dt;
+    AdaptRun          run;
+    testing::internal::CaptureStderr();
+    const PetscErrorCode ierr = SolveRotation(options.c_str(), params, 0.2, &run);
+    const std::string    err  = testing::internal::GetCapturedStderr();
+    ASSERT_EQ(ierr, 0) << options;
+    if (rank == 0 && std::string(dt) == "0.0025") EXPECT_NE(err.find(warning), std::string::npos) << err;
+    else EXPECT_EQ(err.find("micro step set"), std::string::npos) << options << ": " << err;
+  }
+}
+
 // A slow process inside the fast level (the rotation damped at rate 0.1, slower than the slow
 // variable's rate 1): VSHMM slows it with the level, by the savings. The levels' spectral radii
 // are 1000 apart, but the separation check sees the amplitude's rate among the fast level's own
