@@ -235,6 +235,13 @@ vshmm_example_test(NAME spectral_auto_zero_tuning_first_steps16 EXE diffusion
                    ARGS -spectral_grid_points 512 ${_sp_auto} -output_times 0.125,0.25 -ts_type vshmm -ts_vshmm_adapt -ts_rtol 1e-2 -ts_atol 1e-2 -spectral_cluster_detect_first_steps 16
                         -compare_grid_solution ${_sp_dir}/spectral_auto_dns_ref/dns -compare_tolerance 1e-2 -no_timing
                    REGEX "K1 = {28..36,61..67,92..100,125..131}.*detection dns_steps 64 evaluations 193\n.*output t 0.25 rhs_evaluations 254 .*compare t 0.25 relative_l2_error")
+# The same with the detection ended by two agreeing looks instead of three
+# (-spectral_cluster_detect_agreeing_looks 2): on this scene the looks at 64 and 128 steps agree
+# and give the clusters of the default, at 385 evaluations instead of 769; the run is the same.
+vshmm_example_test(NAME spectral_auto_zero_tuning_agreeing_looks2 EXE diffusion
+                   ARGS -spectral_grid_points 512 ${_sp_auto} -output_times 0.125,0.25 -ts_type vshmm -ts_vshmm_adapt -ts_rtol 1e-2 -ts_atol 1e-2 -spectral_cluster_detect_agreeing_looks 2
+                        -compare_grid_solution ${_sp_dir}/spectral_auto_dns_ref/dns -compare_tolerance 1e-2 -no_timing
+                   REGEX "K1 = {28..36,61..67,92..100,125..131}.*detection dns_steps 128 evaluations 385\n.*output t 0.25 rhs_evaluations 254 .*compare t 0.25 relative_l2_error")
 # Tolerance 1e-3 on the same scene. The examples give TSVSHMM the clusters' separations
 # (VSHMMSpectralGetScaleSeparations(): the rate of K1's slowest mode is 12.6x that of K0's
 # fastest, where the spectral radii are hundreds of times apart), so adapt's error model sees the
@@ -266,7 +273,7 @@ vshmm_example_test(NAME spectral_auto_zero_tuning_tol1e-3_np2 EXE diffusion NP 2
                    REGEX "K1 = {27..37,60..68,92..100,124..132,159,189..195,222..226}: 51 wavenumbers.*scale separations [(]set, TSVSHMMSetScaleSeparations[(][)][)]: 12.64[0-9]*
 .*compare t 0.25 relative_l2_error")
 set_tests_properties(spectral_auto_dns_ref PROPERTIES FIXTURES_SETUP spectral_auto_ref LABELS "example;spectral")
-set_tests_properties(spectral_auto_zero_tuning spectral_auto_zero_tuning_first_steps16 spectral_auto_zero_tuning_tol1e-3 spectral_auto_zero_tuning_tol1e-3_np2 spectral_auto_adapt_micro_step_tol1e-3 PROPERTIES FIXTURES_REQUIRED spectral_auto_ref LABELS "example;spectral")
+set_tests_properties(spectral_auto_zero_tuning spectral_auto_zero_tuning_first_steps16 spectral_auto_zero_tuning_agreeing_looks2 spectral_auto_zero_tuning_tol1e-3 spectral_auto_zero_tuning_tol1e-3_np2 spectral_auto_adapt_micro_step_tol1e-3 PROPERTIES FIXTURES_REQUIRED spectral_auto_ref LABELS "example;spectral")
 set_tests_properties(spectral_detect_dns_small spectral_detect_initial_buffers PROPERTIES LABELS "example;spectral")
 # The paper's advection scene (advection_auto.yaml, N = 1024): the detection DNS's bands grow
 # around the harmonics of a's wavenumbers 64 and 256 (8 bands at t = 0.20, 0.41, 0.81: 64, 128,
@@ -444,6 +451,7 @@ function(_spectral_error_test name regex)
 endfunction()
 _spectral_error_test(unknown_term "Unknown term 'convection' in -spectral_terms: the known terms are diffusion" -spectral_terms diffusion,convection)
 _spectral_error_test(detect_first_steps "-spectral_cluster_detect_first_steps must be in 1..-spectral_cluster_detect_max_steps \\(32768\\), got 0" -spectral_grid_points 64 -spectral_cluster_detect_first_steps 0 -output_times 0.001)
+_spectral_error_test(detect_agreeing_looks "-spectral_cluster_detect_agreeing_looks must be at least 2 \\(looks in a row whose clusters agree\\), got 1" -spectral_grid_points 64 -spectral_cluster_detect_agreeing_looks 1 -output_times 0.001)
 _spectral_error_test(vshmm_mode_dns "-ts_type vshmm needs the scene's time scales as clusters, but the scene is in mode dns" -spectral_grid_points 64 -spectral_mode dns -ts_type vshmm -output_times 0.001)
 _spectral_error_test(empty_clusters "-spectral_clusters is given without a value" -spectral_mode sparse -spectral_clusters "")
 _spectral_error_test(overlapping_clusters "clusters K0 and K1 overlap: both contain wavenumber 2" -spectral_mode sparse -spectral_clusters 0:3,2:5)

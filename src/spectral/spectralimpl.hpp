@@ -123,6 +123,7 @@ struct VSHMMSpectral_Data {
   PetscReal                detect_dt          = 0;
   PetscInt                 detect_max_steps   = 32768;
   PetscInt                 detect_first_steps = 64;   /* steps before the first automatic look (then doubled) */
+  PetscInt                 detect_agreeing    = 3;    /* automatic looks in a row that agree end the detection */
   PetscReal                cluster_tol        = 1e-2; /* merged bands are undone if what the merge adds holds at most this of ||u|| */
   VSHMMSpectralProjection  projection         = VSHMMSPECTRAL_PROJECTION_AUTO;
   VSHMMSpectralEvaluation  evaluation         = VSHMMSPECTRAL_EVALUATION_FFT;

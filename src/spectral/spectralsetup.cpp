@@ -176,7 +176,8 @@ static std::vector<PetscReal> ClusterSeparations(const std::vector<std::vector<P
    options prefix <prefix>spectral_cluster_detect_: at -spectral_cluster_detect_times, or (none
    given) the largest |c_k| over every step, looked at after 64, 128, 256, ... steps
    (-spectral_cluster_detect_first_steps, then doubled) until its
-   clusters agree three times in a row (two doublings of the time bring nothing new) or
+   clusters agree three times in a row (two doublings of the time bring nothing new;
+   -spectral_cluster_detect_agreeing_looks) or
    -spectral_cluster_detect_max_steps is reached. Looks agree when their clusters are the same,
    or when the bands of the first of them only widened at their edges by wavenumbers that hold at
    most -spectral_cluster_tolerance of ||u|| (root mean square over the steps so far); the last
@@ -279,7 +280,7 @@ static PetscErrorCode DetectionDNS(VSHMMSpectral sp, DetectCtx *dctx, const std:
       last      = cs;
       last_peak = mags[0];
       last_t    = t;
-      if (same >= 2) {
+      if (same >= s->detect_agreeing - 1) {
         s->detection.widened = widened;
         break;
       }
