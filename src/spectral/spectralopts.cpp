@@ -214,6 +214,8 @@ static PetscErrorCode CheckOptions(VSHMMSpectral sp)
   PetscCheck(std::isfinite(s->scale_separation) && s->scale_separation >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%sspectral_cluster_scale_separation must be finite and nonnegative, got %g", pre, (double)s->scale_separation);
   PetscCheck(std::isfinite(s->cluster_tol) && s->cluster_tol >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%sspectral_cluster_tolerance must be finite and nonnegative (0: merged bands are kept merged), got %g", pre, (double)s->cluster_tol);
   PetscCheck(s->detect_max_steps >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%sspectral_cluster_detect_max_steps must be positive, got %" PetscInt_FMT, pre, s->detect_max_steps);
+  PetscCheck(std::isfinite(s->min_band_share) && s->min_band_share >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%sspectral_cluster_min_band_share must be finite and nonnegative (a fraction of -spectral_cluster_tolerance; 0: every band is kept), got %g", pre,
+             (double)s->min_band_share);
   PetscCheck(s->detect_agreeing >= 2, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%sspectral_cluster_detect_agreeing_looks must be at least 2 (looks in a row whose clusters agree), got %" PetscInt_FMT, pre, s->detect_agreeing);
   PetscCheck(s->detect_first_steps >= 1 && s->detect_first_steps <= s->detect_max_steps, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%sspectral_cluster_detect_first_steps must be in 1..-%sspectral_cluster_detect_max_steps (%" PetscInt_FMT "), got %" PetscInt_FMT, pre, pre, s->detect_max_steps, s->detect_first_steps);
   for (PetscInt b : s->buffers) PetscCheck(b >= 0 && b <= s->N / 2, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%sspectral_cluster_buffers: a buffer width must be in 0..N/2 = %" PetscInt_FMT ", got %" PetscInt_FMT, pre, s->N / 2, b);
@@ -253,6 +255,7 @@ static PetscErrorCode CheckOptions(VSHMMSpectral sp)
 .  -spectral_cluster_fill_holes <bool> - a detected cluster holds every wavenumber between its lowest and highest (default true)
 .  -spectral_cluster_detect_max_steps <n> - step limit of the detection DNS with automatic snapshots (default 32768)
 .  -spectral_cluster_detect_first_steps <n> - steps of the detection DNS before its first look, then doubled (default 64; 16 cuts the detection 4x where the clusters show early)
+.  -spectral_cluster_min_band_share <f> - the automatic detection DNS leaves out its highest bands (the stiffest: they set the micro step), from the top down, while each holds less than f times -spectral_cluster_tolerance of ||u|| (default 0: every band is kept; 0.05 halved the work of diffusion scenes at 1e-3 but lost the paper's advection at 1e-2)
 .  -spectral_cluster_detect_agreeing_looks <n> - the detection ends when this many looks in a row agree (default 3: two doublings of the time bring nothing new; 2 halves the detection, at the risk of narrower clusters)
 .  -spectral_cluster_tolerance <tol> - when the detection DNS's bands merge and the wavenumbers that merged them hold at most tol of ||u||, keep the bands before the merge (default 1e-2; the examples pass -ts_rtol)
 .  -spectral_cluster_buffers <b0,b1,...> - buffer widths added around the clusters (one value or one per cluster)
@@ -311,6 +314,7 @@ PetscErrorCode VSHMMSpectralSetFromOptions(VSHMMSpectral sp)
   PetscCall(PetscOptionsBool("-spectral_cluster_fill_holes", "a detected cluster holds every wavenumber between its ends", "VSHMMSpectralSetFromOptions", s->fill_holes, &s->fill_holes, NULL));
   PetscCall(OptionsInt(PetscOptionsObject, sp, "-spectral_cluster_detect_max_steps", "step limit of the detection DNS with automatic snapshots", &s->detect_max_steps));
   PetscCall(OptionsInt(PetscOptionsObject, sp, "-spectral_cluster_detect_first_steps", "steps of the detection DNS before its first automatic look (then doubled)", &s->detect_first_steps));
+  PetscCall(OptionsReal(PetscOptionsObject, sp, "-spectral_cluster_min_band_share", "automatic detection DNS: its highest bands are left out, from the top down, while each holds less than this times -spectral_cluster_tolerance of ||u|| (0: none)", &s->min_band_share));
   PetscCall(OptionsInt(PetscOptionsObject, sp, "-spectral_cluster_detect_agreeing_looks", "the detection DNS ends when this many automatic looks in a row agree", &s->detect_agreeing));
   PetscCall(OptionsReal(PetscOptionsObject, sp, "-spectral_cluster_tolerance", "automatic detection DNS: when bands merge and the wavenumbers that merged them hold at most this share of ||u||, the bands before the merge are kept (VSHMMSpectralSetClusterTolerance())", &s->cluster_tol));
   PetscCall(OptionsIntList(PetscOptionsObject, sp, "-spectral_cluster_buffers", "buffer widths around the clusters (one, or one per cluster)", s->buffers, &set));

@@ -295,7 +295,20 @@ static PetscErrorCode DetectionDNS(VSHMMSpectral sp, DetectCtx *dctx, const std:
     std::vector<int> support;
     spc::ClusterSet  cs;
     PetscCall(ClustersOf(sp, mags, s->norm, VSHMMSpectralLambda(s), support, &cs));
-    s->detection.left_out = spc::shareOutside(cs, dctx->mean());
+    const std::vector<double> mean = dctx->mean();
+    if (s->min_band_share > 0) { /* the top bands (here each band is a cluster of its own) that hold too little to matter: the stiffest modes, they set the micro step */
+      std::ostringstream                dropped;
+      const std::vector<spc::BandShare> bands = spc::bandShares(cs, mean);
+      for (size_t i = bands.size(); i-- > 0;) {
+        const spc::BandShare &b = bands[i];
+        if (i == 0 || !(b.share < s->min_band_share * s->cluster_tol)) break; /* the slowest band stays */
+        for (int k = b.lo; k <= b.hi; ++k) mags[0][k] = 0;                    /* the later thresholding no longer sees it */
+        dropped << (dropped.tellp() > 0 ? ", " : "") << b.lo << ".." << b.hi << " (" << b.share << ")";
+      }
+      s->detection.dropped = dropped.str();
+      if (!s->detection.dropped.empty()) PetscCall(ClustersOf(sp, mags, s->norm, VSHMMSpectralLambda(s), support, &cs));
+    }
+    s->detection.left_out = spc::shareOutside(cs, mean);
   }
   PetscCall(TSDestroy(&ts));
   PetscCall(VecDestroy(&U));

@@ -421,6 +421,28 @@ TEST(Detect, ShareOutside)
   EXPECT_THROW(shareOutside(ClusterSet::parse("0:1", N), std::vector<double>(5, 0.0)), std::invalid_argument);
 }
 
+// Each run of consecutive wavenumbers of the clusters is a band, with its share of ||u||.
+TEST(Detect, BandShares)
+{
+  const int           N = 16;
+  std::vector<double> m(N / 2 + 1, 0.0);
+  m[0] = 0.6, m[1] = 0.1, m[2] = 0.2, m[5] = 0.03, m[6] = 0.04, m[8] = 0.1;
+  const std::vector<BandShare> bands = bandShares(ClusterSet::parse("0:2,5:6+8", N), m);
+  ASSERT_EQ(bands.size(), 3u);
+  EXPECT_EQ(bands[0].cluster, 0);
+  EXPECT_EQ(bands[0].lo, 0);
+  EXPECT_EQ(bands[0].hi, 2);
+  EXPECT_NEAR(bands[0].share, std::sqrt(0.36 + 2 * 0.01 + 2 * 0.04), 1e-15);
+  EXPECT_EQ(bands[1].cluster, 1);
+  EXPECT_EQ(bands[1].lo, 5);
+  EXPECT_EQ(bands[1].hi, 6);
+  EXPECT_NEAR(bands[1].share, std::sqrt(2 * 0.0009 + 2 * 0.0016), 1e-15);
+  EXPECT_EQ(bands[2].cluster, 1);
+  EXPECT_EQ(bands[2].lo, 8);
+  EXPECT_NEAR(bands[2].share, 0.1, 1e-15); // k = N/2 once
+  EXPECT_THROW(bandShares(ClusterSet::parse("0:1", N), std::vector<double>(5, 0.0)), std::invalid_argument);
+}
+
 // Bands that only widen (the diffadv scene's looks at 64 and 256 steps) against a new band, a
 // vanished band, a merge; the share of the added wavenumbers (k = 0 and N/2 once).
 TEST(Detect, BandsWidened)

@@ -166,6 +166,23 @@ double shareOutside(const ClusterSet &clusters, const std::vector<double> &m)
   return std::sqrt(out);
 }
 
+std::vector<BandShare> bandShares(const ClusterSet &clusters, const std::vector<double> &m)
+{
+  if ((int)m.size() != maxWavenumber(clusters.N) + 1) throw std::invalid_argument("the mean spectrum has the wrong number of wavenumbers");
+  std::vector<BandShare> bands;
+  for (size_t c = 0; c < clusters.clusters.size(); ++c) {
+    const std::vector<int> &K = clusters.clusters[c];
+    for (size_t i0 = 0, i = 1; i <= K.size(); ++i)
+      if (i == K.size() || K[i] != K[i - 1] + 1) {
+        double sum = 0;
+        for (size_t j = i0; j < i; ++j) sum += (isRealOnly(clusters.N, K[j]) ? 1.0 : 2.0) * m[K[j]] * m[K[j]];
+        bands.push_back({(int)c, K[i0], K[i - 1], std::sqrt(sum)});
+        i0 = i;
+      }
+  }
+  return bands;
+}
+
 bool bandsWidened(const ClusterSet &before, const ClusterSet &now)
 {
   if (before.size() != now.size()) return false;

@@ -69,6 +69,15 @@ bool bandsMerged(const ClusterSet &before, const ClusterSet &now);
 // |c_k| / ||u|| (so that the sum over every k is 1). Throws if m does not have N/2 + 1 values.
 double shareOutside(const ClusterSet &clusters, const std::vector<double> &m);
 
+// The bands of the clusters (their runs of consecutive wavenumbers), slowest first, each with its
+// share of ||u||: sqrt(sum over its k of w_k m_k^2), w_k and m as in shareOutside(). Throws if m
+// does not have N/2 + 1 values.
+struct BandShare {
+  int    cluster = 0, lo = 0, hi = 0;
+  double share = 0;
+};
+std::vector<BandShare> bandShares(const ClusterSet &clusters, const std::vector<double> &m);
+
 // Whether the bands only widened between two looks at a growing support: `now` has as many bands
 // as `before` and band j of `now` shares a wavenumber with band j of `before` (no band appeared,
 // vanished or merged).
