@@ -275,7 +275,9 @@ PetscErrorCode TSVSHMMLevelSpectra_Private(TS ts)
    the slow time, and the Krylov space sees that as small Ritz values); so has an oscillation whose
    amplitude decays or grows slowly (vshmm::slowestRate(): a damping at rate 0.1 of a rotation at
    1e4 is a slow process inside the fast level, which VSHMM slows with the level). Made only where it is used:
-   the separation check and -ts_vshmm_adapt's error model (vshmmadapt.cpp). */
+   the separation check and -ts_vshmm_adapt's error model (vshmmadapt.cpp). With them, each level's
+   share of the state norm (its own components'), by which the micro step's amplitude bound weighs
+   the fastest level's oscillations. */
 PetscErrorCode TSVSHMMLevelOwnRates_Private(TS ts)
 {
   TS_VSHMM                         *vs      = (TS_VSHMM *)ts->data;
@@ -286,10 +288,27 @@ PetscErrorCode TSVSHMMLevelOwnRates_Private(TS ts)
   if (vs->own_rates_time == vs->spectra_time && (PetscInt)vs->level_slowest.size() == nscales) PetscFunctionReturn(0);
   const StabilityCounting counting(vs);
   vs->level_slowest.assign(nscales, 0.0);
+  vs->level_share.assign(nscales, 1.0);
   for (PetscInt level = 1; level < nscales; ++level) {
     PetscBool component = PETSC_TRUE;
     for (PetscInt k = vs->level_end[level - 1]; k < vs->level_end[level]; ++k) component = vs->splits[k].additive ? PETSC_FALSE : component;
-    if (!component) continue;
+    if (!component) {          /* additive splits: the fastest level's part of the state as its field sees it, ||G_K(X)|| / (rho_K ||X||) (the stiffest modes count fully) */
+      bool oscillates = false; /* used by -ts_vshmm_adapt's micro step bound only, for oscillating modes */
+      if ((PetscInt)vs->level_limiting.size() > level)
+        for (const std::complex<double> &lambda : vs->level_limiting[level]) oscillates = oscillates || std::abs(lambda.imag()) > std::abs(lambda.real());
+      if (vs->adapt && oscillates && level == nscales - 1 && (PetscInt)vs->level_radius.size() > level && vs->level_radius[level] > 0) {
+        Vec       G;
+        PetscReal n_g, n_all;
+        PetscCall(VecDuplicate(ts->vec_sol, &G));
+        PetscCall(TSVSHMMEvaluateLevel_Private(vs, level, ts->ptime, ts->vec_sol, G));
+        PetscCall(VecNorm(G, NORM_2, &n_g));
+        PetscCall(VecNorm(ts->vec_sol, NORM_2, &n_all));
+        PetscCall(VecDestroy(&G));
+        if (n_all > 0 && std::isfinite(n_g)) vs->level_share[level] = PetscMin(1.0, n_g / (vs->level_radius[level] * n_all));
+        PetscCall(PetscInfo(ts, "Level %" PetscInt_FMT " (additive splits) at t = %g: %g of the state norm by its field\n", level, (double)ts->ptime, (double)vs->level_share[level]));
+      }
+      continue;
+    }
     Vec mask; /* 1 on the components the level's new splits write, added as their outputs are */
     PetscCall(VecDuplicate(ts->vec_sol, &mask));
     PetscCall(VecSet(mask, 0.0));
@@ -299,10 +318,21 @@ PetscErrorCode TSVSHMMLevelOwnRates_Private(TS ts)
     }
     PetscBool finite = PETSC_FALSE;
     PetscCall(LevelRitzValues(ts, level, ts->ptime, ts->vec_sol, ritz, &finite, mask));
+    { /* the level's part of the state (its own components') */
+      Vec       own;
+      PetscReal n_own, n_all;
+      PetscCall(VecDuplicate(ts->vec_sol, &own));
+      PetscCall(VecPointwiseMult(own, mask, ts->vec_sol));
+      PetscCall(VecNorm(own, NORM_2, &n_own));
+      PetscCall(VecNorm(ts->vec_sol, NORM_2, &n_all));
+      PetscCall(VecDestroy(&own));
+      if (n_all > 0 && std::isfinite(n_own)) vs->level_share[level] = PetscMin(1.0, n_own / n_all);
+    }
     PetscCall(VecDestroy(&mask));
     if (!finite) continue;
     const double slowest = vshmm::slowestRate(ritz);
     if (slowest > 0) vs->level_slowest[level] = slowest;
+    PetscCall(PetscInfo(ts, "Own components of level %" PetscInt_FMT " at t = %g: slowest rate %g, %g of the state norm\n", level, (double)ts->ptime, (double)vs->level_slowest[level], (double)vs->level_share[level]));
   }
   vs->own_rates_time = vs->spectra_time;
   PetscFunctionReturn(0);
