@@ -118,7 +118,7 @@ double slowestRate(const std::vector<std::complex<double>> &modes)
   for (const std::complex<double> &lambda : modes) {
     const double size = std::abs(lambda), re = std::fabs(lambda.real());
     if (!(size > 1e-8 * largest)) continue;
-    const bool amplitude = std::fabs(lambda.imag()) > re && re > kAmplitudeRateNoise * size;
+    const bool amplitude = oscillates(lambda) && re > kAmplitudeRateNoise * size;
     slowest              = std::min(slowest, amplitude ? re : size);
   }
   return std::isfinite(slowest) ? slowest : 0.0;

@@ -49,6 +49,12 @@ struct LevelAmplification {
 };
 LevelAmplification levelAmplification(const StabilityFunction &R, const MesoscopicSchedule &schedule, double macroStep, int level, std::complex<double> lambda);
 
+// Whether the mode y' = lambda y oscillates (|Im lambda| > |Re lambda|) rather than only decays or grows.
+inline bool oscillates(std::complex<double> lambda)
+{
+  return std::abs(lambda.imag()) > std::abs(lambda.real());
+}
+
 // The slowest rate of a level's modes: |lambda| for each mode, except that an oscillation whose
 // amplitude changes (|Im| > |Re| > kAmplitudeRateNoise |lambda|) changes on the time scale of its
 // amplitude, |Re lambda|. Modes below 1e-8 of the largest |lambda| (zero modes) are not counted;

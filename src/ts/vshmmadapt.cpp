@@ -133,9 +133,10 @@ static PetscErrorCode TrialStep(TS ts, const vshmm::AdaptParameters &p, PetscRea
    it (RK4 at |lambda| dt = 2.5 takes half its amplitude per step), and once the fast energy is gone
    from the run and from its comparisons alike, no estimate sees the error it leaves in the slow
    quantities (a slow variable driven by the fast energy, u' = -v/eps, v' = u/eps, y' = -y + u^2).
-   The amplitude error counts with the level's part of the state norm (component splits; all of it
-   for additive ones): the stiffest wavenumbers of a sparse spectral scene hold 1e-3 of ||u||, and
-   their damping is not the answer's error. dtMax where the fastest level has no oscillating mode. */
+   The amplitude error counts with the level's part of the state (TSVSHMMLevelOwnRates_Private():
+   its own components' norm, or for additive splits ||G_K(X)|| / (rho_K ||X||)): the stiffest
+   wavenumbers of a sparse spectral advection scene hold about 5e-3 of ||u||, and their damping is
+   not the answer's error. dtMax where the fastest level has no oscillating mode. */
 static PetscReal AccurateMicroStep(TS ts, const vshmm::AdaptParameters &p, PetscReal dtMax)
 {
   TS_VSHMM                         *vs = (TS_VSHMM *)ts->data;
@@ -143,7 +144,7 @@ static PetscReal AccurateMicroStep(TS ts, const vshmm::AdaptParameters &p, Petsc
 
   if (vs->level_limiting.empty() || !(dtMax > 0) || !std::isfinite(dtMax)) return dtMax;
   for (const std::complex<double> &lambda : vs->level_limiting.back())
-    if (std::abs(lambda.imag()) > std::abs(lambda.real())) modes.push_back(lambda);
+    if (vshmm::oscillates(lambda)) modes.push_back(lambda);
   if (modes.empty()) return dtMax;
   PetscReal span = ts->max_time - vs->adapt_tstart;
   if (!(span > 0) || !std::isfinite(span) || span >= PETSC_MAX_REAL / 2) span = kOscillationSpanSteps * ts->time_step;
@@ -249,7 +250,7 @@ static PetscReal Separation(TS_VSHMM *vs, PetscInt l)
 static PetscBool LevelDecays(TS_VSHMM *vs, PetscInt l)
 {
   if ((PetscInt)vs->level_worst.size() <= l || (PetscInt)vs->level_limiting.size() <= l || vs->level_limiting[l].empty()) return PETSC_FALSE;
-  return std::abs(vs->level_worst[l].imag()) <= std::abs(vs->level_worst[l].real()) ? PETSC_TRUE : PETSC_FALSE;
+  return vshmm::oscillates(vs->level_worst[l]) ? PETSC_FALSE : PETSC_TRUE;
 }
 
 /* The saturation scale of each level pair's error term in adapt's model: the separation set by the

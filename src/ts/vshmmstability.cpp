@@ -295,7 +295,7 @@ PetscErrorCode TSVSHMMLevelOwnRates_Private(TS ts)
     if (!component) {          /* additive splits: the fastest level's part of the state as its field sees it, ||G_K(X)|| / (rho_K ||X||) (the stiffest modes count fully) */
       bool oscillates = false; /* used by -ts_vshmm_adapt's micro step bound only, for oscillating modes */
       if ((PetscInt)vs->level_limiting.size() > level)
-        for (const std::complex<double> &lambda : vs->level_limiting[level]) oscillates = oscillates || std::abs(lambda.imag()) > std::abs(lambda.real());
+        for (const std::complex<double> &lambda : vs->level_limiting[level]) oscillates = oscillates || vshmm::oscillates(lambda);
       if (vs->adapt && oscillates && level == nscales - 1 && (PetscInt)vs->level_radius.size() > level && vs->level_radius[level] > 0) {
         Vec       G;
         PetscReal n_g, n_all;
@@ -318,7 +318,7 @@ PetscErrorCode TSVSHMMLevelOwnRates_Private(TS ts)
     }
     PetscBool finite = PETSC_FALSE;
     PetscCall(LevelRitzValues(ts, level, ts->ptime, ts->vec_sol, ritz, &finite, mask));
-    { /* the level's part of the state (its own components') */
+    if (level == nscales - 1) { /* the fastest level's part of the state (its own components'), for -ts_vshmm_adapt's micro step bound */
       Vec       own;
       PetscReal n_own, n_all;
       PetscCall(VecDuplicate(ts->vec_sol, &own));
@@ -327,12 +327,13 @@ PetscErrorCode TSVSHMMLevelOwnRates_Private(TS ts)
       PetscCall(VecNorm(ts->vec_sol, NORM_2, &n_all));
       PetscCall(VecDestroy(&own));
       if (n_all > 0 && std::isfinite(n_own)) vs->level_share[level] = PetscMin(1.0, n_own / n_all);
+      PetscCall(PetscInfo(ts, "Level %" PetscInt_FMT " at t = %g: its own components hold %g of the state norm\n", level, (double)ts->ptime, (double)vs->level_share[level]));
     }
     PetscCall(VecDestroy(&mask));
     if (!finite) continue;
     const double slowest = vshmm::slowestRate(ritz);
     if (slowest > 0) vs->level_slowest[level] = slowest;
-    PetscCall(PetscInfo(ts, "Own components of level %" PetscInt_FMT " at t = %g: slowest rate %g, %g of the state norm\n", level, (double)ts->ptime, (double)vs->level_slowest[level], (double)vs->level_share[level]));
+    PetscCall(PetscInfo(ts, "Own components of level %" PetscInt_FMT " at t = %g: slowest rate %g%s\n", level, (double)ts->ptime, (double)vs->level_slowest[level], level == nscales - 1 ? " (its part of the state: the line above)" : ""));
   }
   vs->own_rates_time = vs->spectra_time;
   PetscFunctionReturn(0);
@@ -347,7 +348,7 @@ static bool TopLevelOscillates(const TS_VSHMM *vs)
   const size_t top = vs->level_end.size() - 1;
   if (vs->level_limiting.size() <= top || vs->level_limiting[top].empty()) return false;
   const std::complex<double> worst = vs->level_worst[top];
-  return std::abs(worst.imag()) > std::abs(worst.real()) && vs->level_radius[top] > 0;
+  return vshmm::oscillates(worst) && vs->level_radius[top] > 0;
 }
 
 /* The coupled levels (core/coupling.hpp): every level may be stable alone while their composition
