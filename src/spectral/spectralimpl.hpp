@@ -83,6 +83,7 @@ struct VSHMMSpectralDetection {
   PetscReal              widened     = -1;   /* auto snapshots: the agreeing looks' bands widened by wavenumbers holding this share of ||u|| (-1: the looks were the same) */
   PetscReal              left_out    = -1;   /* auto snapshots: RMS over the steps of ||u outside the bands|| / ||u|| (-1: not known) */
   std::string            dropped;            /* auto snapshots: the bands left out by -spectral_cluster_min_band_share, with their shares */
+  std::string            kept_band;          /* auto snapshots: the thin band min_band_share kept, and why (empty: none) */
   std::string            rule;               /* -spectral_cluster_detect auto: what it decided and why */
 };
 
@@ -125,7 +126,7 @@ struct VSHMMSpectral_Data {
   PetscInt                 detect_max_steps   = 32768;
   PetscInt                 detect_first_steps = 64;   /* steps before the first automatic look (then doubled) */
   PetscInt                 detect_agreeing    = 3;    /* automatic looks in a row that agree end the detection */
-  PetscReal                min_band_share     = 0;    /* the detection's highest bands holding less than this times cluster_tol of ||u|| are left out */
+  PetscReal                min_band_share     = 0.05; /* the detection's highest bands holding less than this times cluster_tol of ||u|| are left out */
   PetscReal                cluster_tol        = 1e-2; /* merged bands are undone if what the merge adds holds at most this of ||u|| */
   VSHMMSpectralProjection  projection         = VSHMMSPECTRAL_PROJECTION_AUTO;
   VSHMMSpectralEvaluation  evaluation         = VSHMMSPECTRAL_EVALUATION_FFT;

@@ -57,6 +57,9 @@ static std::vector<double> FullMagnitudes(const spc::Layout &full, int N, const 
   return m;
 }
 
+static constexpr double kDecayingBand     = 0.5; /* -spectral_cluster_min_band_share leaves out only a band whose decay share (spc::bandAction()) is at least this */
+static constexpr double kMaxBandInfluence = 1.0; /* and whose influence on the other retained bands is below this */
+
 /* The detection DNS's right-hand side, with its work counted. */
 struct DetectCtx {
   spc::SpectralOperator *op;
@@ -299,12 +302,31 @@ static PetscErrorCode DetectionDNS(VSHMMSpectral sp, DetectCtx *dctx, const std:
     if (s->min_band_share > 0) { /* the top bands (here each band is a cluster of its own) that hold too little to matter: the stiffest modes, they set the micro step */
       std::ostringstream                dropped;
       const std::vector<spc::BandShare> bands = spc::bandShares(cs, mean);
+      const PetscScalar                *c;
+      PetscCall(VecGetArrayRead(U, &c));
       for (size_t i = bands.size(); i-- > 0;) {
         const spc::BandShare &b = bands[i];
         if (i == 0 || !(b.share < s->min_band_share * s->cluster_tol)) break; /* the slowest band stays */
-        for (int k = b.lo; k <= b.hi; ++k) mags[0][k] = 0;                    /* the later thresholding no longer sees it */
+        /* only a band that decays (an oscillating one, under advection or Burgers terms, carries
+           what the transport moves through it) and does less to the other retained modes than
+           they do in all (a thin band can still shift the bands it feeds, and through them the
+           slow modes) */
+        const spc::BandAction act = spc::bandAction(*dctx->op, c, cs, b.lo, b.hi);
+        dctx->evaluations += 2;
+        PetscCall(PetscInfo(sp, "cluster detection DNS: band %d..%d holds %g of ||u||; decay share of its rate %g, influence on the other bands %g\n", b.lo, b.hi, b.share, act.decay, act.influence));
+        if (act.decay < kDecayingBand || !(act.influence < kMaxBandInfluence)) {
+          std::ostringstream why;
+          why << b.lo << ".." << b.hi << " (share " << b.share << ") is kept with every band below it: " << (act.decay < kDecayingBand ? "it oscillates (decay share " : "it moves the other bands (influence ")
+              << (act.decay < kDecayingBand ? act.decay : act.influence) << ")";
+          s->detection.kept_band = why.str();
+          break;
+        }
+        for (size_t j = 0; j < cs.clusters.size(); ++j) /* the bands below are judged against what remains */
+          cs.clusters[j].erase(std::remove_if(cs.clusters[j].begin(), cs.clusters[j].end(), [&](int k) { return k >= b.lo && k <= b.hi; }), cs.clusters[j].end());
+        for (int k = b.lo; k <= b.hi; ++k) mags[0][k] = 0; /* the later thresholding no longer sees it */
         dropped << (dropped.tellp() > 0 ? ", " : "") << b.lo << ".." << b.hi << " (" << b.share << ")";
       }
+      PetscCall(VecRestoreArrayRead(U, &c));
       s->detection.dropped = dropped.str();
       if (!s->detection.dropped.empty()) PetscCall(ClustersOf(sp, mags, s->norm, VSHMMSpectralLambda(s), support, &cs));
     }

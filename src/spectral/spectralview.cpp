@@ -25,6 +25,7 @@ static std::string DescribeDetection(const VSHMMSpectral_Data *s)
   if (s->detection.widened >= 0) m << "cluster detection: the last looks agree within -spectral_cluster_tolerance " << s->cluster_tol << ": their bands widened at the edges by wavenumbers holding " << s->detection.widened << " of ||u||\n";
   if (!s->detection.dropped.empty())
     m << "cluster detection: bands left out (their share of ||u|| below -spectral_cluster_min_band_share " << s->min_band_share << " x -spectral_cluster_tolerance " << s->cluster_tol << "): " << s->detection.dropped << "\n";
+  if (!s->detection.kept_band.empty()) m << "cluster detection: the thin band " << s->detection.kept_band << "\n";
   if (s->detection.left_out >= 0) m << "cluster detection: the wavenumbers outside the bands hold " << s->detection.left_out << " of ||u|| (root mean square over the DNS steps)\n";
   if (s->detection.evaluations > 0) m << "cluster detection cost: " << s->detection.steps << " DNS steps, " << s->detection.evaluations << " evaluations on " << s->N << " modes (wall time: VSHMMSpectralGetStatistics())\n";
   return m.str();

@@ -443,6 +443,51 @@ TEST(Detect, BandShares)
   EXPECT_THROW(bandShares(ClusterSet::parse("0:1", N), std::vector<double>(5, 0.0)), std::invalid_argument);
 }
 
+// What a band does (what -spectral_cluster_min_band_share asks before it leaves a thin band out).
+// Decay share: 1 for diffusion on one wavenumber, at least 2 sqrt(q) / (1 + q) on a band lo..hi
+// (q = (hi / lo)^2, Kantorovich), 0 for advection, d k^2 / |-d k^2 + i a k| for one wavenumber of
+// both. Influence: 0 where nothing couples the band to the rest (constant coefficients); for
+// u = cos x + b cos 5x under (d u_x)_x with d = 1 + cos(4x) / 2, the band {5} adds -5 b / 4 cos x to
+// F at k = 1, where F is -(1 + 5 b / 4) cos x: influence 5 b / 4 / (1 + 5 b / 4).
+TEST(Detect, BandAction)
+{
+  const int           N    = 32;
+  const Layout        full = Layout::full(N);
+  const ClusterSet    all  = ClusterSet::parse("0:16", N);
+  std::vector<double> c    = randomVector(full.size(), 51);
+  SpectralOperator    diff(full, std::vector<double>(N, 0.5), {}, Planner::Estimate);
+  SpectralOperator    adv(full, {}, std::vector<double>(N, 3.0), Planner::Estimate);
+  SpectralOperator    both(full, std::vector<double>(N, 1.0), std::vector<double>(N, 20.0), Planner::Estimate);
+  EXPECT_NEAR(bandAction(diff, c.data(), all, 7, 7).decay, 1.0, 1e-12);
+  const double q = 81.0 / 25.0, spread = bandAction(diff, c.data(), all, 5, 9).decay;
+  EXPECT_GT(spread, 2 * std::sqrt(q) / (1 + q));
+  EXPECT_LT(spread, 1.0 - 1e-3);
+  EXPECT_NEAR(bandAction(adv, c.data(), all, 5, 9).decay, 0.0, 1e-12);
+  EXPECT_NEAR(bandAction(both, c.data(), all, 4, 4).decay, 16.0 / std::sqrt(16.0 * 16.0 + 80.0 * 80.0), 1e-12);
+  EXPECT_EQ(bandAction(both, c.data(), all, 16, 16).decay, 0.0); // the Nyquist mode has no derivative: G_b = 0
+  EXPECT_NEAR(bandAction(diff, c.data(), all, 5, 9).influence, 0.0, 1e-12);
+  EXPECT_NEAR(bandAction(both, c.data(), all, 5, 9).influence, 0.0, 1e-12);
+  EXPECT_EQ(bandAction(diff, std::vector<double>(full.size(), 0.0).data(), all, 5, 9).decay, 0.0);
+
+  std::vector<double> D(N), u(N), cu(full.size());
+  const double        b = 0.1;
+  for (int j = 0; j < N; ++j) {
+    const double x = 2 * M_PI * j / N;
+    D[j] = 1 + 0.5 * std::cos(4 * x), u[j] = std::cos(x) + b * std::cos(5 * x);
+  }
+  SpectralOperator coupled(full, D, {}, Planner::Estimate);
+  coupled.analyze(u.data(), cu.data());
+  const BandAction a = bandAction(coupled, cu.data(), ClusterSet::parse("1,5", N), 5, 5);
+  EXPECT_NEAR(a.influence, 1.25 * b / (1 + 1.25 * b), 1e-12);
+  EXPECT_NEAR(a.decay, 1.0, 1e-12);
+  // the rest of the state is not retained: nothing to compare with
+  EXPECT_EQ(bandAction(coupled, cu.data(), ClusterSet::parse("5", N), 5, 5).influence, 0.0);
+  EXPECT_THROW(bandAction(diff, c.data(), all, 9, 17), std::invalid_argument);
+  Layout           part(ClusterSet::parse("0:3,8:9", N));
+  SpectralOperator sparse(part, std::vector<double>(N, 0.5), {}, Planner::Estimate);
+  EXPECT_THROW(bandAction(sparse, c.data(), all, 8, 9), std::invalid_argument);
+}
+
 // Bands that only widen (the diffadv scene's looks at 64 and 256 steps) against a new band, a
 // vanished band, a merge; the share of the added wavenumbers (k = 0 and N/2 once).
 TEST(Detect, BandsWidened)

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace vshmm {
@@ -181,6 +182,40 @@ std::vector<BandShare> bandShares(const ClusterSet &clusters, const std::vector<
       }
   }
   return bands;
+}
+
+BandAction bandAction(SpectralOperator &op, const double *c, const ClusterSet &kept, int lo, int hi)
+{
+  const Layout &L = op.layout();
+  const int     N = L.N();
+  if (lo < 0 || hi < lo || hi > maxWavenumber(N) || L.modeCount() != maxWavenumber(N) + 1) throw std::invalid_argument("bandAction: the band must lie in 0..N/2 of a full layout");
+  std::vector<char> in(maxWavenumber(N) + 1, 0);
+  for (const auto &cl : kept.clusters)
+    for (int k : cl)
+      if (k >= 0 && k <= maxWavenumber(N)) in[k] = 1;
+  std::vector<double> f(L.size()), g(L.size()), w(c, c + L.size());
+  for (int i = 0; i < L.modeCount(); ++i)
+    if (L.mode(i) >= lo && L.mode(i) <= hi)
+      for (int j = 0; j < (isRealOnly(N, L.mode(i)) ? 1 : 2); ++j) w[L.offset(i) + j] = 0;
+  op.apply(c, f.data());
+  op.apply(w.data(), g.data());
+  double vG = 0, vv = 0, GG = 0, GK = 0, FK = 0;
+  for (int i = 0; i < L.modeCount(); ++i) {
+    const int    k    = L.mode(i);
+    const bool   band = k >= lo && k <= hi;
+    const double wt   = isRealOnly(N, k) ? 1.0 : 2.0;
+    if (!band && !in[k]) continue;
+    for (int j = 0; j < (isRealOnly(N, k) ? 1 : 2); ++j) {
+      const int    o = L.offset(i) + j;
+      const double G = f[o] - g[o];
+      if (band) vG += wt * c[o] * G, vv += wt * c[o] * c[o], GG += wt * G * G;
+      else GK += wt * G * G, FK += wt * f[o] * f[o];
+    }
+  }
+  BandAction a;
+  a.decay     = vv > 0 && GG > 0 ? -vG / std::sqrt(vv * GG) : 0.0;
+  a.influence = GK > 0 ? (FK > 0 ? std::sqrt(GK / FK) : std::numeric_limits<double>::infinity()) : 0.0;
+  return a;
 }
 
 bool bandsWidened(const ClusterSet &before, const ClusterSet &now)

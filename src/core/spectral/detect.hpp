@@ -78,6 +78,23 @@ struct BandShare {
 };
 std::vector<BandShare> bandShares(const ClusterSet &clusters, const std::vector<double> &m);
 
+// What a band does, from the state c (in `op`'s full layout): with v the band's part of c (its
+// wavenumbers lo..hi) and G = F(c) - F(c - v) the operator's action on v (exact for linear terms, a
+// secant for nonlinear ones), in the Parseval inner product,
+//   decay     = -<v, G_b> / (||v|| ||G_b||), G_b the band's part of G: the cosine of the angle
+//               between v and -G_b. Near 1 for a band that only decays (diffusion, G_b = -d k^2 v:
+//               1 on one wavenumber, at least 2 sqrt(q) / (1 + q) on lo..hi with q = (hi / lo)^2),
+//               about 0 for one that oscillates (advection and Burgers terms act on their own band
+//               as i a k, skew in this product); 0 where v or G_b is zero;
+//   influence = ||G_K|| / ||F(c)_K||, K the wavenumbers of `kept` outside lo..hi: what the band
+//               does to the other retained modes against what they do in all (0 where G_K is
+//               zero, infinite where only F(c)_K is).
+// Costs two evaluations of `op`. Throws if lo..hi does not lie in 0..N/2 or the layout is not full.
+struct BandAction {
+  double decay = 0, influence = 0;
+};
+BandAction bandAction(SpectralOperator &op, const double *c, const ClusterSet &kept, int lo, int hi);
+
 // Whether the bands only widened between two looks at a growing support: `now` has as many bands
 // as `before` and band j of `now` shares a wavenumber with band j of `before` (no band appeared,
 // vanished or merged).
