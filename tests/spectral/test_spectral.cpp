@@ -445,8 +445,8 @@ TEST(Detect, BandShares)
 
 // What a band does (what -spectral_cluster_min_band_share asks before it leaves a thin band out).
 // Decay share: 1 for diffusion on one wavenumber, at least 2 sqrt(q) / (1 + q) on a band lo..hi
-// (q = (hi / lo)^2, Kantorovich), 0 for advection, d k^2 / |-d k^2 + i a k| for one wavenumber of
-// both. Influence: 0 where nothing couples the band to the rest (constant coefficients); for
+// (q = (hi / lo)^2, Kantorovich), 0 for advection, -1 for a growing band, d k^2 / |-d k^2 + i a k|
+// for one wavenumber of both. Influence: 0 where nothing couples the band to the rest (constant coefficients); for
 // u = cos x + b cos 5x under (d u_x)_x with d = 1 + cos(4x) / 2, the band {5} adds -5 b / 4 cos x to
 // F at k = 1, where F is -(1 + 5 b / 4) cos x: influence 5 b / 4 / (1 + 5 b / 4).
 TEST(Detect, BandAction)
@@ -463,6 +463,8 @@ TEST(Detect, BandAction)
   EXPECT_GT(spread, 2 * std::sqrt(q) / (1 + q));
   EXPECT_LT(spread, 1.0 - 1e-3);
   EXPECT_NEAR(bandAction(adv, c.data(), all, 5, 9).decay, 0.0, 1e-12);
+  SpectralOperator growth(full, std::vector<double>(N, -0.5), {}, Planner::Estimate); // a band that grows
+  EXPECT_NEAR(bandAction(growth, c.data(), all, 7, 7).decay, -1.0, 1e-12);
   EXPECT_NEAR(bandAction(both, c.data(), all, 4, 4).decay, 16.0 / std::sqrt(16.0 * 16.0 + 80.0 * 80.0), 1e-12);
   EXPECT_EQ(bandAction(both, c.data(), all, 16, 16).decay, 0.0); // the Nyquist mode has no derivative: G_b = 0
   EXPECT_NEAR(bandAction(diff, c.data(), all, 5, 9).influence, 0.0, 1e-12);
