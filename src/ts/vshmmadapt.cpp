@@ -575,7 +575,7 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
      state off the slow manifold can have other eigenvalues than the solution a step later) */
   if (calibrate) PetscCall(UpdateStableSteps(ts));
   vshmm::AdaptBounds bounds    = Bounds(ts, DeltaT);
-  PetscReal          Eprev     = PETSC_MAX_REAL;
+  PetscReal          Emin      = PETSC_MAX_REAL; /* the lowest estimate of this macro step's tries */
   PetscInt           stalled   = 0;
   PetscReal          predicted = PETSC_MAX_REAL; /* the model's error of the try after a rejection */
   for (PetscInt attempt = 0;; ++attempt) {
@@ -650,14 +650,16 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
     for (double r : p.ratios) ratios += (ratios.empty() ? "" : ",") + std::to_string(r);
     PetscCall(PetscInfo(ts, "Adapt: macro step [%g, %g] try %" PetscInt_FMT ": dt %g, time ratios %s, cycle %g, %" PetscInt64_FMT " cycles; estimate %g of its share %g\n", (double)t0, (double)t1, attempt, (double)p.microStep, ratios.c_str(), (double)vshmm::cycleLength(p),
                         counts.cycles, (double)E, (double)budget));
-    /* a floor: twice, finer parameters did not lower an estimate that is near the share (or the
-       savings cannot be taken back any further); far above it, the savings go on falling (their
-       limit, no savings, is a single-rate Runge-Kutta method with the micro step) */
-    stalled           = (attempt > 0 && E > kFloorFactor * Eprev) ? stalled + 1 : 0;
+    /* a floor: twice, finer parameters did not lower the estimate clearly below the lowest of
+       this macro step's tries (an estimate that rose with a refinement and fell back is noise,
+       not progress), near the share (or the savings cannot be taken back any further); far above
+       it, the savings go on falling (their limit, no savings, is a single-rate Runge-Kutta method
+       with the micro step) */
+    stalled           = (attempt > 0 && E > kFloorFactor * Emin) ? stalled + 1 : 0;
     PetscBool savings = PETSC_FALSE; /* savings the choice may still take back */
     for (double r : p.ratios) savings = (r > 1.0 + 1e-6 && !bounds.fixedRatios) ? PETSC_TRUE : savings;
     const PetscBool floor = (stalled >= 2 && (E <= kFloorAccept * budget || !savings)) ? PETSC_TRUE : PETSC_FALSE;
-    Eprev                 = E;
+    Emin                  = PetscMin(Emin, E);
     if (E > budget && refinable && !floor && attempt + 1 < kMaxAttempts) { /* redo with finer parameters */
       DiscardTry(vs, rhs0, lev0);
       predicted = vs->adapt_model.total(next);
