@@ -311,7 +311,12 @@ static PetscErrorCode DetectionDNS(VSHMMSpectral sp, DetectCtx *dctx, const std:
            what the transport moves through it) and does less to the other retained modes than
            they do in all (a thin band can still shift the bands it feeds, and through them the
            slow modes) */
-        const spc::BandAction act = spc::bandAction(*dctx->op, c, cs, b.lo, b.hi);
+        spc::BandAction act;
+        try {
+          act = spc::bandAction(*dctx->op, c, cs, b.lo, b.hi);
+        } catch (const std::exception &e) {
+          SETERRQ(PetscObjectComm((PetscObject)sp), PETSC_ERR_PLIB, "cluster detection: %s", e.what());
+        }
         dctx->evaluations += 2;
         PetscCall(PetscInfo(sp, "cluster detection DNS: band %d..%d holds %g of ||u||; decay share of its rate %g, influence on the other bands %g\n", b.lo, b.hi, b.share, act.decay, act.influence));
         if (act.decay < kDecayingBand || !(act.influence < kMaxBandInfluence)) {
