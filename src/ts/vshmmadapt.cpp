@@ -153,7 +153,12 @@ static PetscReal AccurateMicroStep(TS ts, const vshmm::AdaptParameters &p, Petsc
   for (double r : p.ratios) ratios *= r;
   const PetscReal tol   = PetscMax(PetscMax(ts->rtol, ts->atol), 1e-12);
   const PetscReal share = vs->level_share.empty() ? 1.0 : PetscMax(vs->level_share.back(), 1e-12); /* the level's amplitude error counts with its part of the state */
-  const PetscReal dt    = vshmm::largestAccurateStep(vshmm::StabilityFunction(*vs->tableau), modes, dtMax, span / ratios, kOscillationShare * tol / share);
+  /* the modes lose at most their whole amplitude, their share of the state: where that is within
+     the tolerance there is no bound; otherwise their summed log amplitude error is kept within
+     tol / share (the lost fraction 1 - exp(-E) is at most E) */
+  const PetscReal allowed = kOscillationShare * tol / share;
+  if (!(allowed < 1)) return dtMax;
+  const PetscReal dt = vshmm::largestAccurateStep(vshmm::StabilityFunction(*vs->tableau), modes, dtMax, span / ratios, allowed);
   if (dt < dtMax) (void)(PetscInfo(ts, "Adapt: the fastest level's oscillations (%d modes, share %g of the state) bound the micro step to %g (was %g)\n", (int)modes.size(), (double)share, (double)dt, (double)dtMax));
   return dt;
 }
