@@ -405,9 +405,10 @@ spectral_auto_scene(diffusion3 diffusion 0.125,0.25 0.25 1e-5 75000
 # the scales are not separated (4.8; at 1e-3 3.89) and the run says so; tol 1e-2: 2.2e-3, 3.5e-3
 # (bound 6e-3); tol 1e-3: 6.4e-4, 7.0e-4 (bound 1.2e-3). At 1e-2 the top band 158..162 holds 2.7e-4
 # of ||u||, below -spectral_cluster_min_band_share 0.05 x 1e-2, but it oscillates (decay share 0,
-# advection only) and is kept. At 1e-2 the run takes 7,707 evaluations:
-# the micro step's amplitude bound on the oscillating top wavenumbers, weighted by their part of
-# the state (about 5e-3 of ||u||; unweighted, the bound doubled the work for the same error).
+# advection only) and is kept. At 1e-2 the run takes 7,707 evaluations: the
+# micro step is not bound by the amplitude of the oscillating top wavenumbers, which hold about
+# 5e-3 of ||u|| (their whole part of the state is within the tolerance; unweighted, the bound
+# doubled the work for the same error).
 # nonlinear_auto.yaml (N = 512, diffusion, Burgers and cubic reaction) to t = 0.125, 0.25 against
 # RK3 dt = 2e-5 (dt = 1e-5 differs by 1e-13): the detection groups the five bands of
 # nonlinear.yaml into two clusters whose slowest-mode separation is 1.93 (at 1e-2 the top band
