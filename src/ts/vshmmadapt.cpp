@@ -356,11 +356,13 @@ PetscErrorCode TSVSHMMAdaptSetUp_Private(TS ts)
   if (vs->micro_dt > 0) p.microStep = vs->micro_dt;
   else {
     /* an oscillating fastest mode must be followed accurately: dt |lambda| <= tol^(1/p); one that
-       only decays need not (its error decays with it), and the micro step starts at the
-       stability limit */
+       only decays need not (its error decays with it), nor one whose whole part of the state is
+       within the tolerance (the amplitude bound's reasoning, AccurateMicroStep()), and the micro
+       step starts at the stability limit */
     const PetscBool oscillating = LevelDecays(vs, K) ? PETSC_FALSE : PETSC_TRUE;
+    const PetscReal share       = vs->level_share.empty() ? 1.0 : vs->level_share.back();
     p.microStep                 = DeltaT / kDefaultMicroStepsPerMacroStep;
-    if (rho > 0 && oscillating) p.microStep = PetscMin(p.microStep, std::pow(tol, 1.0 / vs->tableau->order) / rho);
+    if (rho > 0 && oscillating && share > kOscillationShare * tol) p.microStep = PetscMin(p.microStep, std::pow(tol, 1.0 / vs->tableau->order) / rho);
     p.microStep = PetscMin(p.microStep, kStableFraction * vs->level_max_step[K]);
   }
   if (!vs->savings.empty()) p.ratios = vshmm::timeRatiosFromSavings(vs->savings);
