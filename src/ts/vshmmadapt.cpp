@@ -59,6 +59,7 @@ static constexpr PetscReal kMissFactor             = 2;    /* a retry whose esti
 static constexpr PetscReal kOscillationShare       = 1.0;  /* of the tolerance: the fastest level's oscillations' amplitude error over the run */
 static constexpr PetscReal kOscillationSpanSteps   = 100;  /* macro steps taken as the run where it has no final time */
 static constexpr PetscReal kMaxDearer              = 4;    /* and rise by this factor at most per try (the estimate is noisy: refining in steps wastes less) */
+static constexpr PetscReal kNegligibleEstimate     = 1e-3; /* a single-rate step pinned at its bounds after a step this far below its share is not compared */
 
 const char *const TSVSHMMSeparationChecks[] = {"off", "warn", "error", "TSVSHMMSeparationCheck", "TSVSHMM_SEPARATION_", nullptr};
 
@@ -332,8 +333,9 @@ PetscErrorCode TSVSHMMAdaptReset_Private(TS ts)
   vs->no_separation           = PETSC_FALSE;
   vs->adapt_no_savings.clear();
   vs->adapt_signed.clear();
-  vs->adapt_accepted = 0;
-  vs->floor_warned   = PETSC_FALSE;
+  vs->adapt_accepted   = 0;
+  vs->adapt_last_ratio = PETSC_MAX_REAL;
+  vs->floor_warned     = PETSC_FALSE;
   PetscFunctionReturn(0);
 }
 
@@ -400,7 +402,8 @@ PetscErrorCode TSVSHMMAdaptSetUp_Private(TS ts)
   vs->adapt_ready    = PETSC_TRUE;
   vs->error_estimate = vs->error_estimate_total = 0;
   vs->adapt_signed.clear();
-  vs->adapt_accepted = 0;
+  vs->adapt_accepted   = 0;
+  vs->adapt_last_ratio = PETSC_MAX_REAL;
   PetscCall(PetscInfo(ts, "Adapt: first parameters dt = %g, cycle %g (DeltaT %g), tolerance %g\n", (double)p.microStep, (double)vshmm::cycleLength(p), (double)DeltaT, (double)tol));
   PetscFunctionReturn(0);
 }
@@ -621,7 +624,14 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
     vshmm::AdaptParameters q;
     PetscReal              d;
     if (vs->adapt_model.c.size() != (size_t)K || !(vs->adapt_model.total(p) > 0)) vs->adapt_model = vshmm::ErrorModel::equalShares(p, order, 1.0, Saturations(ts, p));
-    PetscCall(Compare(ts, p, t0, DeltaT, (vs->adapt_calibrated && !calibrate && attempt == 0 && vs->adapt_model.total(p) > 0) ? PETSC_TRUE : PETSC_FALSE, &q, &d));
+    /* a single-rate step (no savings) at the largest micro step the bounds allow, whose last step
+       was far below its share: nothing is left to choose and a Runge-Kutta method's error does not
+       jump by orders of magnitude between steps; the model's prediction stands in for the
+       comparison (with the micro step halved, twice the step's work) */
+    bool pinned = attempt == 0 && !calibrate && vs->adapt_last_ratio < kNegligibleEstimate && vs->adapt_model.total(p) > 0 && p.microStep >= 0.999 * bounds.maxMicroStep;
+    for (double r : p.ratios) pinned = pinned && r == 1.0;
+    if (pinned) d = -1;
+    else PetscCall(Compare(ts, p, t0, DeltaT, (vs->adapt_calibrated && !calibrate && attempt == 0 && vs->adapt_model.total(p) > 0) ? PETSC_TRUE : PETSC_FALSE, &q, &d));
     PetscReal E = d < 0 ? vs->adapt_model.total(p) : Estimate(vs->adapt_model, p, q, d);
     if (calibrate || (E > budget && !vs->adapt_calibrated) || (attempt > 0 && (E > kFloorAccept * budget || (E > budget && E > kMissFactor * predicted)))) {
       PetscCall(Calibrate(ts, p, t0, DeltaT, bounds));
@@ -699,8 +709,9 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
       for (PetscInt i = 0; i < vs->nobservables; ++i) vs->adapt_signed[i] += vs->step_signed[i] * E / d;
     }
     vs->adapt_since_calibration++;
-    vs->savings_used = vshmm::savingsFromTimeRatios(p.ratios); /* what this step used (for view and getters) */
-    vs->adapt_used   = p;
+    vs->savings_used     = vshmm::savingsFromTimeRatios(p.ratios); /* what this step used (for view and getters) */
+    vs->adapt_used       = p;
+    vs->adapt_last_ratio = std::isfinite(E) && E >= 0 ? E / budget : PETSC_MAX_REAL;
     SnapNegligibleSavings(vs, next, bounds); /* after an accepted step only: the retries of an initial layer take the savings down on their way to a start */
     p = next;
     break;

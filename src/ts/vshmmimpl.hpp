@@ -78,8 +78,9 @@ struct TS_VSHMM {
   PetscReal                                      spectra_time   = PETSC_MIN_REAL; // when they were estimated
 
   // Accuracy control (-ts_vshmm_adapt)
-  vshmm::AdaptParameters adapt_params; // micro step and time ratios for the next macro step
-  vshmm::AdaptParameters adapt_used;   // those of the last accepted macro step
+  vshmm::AdaptParameters adapt_params;                      // micro step and time ratios for the next macro step
+  vshmm::AdaptParameters adapt_used;                        // those of the last accepted macro step
+  PetscReal              adapt_last_ratio = PETSC_MAX_REAL; // the last accepted step's estimate over its share
   vshmm::ErrorModel      adapt_model;
   PetscBool              adapt_ready = PETSC_FALSE; // initial parameters chosen
   std::vector<PetscBool> adapt_no_savings;          // per time ratio: no savings for the rest of the solve (they were negligible)
