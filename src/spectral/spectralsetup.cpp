@@ -175,6 +175,51 @@ static std::vector<PetscReal> ClusterSeparations(const std::vector<std::vector<P
   return S;
 }
 
+/* -spectral_cluster_min_band_share: the detection's top bands (here each band is a cluster of its
+   own), the stiffest modes, which set the micro step, are left out from the top down while each
+   holds less than min_band_share x cluster_tol of ||u|| (mean: RMS over the steps), decays (an
+   oscillating one, under advection or Burgers terms, carries what the transport moves through it)
+   and does less to the other retained modes than they do in all (a thin band can still shift the
+   bands it feeds, and through them the slow modes): spc::bandAction() at the last state U. The
+   bands left out are zeroed in peak and cs is thresholded again. */
+static PetscErrorCode LeaveOutThinBands(VSHMMSpectral sp, DetectCtx *dctx, Vec U, const std::vector<double> &mean, std::vector<int> &support, spc::ClusterSet &cs, std::vector<double> &peak)
+{
+  VSHMMSpectral_Data               *s = sp->data;
+  std::ostringstream                dropped;
+  const std::vector<spc::BandShare> bands = spc::bandShares(cs, mean);
+  const PetscScalar                *c;
+
+  PetscFunctionBegin;
+  PetscCall(VecGetArrayRead(U, &c));
+  for (size_t i = bands.size(); i-- > 0;) {
+    const spc::BandShare &b = bands[i];
+    if (i == 0 || !(b.share < s->min_band_share * s->cluster_tol)) break; /* the slowest band stays */
+    spc::BandAction act;
+    try {
+      act = spc::bandAction(*dctx->op, c, cs, b.lo, b.hi);
+    } catch (const std::exception &e) {
+      SETERRQ(PetscObjectComm((PetscObject)sp), PETSC_ERR_PLIB, "cluster detection: %s", e.what());
+    }
+    dctx->evaluations += 2;
+    PetscCall(PetscInfo(sp, "cluster detection DNS: band %d..%d holds %g of ||u||; decay share of its rate %g, influence on the other bands %g\n", b.lo, b.hi, b.share, act.decay, act.influence));
+    if (act.decay < kDecayingBand || !(act.influence < kMaxBandInfluence)) {
+      std::ostringstream why;
+      why << b.lo << ".." << b.hi << " (share " << b.share << ") is kept with every band below it: " << (act.decay < kDecayingBand ? "it oscillates (decay share " : "it moves the other bands (influence ")
+          << (act.decay < kDecayingBand ? act.decay : act.influence) << ")";
+      s->detection.kept_band = why.str();
+      break;
+    }
+    for (size_t j = 0; j < cs.clusters.size(); ++j) /* the bands below are judged against what remains */
+      cs.clusters[j].erase(std::remove_if(cs.clusters[j].begin(), cs.clusters[j].end(), [&](int k) { return k >= b.lo && k <= b.hi; }), cs.clusters[j].end());
+    for (int k = b.lo; k <= b.hi; ++k) peak[k] = 0; /* the later thresholding no longer sees it */
+    dropped << (dropped.tellp() > 0 ? ", " : "") << b.lo << ".." << b.hi << " (" << b.share << ")";
+  }
+  PetscCall(VecRestoreArrayRead(U, &c));
+  s->detection.dropped = dropped.str();
+  if (!s->detection.dropped.empty()) PetscCall(ClustersOf(sp, {peak}, s->norm, VSHMMSpectralLambda(s), support, &cs));
+  PetscFunctionReturn(0);
+}
+
 /* Snapshots |c_k| (k = 0..N/2) of a short direct simulation on every rank (PETSC_COMM_SELF), TS
    options prefix <prefix>spectral_cluster_detect_: at -spectral_cluster_detect_times, or (none
    given) the largest |c_k| over every step, looked at after 64, 128, 256, ... steps
@@ -299,42 +344,7 @@ static PetscErrorCode DetectionDNS(VSHMMSpectral sp, DetectCtx *dctx, const std:
     spc::ClusterSet  cs;
     PetscCall(ClustersOf(sp, mags, s->norm, VSHMMSpectralLambda(s), support, &cs));
     const std::vector<double> mean = dctx->mean();
-    if (s->min_band_share > 0) { /* the top bands (here each band is a cluster of its own) that hold too little to matter: the stiffest modes, they set the micro step */
-      std::ostringstream                dropped;
-      const std::vector<spc::BandShare> bands = spc::bandShares(cs, mean);
-      const PetscScalar                *c;
-      PetscCall(VecGetArrayRead(U, &c));
-      for (size_t i = bands.size(); i-- > 0;) {
-        const spc::BandShare &b = bands[i];
-        if (i == 0 || !(b.share < s->min_band_share * s->cluster_tol)) break; /* the slowest band stays */
-        /* only a band that decays (an oscillating one, under advection or Burgers terms, carries
-           what the transport moves through it) and does less to the other retained modes than
-           they do in all (a thin band can still shift the bands it feeds, and through them the
-           slow modes) */
-        spc::BandAction act;
-        try {
-          act = spc::bandAction(*dctx->op, c, cs, b.lo, b.hi);
-        } catch (const std::exception &e) {
-          SETERRQ(PetscObjectComm((PetscObject)sp), PETSC_ERR_PLIB, "cluster detection: %s", e.what());
-        }
-        dctx->evaluations += 2;
-        PetscCall(PetscInfo(sp, "cluster detection DNS: band %d..%d holds %g of ||u||; decay share of its rate %g, influence on the other bands %g\n", b.lo, b.hi, b.share, act.decay, act.influence));
-        if (act.decay < kDecayingBand || !(act.influence < kMaxBandInfluence)) {
-          std::ostringstream why;
-          why << b.lo << ".." << b.hi << " (share " << b.share << ") is kept with every band below it: " << (act.decay < kDecayingBand ? "it oscillates (decay share " : "it moves the other bands (influence ")
-              << (act.decay < kDecayingBand ? act.decay : act.influence) << ")";
-          s->detection.kept_band = why.str();
-          break;
-        }
-        for (size_t j = 0; j < cs.clusters.size(); ++j) /* the bands below are judged against what remains */
-          cs.clusters[j].erase(std::remove_if(cs.clusters[j].begin(), cs.clusters[j].end(), [&](int k) { return k >= b.lo && k <= b.hi; }), cs.clusters[j].end());
-        for (int k = b.lo; k <= b.hi; ++k) mags[0][k] = 0; /* the later thresholding no longer sees it */
-        dropped << (dropped.tellp() > 0 ? ", " : "") << b.lo << ".." << b.hi << " (" << b.share << ")";
-      }
-      PetscCall(VecRestoreArrayRead(U, &c));
-      s->detection.dropped = dropped.str();
-      if (!s->detection.dropped.empty()) PetscCall(ClustersOf(sp, mags, s->norm, VSHMMSpectralLambda(s), support, &cs));
-    }
+    if (s->min_band_share > 0) PetscCall(LeaveOutThinBands(sp, dctx, U, mean, support, cs, mags[0]));
     s->detection.left_out = spc::shareOutside(cs, mean);
   }
   PetscCall(TSDestroy(&ts));

@@ -138,6 +138,16 @@ static PetscErrorCode TrialStep(TS ts, const vshmm::AdaptParameters &p, PetscRea
    its own components' norm, or for additive splits ||G_K(X)|| / (rho_K ||X||)): the stiffest
    wavenumbers of a sparse spectral advection scene hold about 5e-3 of ||u||, and their damping is
    not the answer's error. dtMax where the fastest level has no oscillating mode. */
+/* The fastest level's oscillations' amplitude error allowed over the run, relative: the tolerance
+   over the level's part of the state (1 or more: the modes may lose all of their amplitude, their
+   whole part of the state being within the tolerance). */
+static PetscReal AllowedAmplitudeLoss(TS ts)
+{
+  const TS_VSHMM *vs  = (TS_VSHMM *)ts->data;
+  const PetscReal tol = PetscMax(PetscMax(ts->rtol, ts->atol), 1e-12);
+  return kOscillationShare * tol / PetscMax(vs->fastest_share, 1e-12);
+}
+
 static PetscReal AccurateMicroStep(TS ts, const vshmm::AdaptParameters &p, PetscReal dtMax)
 {
   TS_VSHMM                         *vs = (TS_VSHMM *)ts->data;
@@ -152,15 +162,13 @@ static PetscReal AccurateMicroStep(TS ts, const vshmm::AdaptParameters &p, Petsc
   span             = PetscMax(span, ts->time_step);
   PetscReal ratios = 1;
   for (double r : p.ratios) ratios *= r;
-  const PetscReal tol   = PetscMax(PetscMax(ts->rtol, ts->atol), 1e-12);
-  const PetscReal share = vs->level_share.empty() ? 1.0 : PetscMax(vs->level_share.back(), 1e-12); /* the level's amplitude error counts with its part of the state */
-  /* the modes lose at most their whole amplitude, their share of the state: where that is within
-     the tolerance there is no bound; otherwise their summed log amplitude error is kept within
-     tol / share (the lost fraction 1 - exp(-E) is at most E) */
-  const PetscReal allowed = kOscillationShare * tol / share;
+  /* the level's amplitude error counts with its part of the state; the modes lose at most their
+     whole amplitude: where that is within the tolerance there is no bound, otherwise their summed
+     log amplitude error is kept within tol / share (the lost fraction 1 - exp(-E) is at most E) */
+  const PetscReal allowed = AllowedAmplitudeLoss(ts);
   if (!(allowed < 1)) return dtMax;
   const PetscReal dt = vshmm::largestAccurateStep(vshmm::StabilityFunction(*vs->tableau), modes, dtMax, span / ratios, allowed);
-  if (dt < dtMax) (void)(PetscInfo(ts, "Adapt: the fastest level's oscillations (%d modes, share %g of the state) bound the micro step to %g (was %g)\n", (int)modes.size(), (double)share, (double)dt, (double)dtMax));
+  if (dt < dtMax) (void)(PetscInfo(ts, "Adapt: the fastest level's oscillations (%d modes, share %g of the state) bound the micro step to %g (was %g)\n", (int)modes.size(), (double)vs->fastest_share, (double)dt, (double)dtMax));
   return dt;
 }
 
@@ -362,9 +370,8 @@ PetscErrorCode TSVSHMMAdaptSetUp_Private(TS ts)
        within the tolerance (the amplitude bound's reasoning, AccurateMicroStep()), and the micro
        step starts at the stability limit */
     const PetscBool oscillating = LevelDecays(vs, K) ? PETSC_FALSE : PETSC_TRUE;
-    const PetscReal share       = vs->level_share.empty() ? 1.0 : vs->level_share.back();
     p.microStep                 = DeltaT / kDefaultMicroStepsPerMacroStep;
-    if (rho > 0 && oscillating && share > kOscillationShare * tol) p.microStep = PetscMin(p.microStep, std::pow(tol, 1.0 / vs->tableau->order) / rho);
+    if (rho > 0 && oscillating && AllowedAmplitudeLoss(ts) < 1) p.microStep = PetscMin(p.microStep, std::pow(tol, 1.0 / vs->tableau->order) / rho);
     p.microStep = PetscMin(p.microStep, kStableFraction * vs->level_max_step[K]);
   }
   if (!vs->savings.empty()) p.ratios = vshmm::timeRatiosFromSavings(vs->savings);
@@ -628,10 +635,11 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
        was far below its share: nothing is left to choose and a Runge-Kutta method's error does not
        jump by orders of magnitude between steps; the model's prediction stands in for the
        comparison (with the micro step halved, twice the step's work) */
-    bool pinned = attempt == 0 && !calibrate && vs->adapt_last_ratio < kNegligibleEstimate && vs->adapt_model.total(p) > 0 && p.microStep >= 0.999 * bounds.maxMicroStep;
+    const bool modelled = attempt == 0 && !calibrate && vs->adapt_model.total(p) > 0;
+    bool       pinned   = modelled && vs->adapt_last_ratio < kNegligibleEstimate && p.microStep >= 0.999 * bounds.maxMicroStep;
     for (double r : p.ratios) pinned = pinned && r == 1.0;
     if (pinned) d = -1;
-    else PetscCall(Compare(ts, p, t0, DeltaT, (vs->adapt_calibrated && !calibrate && attempt == 0 && vs->adapt_model.total(p) > 0) ? PETSC_TRUE : PETSC_FALSE, &q, &d));
+    else PetscCall(Compare(ts, p, t0, DeltaT, (modelled && vs->adapt_calibrated) ? PETSC_TRUE : PETSC_FALSE, &q, &d));
     PetscReal E = d < 0 ? vs->adapt_model.total(p) : Estimate(vs->adapt_model, p, q, d);
     if (calibrate || (E > budget && !vs->adapt_calibrated) || (attempt > 0 && (E > kFloorAccept * budget || (E > budget && E > kMissFactor * predicted)))) {
       PetscCall(Calibrate(ts, p, t0, DeltaT, bounds));

@@ -73,7 +73,7 @@ struct TS_VSHMM {
   std::vector<std::complex<double>>              level_worst;                     // the mode that sets it
   std::vector<std::vector<std::complex<double>>> level_limiting;                  // decaying or oscillating Ritz values
   std::vector<PetscReal>                         level_slowest;                   // smallest |Ritz value| of the block of the level's own components (0: not estimated)
-  std::vector<PetscReal>                         level_share;                     // the fastest level's part of the state, last entry (TSVSHMMLevelOwnRates_Private(); 1: not estimated)
+  PetscReal                                      fastest_share  = 1;              // the fastest level's part of the state (TSVSHMMLevelOwnRates_Private(); 1: not estimated)
   PetscReal                                      own_rates_time = PETSC_MIN_REAL; // when level_slowest was estimated (with the spectra of that time)
   PetscReal                                      spectra_time   = PETSC_MIN_REAL; // when they were estimated
 

@@ -288,7 +288,7 @@ PetscErrorCode TSVSHMMLevelOwnRates_Private(TS ts)
   if (vs->own_rates_time == vs->spectra_time && (PetscInt)vs->level_slowest.size() == nscales) PetscFunctionReturn(0);
   const StabilityCounting counting(vs);
   vs->level_slowest.assign(nscales, 0.0);
-  vs->level_share.assign(nscales, 1.0);
+  vs->fastest_share = 1.0;
   for (PetscInt level = 1; level < nscales; ++level) {
     PetscBool component = PETSC_TRUE;
     for (PetscInt k = vs->level_end[level - 1]; k < vs->level_end[level]; ++k) component = vs->splits[k].additive ? PETSC_FALSE : component;
@@ -304,8 +304,8 @@ PetscErrorCode TSVSHMMLevelOwnRates_Private(TS ts)
         PetscCall(VecNorm(G, NORM_2, &n_g));
         PetscCall(VecNorm(ts->vec_sol, NORM_2, &n_all));
         PetscCall(VecDestroy(&G));
-        if (n_all > 0 && std::isfinite(n_g)) vs->level_share[level] = PetscMin(1.0, n_g / (vs->level_radius[level] * n_all));
-        PetscCall(PetscInfo(ts, "Level %" PetscInt_FMT " (additive splits) at t = %g: %g of the state norm by its field\n", level, (double)ts->ptime, (double)vs->level_share[level]));
+        if (n_all > 0 && std::isfinite(n_g)) vs->fastest_share = PetscMin(1.0, n_g / (vs->level_radius[level] * n_all));
+        PetscCall(PetscInfo(ts, "Level %" PetscInt_FMT " (additive splits) at t = %g: %g of the state norm by its field\n", level, (double)ts->ptime, (double)vs->fastest_share));
       }
       continue;
     }
@@ -326,8 +326,8 @@ PetscErrorCode TSVSHMMLevelOwnRates_Private(TS ts)
       PetscCall(VecNorm(own, NORM_2, &n_own));
       PetscCall(VecNorm(ts->vec_sol, NORM_2, &n_all));
       PetscCall(VecDestroy(&own));
-      if (n_all > 0 && std::isfinite(n_own)) vs->level_share[level] = PetscMin(1.0, n_own / n_all);
-      PetscCall(PetscInfo(ts, "Level %" PetscInt_FMT " at t = %g: its own components hold %g of the state norm\n", level, (double)ts->ptime, (double)vs->level_share[level]));
+      if (n_all > 0 && std::isfinite(n_own)) vs->fastest_share = PetscMin(1.0, n_own / n_all);
+      PetscCall(PetscInfo(ts, "Level %" PetscInt_FMT " at t = %g: its own components hold %g of the state norm\n", level, (double)ts->ptime, (double)vs->fastest_share));
     }
     PetscCall(VecDestroy(&mask));
     if (!finite) continue;
