@@ -162,4 +162,55 @@ double largestStableSavingsFactor(const StabilityFunction &R, const Kernel &kern
   return lo;
 }
 
+double forcedResponse(const std::vector<double> &H, int n, int ld, double tau)
+{
+  const int           m = n + 1;
+  std::vector<double> A(m * m, 0.0), T(m * m), P(m * m), W(m * m);
+  auto                at       = [m](std::vector<double> &M, int i, int j) -> double                      &{ return M[i + j * m]; };
+  auto                multiply = [m](const std::vector<double> &X, const std::vector<double> &Y, std::vector<double> &Z) {
+    for (int j = 0; j < m; ++j)
+      for (int i = 0; i < m; ++i) {
+        double sum = 0;
+        for (int l = 0; l < m; ++l) sum += X[i + l * m] * Y[l + j * m];
+        Z[i + j * m] = sum;
+      }
+  };
+
+  if (n <= 0 || !(tau > 0)) return 0.0;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) at(A, i, j) = tau * H[i + j * ld];
+  at(A, 0, n) = tau;
+  double norm = 0; /* the 1-norm */
+  for (int j = 0; j < m; ++j) {
+    double col = 0;
+    for (int i = 0; i < m; ++i) col += std::abs(at(A, i, j));
+    norm = std::max(norm, col);
+  }
+  if (!std::isfinite(norm)) return std::numeric_limits<double>::infinity();
+  int squarings = 0;
+  while (norm > 0.25 && squarings < 200) {
+    norm /= 2;
+    ++squarings;
+  }
+  for (double &a : A) a = std::ldexp(a, -squarings);
+  /* exp(A) by its Taylor series to order 12 (||A|| <= 1/4: remainder below 1e-16) */
+  std::fill(T.begin(), T.end(), 0.0);
+  for (int i = 0; i < m; ++i) at(T, i, i) = 1.0;
+  P = T;
+  for (int k = 1; k <= 12; ++k) {
+    multiply(P, A, W);
+    for (int i = 0; i < m * m; ++i) {
+      P[i] = W[i] / k;
+      T[i] += P[i];
+    }
+  }
+  for (int s = 0; s < squarings; ++s) {
+    multiply(T, T, W);
+    T.swap(W);
+  }
+  double response = 0;
+  for (int i = 0; i < n; ++i) response += at(T, i, n) * at(T, i, n);
+  return std::isfinite(response) ? std::sqrt(response) : std::numeric_limits<double>::infinity();
+}
+
 } // namespace vshmm

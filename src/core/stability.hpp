@@ -81,4 +81,11 @@ double largestAccurateStep(const StabilityFunction &R, const std::vector<std::co
 // savings[j-1]; 0 if no positive value passes. Throws std::invalid_argument where the schedule does.
 double largestStableSavingsFactor(const StabilityFunction &R, const Kernel &kernel, double microStep, std::vector<double> savings, const std::vector<int> &subintervals, double macroStep, int j, std::complex<double> lambda, double dampingTarget, double maxGrowth);
 
+// || tau phi1(tau H) e1 ||_2 = || integral_0^tau exp(s H) e1 ds ||_2 for the n x n matrix H
+// (column-major, leading dimension ld): how far a constant unit forcing along e1 moves the linear
+// system y' = H y + e1 from y(0) = 0 in the time tau. tau for H = 0, (1 - exp(-r tau)) / r for H =
+// -r, at most 2 / omega for a rotation at rate omega. The exponential of the augmented matrix
+// tau [[H, e1], [0, 0]], by scaling and squaring of its Taylor series. Infinity where it overflows.
+double forcedResponse(const std::vector<double> &H, int n, int ld, double tau);
+
 } // namespace vshmm

@@ -194,3 +194,31 @@ TEST(LargestAccurateStep, KeepsTheAmplitudeOverTheSpan)
 }
 
 } // namespace
+
+namespace {
+
+// The response to a constant forcing along e1 of y' = H y + e1, against closed forms.
+TEST(ForcedResponse, ClosedForms)
+{
+  EXPECT_NEAR(vshmm::forcedResponse({0.0}, 1, 1, 3.0), 3.0, 1e-12);                       // no dynamics: tau
+  EXPECT_NEAR(vshmm::forcedResponse({-2.0}, 1, 1, 3.0), (1 - std::exp(-6.0)) / 2, 1e-12); // relaxation: (1 - e^{-r tau}) / r
+  EXPECT_NEAR(vshmm::forcedResponse({-1e4}, 1, 1, 4.0), 1e-4, 1e-12);                     // a stiff relaxation forgets: 1 / r
+  for (double tau : {0.3, 4.0}) {                                                         // a rotation at omega: sqrt(2 - 2 cos(omega tau)) / omega
+    const double omega = 1e3;
+    EXPECT_NEAR(vshmm::forcedResponse({0, omega, -omega, 0}, 2, 2, tau), std::sqrt(2 - 2 * std::cos(omega * tau)) / omega, 1e-8 / omega);
+  }
+  EXPECT_EQ(vshmm::forcedResponse({-1.0}, 1, 1, 0.0), 0.0);
+}
+
+// A slow variable the forcing moves, read through a leading dimension larger than n: y1' = -y1 + 1,
+// y2' = y1 - 100 y2 (the Hessenberg matrices of an Arnoldi run are stored so).
+TEST(ForcedResponse, LeadingDimension)
+{
+  const double        tau = 2.0;
+  std::vector<double> H   = {-1, 1, 99, 0, -100, 99}; // ld 3, the third row is not read
+  const double        y1  = 1 - std::exp(-tau);
+  const double        y2  = (1 - std::exp(-100 * tau)) / 100 - (std::exp(-tau) - std::exp(-100 * tau)) / 99; // int_0^tau e^{-100 (tau - s)} y1(s) ds
+  EXPECT_NEAR(vshmm::forcedResponse(H, 2, 3, tau), std::hypot(y1, y2), 1e-10);
+}
+
+} // namespace
