@@ -138,14 +138,35 @@ static PetscErrorCode TrialStep(TS ts, const vshmm::AdaptParameters &p, PetscRea
    its own components' norm, or for additive splits ||G_K(X)|| / (rho_K ||X||)): the stiffest
    wavenumbers of a sparse spectral advection scene hold about 5e-3 of ||u||, and their damping is
    not the answer's error. dtMax where the fastest level has no oscillating mode. */
+/* The run over which the micro step's amplitude error adds up: from the solve's start (or the
+   last restart of the accuracy control) to the final time, kOscillationSpanSteps macro steps where
+   there is none. */
+PetscReal TSVSHMMAmplitudeSpan_Private(TS ts)
+{
+  const TS_VSHMM *vs   = (TS_VSHMM *)ts->data;
+  PetscReal       span = ts->max_time - (vs->adapt_ready ? vs->adapt_tstart : ts->ptime);
+
+  if (!(span > 0) || !std::isfinite(span) || span >= PETSC_MAX_REAL / 2) span = kOscillationSpanSteps * ts->time_step;
+  return PetscMax(span, ts->time_step);
+}
+
+/* What a relative amplitude error E of the fastest level's oscillations at the end of the run costs
+   the state, over E: the level's own part of the state, plus what the slower levels' fields make of
+   the error over the run (TSVSHMMLevelOwnRates_Private(): a thin fast rotation that a slow variable
+   squares). */
+static PetscReal AmplitudeWeight(TS ts)
+{
+  const TS_VSHMM *vs = (TS_VSHMM *)ts->data;
+  return vs->fastest_share + vs->fastest_drive;
+}
+
 /* The fastest level's oscillations' amplitude error allowed over the run, relative: the tolerance
-   over the level's part of the state (1 or more: the modes may lose all of their amplitude, their
-   whole part of the state being within the tolerance). */
+   over AmplitudeWeight(). 1 or more: the modes may lose all of their amplitude, and the state would
+   still be within the tolerance. */
 static PetscReal AllowedAmplitudeLoss(TS ts)
 {
-  const TS_VSHMM *vs  = (TS_VSHMM *)ts->data;
   const PetscReal tol = PetscMax(PetscMax(ts->rtol, ts->atol), 1e-12);
-  return kOscillationShare * tol / PetscMax(vs->fastest_share, 1e-12);
+  return kOscillationShare * tol / PetscMax(AmplitudeWeight(ts), 1e-12);
 }
 
 static PetscReal AccurateMicroStep(TS ts, const vshmm::AdaptParameters &p, PetscReal dtMax)
@@ -157,10 +178,8 @@ static PetscReal AccurateMicroStep(TS ts, const vshmm::AdaptParameters &p, Petsc
   for (const std::complex<double> &lambda : vs->level_limiting.back())
     if (vshmm::oscillates(lambda)) modes.push_back(lambda);
   if (modes.empty()) return dtMax;
-  PetscReal span = ts->max_time - vs->adapt_tstart;
-  if (!(span > 0) || !std::isfinite(span) || span >= PETSC_MAX_REAL / 2) span = kOscillationSpanSteps * ts->time_step;
-  span             = PetscMax(span, ts->time_step);
-  PetscReal ratios = 1;
+  const PetscReal span   = TSVSHMMAmplitudeSpan_Private(ts);
+  PetscReal       ratios = 1;
   for (double r : p.ratios) ratios *= r;
   /* the level's amplitude error counts with its part of the state; the modes lose at most their
      whole amplitude: where that is within the tolerance there is no bound, otherwise their summed
@@ -168,7 +187,7 @@ static PetscReal AccurateMicroStep(TS ts, const vshmm::AdaptParameters &p, Petsc
   const PetscReal allowed = AllowedAmplitudeLoss(ts);
   if (!(allowed < 1)) return dtMax;
   const PetscReal dt = vshmm::largestAccurateStep(vshmm::StabilityFunction(*vs->tableau), modes, dtMax, span / ratios, allowed);
-  if (dt < dtMax) (void)(PetscInfo(ts, "Adapt: the fastest level's oscillations (%d modes, share %g of the state) bound the micro step to %g (was %g)\n", (int)modes.size(), (double)vs->fastest_share, (double)dt, (double)dtMax));
+  if (dt < dtMax) (void)(PetscInfo(ts, "Adapt: the fastest level's oscillations (%d modes, weight %g in the state) bound the micro step to %g (was %g)\n", (int)modes.size(), (double)AmplitudeWeight(ts), (double)dt, (double)dtMax));
   return dt;
 }
 

@@ -74,6 +74,7 @@ struct TS_VSHMM {
   std::vector<std::vector<std::complex<double>>> level_limiting;                  // decaying or oscillating Ritz values
   std::vector<PetscReal>                         level_slowest;                   // smallest |Ritz value| of the block of the level's own components (0: not estimated)
   PetscReal                                      fastest_share  = 1;              // the fastest level's part of the state (TSVSHMMLevelOwnRates_Private(); 1: not estimated)
+  PetscReal                                      fastest_drive  = 0;              // how far the slower levels' fields move the state over the run per relative amplitude error of the fastest level's oscillation (over ||X||; 0: not estimated)
   PetscReal                                      own_rates_time = PETSC_MIN_REAL; // when level_slowest was estimated (with the spectra of that time)
   PetscReal                                      spectra_time   = PETSC_MIN_REAL; // when they were estimated
 
@@ -145,3 +146,4 @@ PETSC_INTERN PetscErrorCode TSVSHMMCheckSeparation_Private(TS);
 PETSC_INTERN PetscErrorCode TSVSHMMAdaptStep_Private(TS, PetscReal, PetscReal);
 PETSC_INTERN PetscErrorCode TSVSHMMAdaptSetUp_Private(TS);
 PETSC_INTERN PetscErrorCode TSVSHMMAdaptReset_Private(TS);
+PETSC_INTERN PetscReal      TSVSHMMAmplitudeSpan_Private(TS);

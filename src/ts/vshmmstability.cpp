@@ -33,12 +33,13 @@ static constexpr PetscReal kMaxTransientGrowth = 100;  /* largest growth of a mo
 static constexpr PetscReal kMaxCouplingGrowth  = 1.05; /* largest growth of a mode over a macro step from the coupling of the levels */
 static constexpr PetscReal kFastEnergyGrowth   = 4;    /* growth of the fastest scale's oscillation energy that is warned about */
 static constexpr PetscReal kCouplingTarget     = 1.01; /* what suggested savings factors achieve */
+static constexpr PetscReal kNegligibleDrive    = 1e-3; /* of the fastest level's part of the state: a drive of the slower levels whose response is not estimated */
 
 /* Arnoldi on the Jacobian of level l's field at (t, X), applied by finite differences of the level's
    field: an orthonormal basis V[0..k-1] of a Krylov space (V has m + 1 vectors, m = min(16, N),
    destroyed by the caller with VecDestroyVecs(m + 1, &V)) and the k x k Hessenberg matrix
    V^T J V (column-major, leading dimension m + 1, in H). k = 0 where the field is not finite near X. */
-static PetscErrorCode LevelArnoldi(TS ts, PetscInt level, PetscReal t, Vec X, Vec **Vout, PetscInt *mout, std::vector<PetscScalar> &H, PetscInt *kout, PetscReal *delta_out, Vec mask = nullptr)
+static PetscErrorCode LevelArnoldi(TS ts, PetscInt level, PetscReal t, Vec X, Vec **Vout, PetscInt *mout, std::vector<PetscScalar> &H, PetscInt *kout, PetscReal *delta_out, Vec mask = nullptr, Vec start = nullptr)
 {
   TS_VSHMM    *vs = (TS_VSHMM *)ts->data;
   PetscInt     N, rstart, rend;
@@ -54,11 +55,14 @@ static PetscErrorCode LevelArnoldi(TS ts, PetscInt level, PetscReal t, Vec X, Ve
   PetscCall(VecDuplicate(X, &Xp));
   PetscCall(VecDuplicate(X, &W));
 
-  /* A deterministic start vector that does not depend on the number of ranks */
-  PetscCall(VecGetOwnershipRange(V[0], &rstart, &rend));
-  PetscCall(VecGetArray(V[0], &v));
-  for (PetscInt i = rstart; i < rend; ++i) v[i - rstart] = 1.0 + 0.5 * std::sin(1.7 * (double)i + 0.3);
-  PetscCall(VecRestoreArray(V[0], &v));
+  /* The start vector given, or a deterministic one that does not depend on the number of ranks */
+  if (start) PetscCall(VecCopy(start, V[0]));
+  else {
+    PetscCall(VecGetOwnershipRange(V[0], &rstart, &rend));
+    PetscCall(VecGetArray(V[0], &v));
+    for (PetscInt i = rstart; i < rend; ++i) v[i - rstart] = 1.0 + 0.5 * std::sin(1.7 * (double)i + 0.3);
+    PetscCall(VecRestoreArray(V[0], &v));
+  }
   if (mask) PetscCall(VecPointwiseMult(V[0], V[0], mask));
   PetscReal beta;
   PetscCall(VecNormalize(V[0], &beta));
@@ -278,6 +282,110 @@ PetscErrorCode TSVSHMMLevelSpectra_Private(TS ts)
    the separation check and -ts_vshmm_adapt's error model (vshmmadapt.cpp). With them, each level's
    share of the state norm (its own components'), by which the micro step's amplitude bound weighs
    the fastest level's oscillations. */
+/* W = J_K V, the Jacobian of the fastest level's field G_K at X applied to V by a forward difference
+   from G = G_K(X). */
+static PetscErrorCode FastestJacobianApply(TS ts, Vec X, Vec G, Vec V, Vec Xp, Vec W)
+{
+  TS_VSHMM      *vs = (TS_VSHMM *)ts->data;
+  const PetscInt K  = (PetscInt)vs->level_end.size() - 1;
+  PetscReal      xnorm, vnorm;
+
+  PetscFunctionBegin;
+  PetscCall(VecNorm(X, NORM_2, &xnorm));
+  PetscCall(VecNorm(V, NORM_2, &vnorm));
+  if (!(vnorm > 0)) {
+    PetscCall(VecSet(W, 0.0));
+    PetscFunctionReturn(0);
+  }
+  const PetscReal delta = std::sqrt(PETSC_MACHINE_EPSILON) * (1.0 + xnorm) / vnorm;
+  PetscCall(VecWAXPY(Xp, delta, V, X));
+  PetscCall(TSVSHMMEvaluateLevel_Private(vs, K, ts->ptime, Xp, W));
+  PetscCall(VecAXPY(W, -1.0, G));
+  PetscCall(VecScale(W, 1.0 / delta));
+  PetscFunctionReturn(0);
+}
+
+/* How strongly the fastest level's oscillation drives the state through the slower levels' fields,
+   per unit time and relative amplitude of the oscillation, over ||X||: a thin fast rotation that a
+   slow variable squares (y' = -y + C u^2 with small u) holds little of the state but moves the slow
+   variable by its whole size per unit time and relative amplitude, and a relative amplitude error
+   E left by the micro step moves the slow variables by about E times this rate times the run
+   (AllowedAmplitudeLoss() in vshmmadapt.cpp).
+
+   The oscillation's part of the state, P, is the fastest level's own components (mask; component
+   splits) or -J_K^2 X / rho_K^2 (additive splits: the oscillating modes at rate rho_K, the slower
+   ones weighed by their squared frequency over rho_K^2, the slow ones not at all); a quarter turn
+   on it is Q = G_K(X) / rho_K on the own components or J_K P / rho_K. The drive is the derivative
+   of the slower levels' field G_{K-1} with respect to a relative change of the oscillation's
+   amplitude (central differences), averaged over four phases of it (X - P + cos(theta) P +
+   sin(theta) Q, theta a multiple of a quarter turn): only what the oscillation does to the slower
+   levels on average adds up over the run, and the average over four phases is exact for fields of
+   degree up to 3 in it (the terms linear in it, a slow advection of the fast modes, cancel). */
+static PetscErrorCode FastestLevelDrive(TS ts, Vec mask, PetscReal n_all)
+{
+  TS_VSHMM      *vs = (TS_VSHMM *)ts->data;
+  const PetscInt K  = (PetscInt)vs->level_end.size() - 1;
+  Vec            P, Q, G, Y, Xs, Gp, Gm, D;
+  PetscReal      n_d;
+
+  PetscFunctionBegin;
+  if (!((PetscInt)vs->level_radius.size() > K && vs->level_radius[K] > 0)) PetscFunctionReturn(0);
+  const PetscReal rho = vs->level_radius[K], s = 1e-3;
+  PetscCall(VecDuplicate(ts->vec_sol, &P));
+  PetscCall(VecDuplicate(ts->vec_sol, &Q));
+  PetscCall(VecDuplicate(ts->vec_sol, &G));
+  PetscCall(VecDuplicate(ts->vec_sol, &Y));
+  PetscCall(VecDuplicate(ts->vec_sol, &Xs));
+  PetscCall(VecDuplicate(ts->vec_sol, &Gp));
+  PetscCall(VecDuplicate(ts->vec_sol, &Gm));
+  PetscCall(VecDuplicate(ts->vec_sol, &D));
+  PetscCall(TSVSHMMEvaluateLevel_Private(vs, K, ts->ptime, ts->vec_sol, G));
+  if (mask) {
+    PetscCall(VecPointwiseMult(P, mask, ts->vec_sol));
+    PetscCall(VecPointwiseMult(Q, mask, G));
+    PetscCall(VecScale(Q, 1.0 / rho));
+  } else {
+    PetscCall(FastestJacobianApply(ts, ts->vec_sol, G, ts->vec_sol, Xs, Q)); /* J X */
+    PetscCall(FastestJacobianApply(ts, ts->vec_sol, G, Q, Xs, P));           /* J^2 X */
+    PetscCall(VecScale(P, -1.0 / (rho * rho)));
+    PetscCall(FastestJacobianApply(ts, ts->vec_sol, G, P, Xs, Q));
+    PetscCall(VecScale(Q, 1.0 / rho));
+  }
+  PetscCall(VecSet(D, 0.0));
+  for (int quarter = 0; quarter < 4; ++quarter) {
+    const PetscReal c = quarter == 0 ? 1 : quarter == 2 ? -1 : 0, q = quarter == 1 ? 1 : quarter == 3 ? -1 : 0;
+    PetscCall(VecAXPBYPCZ(Y, c, q, 0.0, P, Q));       /* the oscillation's part at this phase */
+    PetscCall(VecWAXPY(Xs, 1.0 + s, Y, ts->vec_sol)); /* X - P + (1 + s) that part */
+    PetscCall(VecAXPY(Xs, -1.0, P));
+    PetscCall(TSVSHMMEvaluateLevel_Private(vs, K - 1, ts->ptime, Xs, Gp));
+    PetscCall(VecAXPY(Xs, -2.0 * s, Y)); /* X - P + (1 - s) that part */
+    PetscCall(TSVSHMMEvaluateLevel_Private(vs, K - 1, ts->ptime, Xs, Gm));
+    PetscCall(VecAXPBYPCZ(D, 1.0 / (8 * s), -1.0 / (8 * s), 1.0, Gp, Gm));
+  }
+  PetscCall(VecNorm(D, NORM_2, &n_d));
+  const PetscReal tau      = 0.5 * TSVSHMMAmplitudeSpan_Private(ts);
+  PetscReal       response = tau;                                                                  /* what the slower levels make of the drive over half the run, per unit drive */
+  if (n_d > 0 && std::isfinite(n_d) && n_d * tau > kNegligibleDrive * vs->fastest_share * n_all) { /* (at most tau where no mode grows: a negligible drive is left so) */
+    Vec                     *V;
+    PetscInt                 m, k;
+    std::vector<PetscScalar> H;
+    PetscCall(LevelArnoldi(ts, K, ts->ptime, ts->vec_sol, &V, &m, H, &k, NULL, nullptr, D));
+    PetscCall(VecDestroyVecs(m + 1, &V));
+    if (k > 0) response = vshmm::forcedResponse(std::vector<double>(H.begin(), H.end()), (int)k, (int)(m + 1), tau);
+  }
+  vs->fastest_drive = std::isfinite(n_d * response) ? n_d * response / n_all : PETSC_MAX_REAL;
+  PetscCall(PetscInfo(ts, "The slower levels' fields move the state by %g of its norm per unit time and relative amplitude of the fastest level's oscillation (phase average), %g over half the run\n", (double)(n_d / n_all), (double)vs->fastest_drive));
+  PetscCall(VecDestroy(&P));
+  PetscCall(VecDestroy(&Q));
+  PetscCall(VecDestroy(&G));
+  PetscCall(VecDestroy(&Y));
+  PetscCall(VecDestroy(&Xs));
+  PetscCall(VecDestroy(&Gp));
+  PetscCall(VecDestroy(&Gm));
+  PetscCall(VecDestroy(&D));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode TSVSHMMLevelOwnRates_Private(TS ts)
 {
   TS_VSHMM                         *vs      = (TS_VSHMM *)ts->data;
@@ -289,6 +397,7 @@ PetscErrorCode TSVSHMMLevelOwnRates_Private(TS ts)
   const StabilityCounting counting(vs);
   vs->level_slowest.assign(nscales, 0.0);
   vs->fastest_share = 1.0;
+  vs->fastest_drive = 0.0;
   for (PetscInt level = 1; level < nscales; ++level) {
     PetscBool component = PETSC_TRUE;
     for (PetscInt k = vs->level_end[level - 1]; k < vs->level_end[level]; ++k) component = vs->splits[k].additive ? PETSC_FALSE : component;
@@ -306,6 +415,7 @@ PetscErrorCode TSVSHMMLevelOwnRates_Private(TS ts)
         PetscCall(VecDestroy(&G));
         if (n_all > 0 && std::isfinite(n_g)) vs->fastest_share = PetscMin(1.0, n_g / (vs->level_radius[level] * n_all));
         PetscCall(PetscInfo(ts, "Level %" PetscInt_FMT " (additive splits) at t = %g: %g of the state norm by its field\n", level, (double)ts->ptime, (double)vs->fastest_share));
+        if (n_all > 0 && std::isfinite(n_g)) PetscCall(FastestLevelDrive(ts, nullptr, n_all));
       }
       continue;
     }
@@ -328,6 +438,7 @@ PetscErrorCode TSVSHMMLevelOwnRates_Private(TS ts)
       PetscCall(VecDestroy(&own));
       if (n_all > 0 && std::isfinite(n_own)) vs->fastest_share = PetscMin(1.0, n_own / n_all);
       PetscCall(PetscInfo(ts, "Level %" PetscInt_FMT " at t = %g: its own components hold %g of the state norm\n", level, (double)ts->ptime, (double)vs->fastest_share));
+      if (vs->adapt && n_all > 0 && n_own > 0) PetscCall(FastestLevelDrive(ts, mask, n_all));
     }
     PetscCall(VecDestroy(&mask));
     if (!finite) continue;
