@@ -402,6 +402,21 @@ TEST(VSHMMAdapt, AThinFastRotationDoesNotBoundTheMicroStep)
   }
 }
 
+// Where every faster level decays, a scheduled calibration the model predicted (the step's
+// estimate within 2x of its prediction) is skipped; where a level oscillates its estimates scatter
+// by about 3x with the phase, within 2x by chance, and every scheduled calibration is made: the
+// first macro step and after 1, 2, 4, 8 more, 5 over the 20 macro steps of the rotation (with the
+// skip there: 3 and 4 at tol 1e-1 and 1e-2, and the oscillators at 1e-3, t = 4, took 4x the work).
+TEST(VSHMMAdapt, AnOscillatingLevelIsCalibratedOnSchedule)
+{
+  const RotationParams params;
+  for (const char *options : {"-ts_vshmm_adapt -ts_rtol 1e-1 -ts_atol 1e-1", "-ts_vshmm_adapt -ts_rtol 1e-2 -ts_atol 1e-2"}) {
+    AdaptRun run;
+    ASSERT_EQ(SolveRotation(options, params, 2, &run), 0);
+    EXPECT_GE(run.stats.adapt_calibrations, 5) << options;
+  }
+}
+
 // A thin fast rotation that the slow variable squares strongly: y' = -y + 1000 u^2 + 0.3 sin(y),
 // u(0) = 0.03 (the rotation holds 0.05 of the state's norm but its energy moves y by its whole size).
 // The micro step's amplitude bound weighs the rotation by what the slow field makes of its
