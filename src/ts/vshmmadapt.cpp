@@ -56,6 +56,8 @@ static constexpr PetscReal kNegligibleSavings      = 0.05; /* a time ratio below
 static constexpr PetscReal kWarn                   = 2;    /* a step accepted with an estimate above this many shares is warned of */
 static constexpr PetscReal kFloorAccept            = 4;    /* an estimate above this many shares is never taken as a noise floor */
 static constexpr PetscReal kMissFactor             = 2;    /* a retry whose estimate is this many times the model's prediction measures the split again */
+static constexpr PetscInt  kSavingsTests           = 3;    /* scales not separated: time ratios tested against a single-rate step at most this many times */
+static constexpr PetscReal kSavingsMargin          = 0.5;  /* and admitted where they differ by at most this fraction of the step's coherent share */
 static constexpr PetscInt  kTrustedCalibrations    = 2;    /* after this many calibrations a scheduled one is skipped where the model predicted the step's estimate */
 static constexpr PetscReal kOscillationShare       = 1.0;  /* of the tolerance: the fastest level's oscillations' amplitude error over the run */
 static constexpr PetscReal kOscillationSpanSteps   = 100;  /* macro steps taken as the run where it has no final time */
@@ -199,7 +201,7 @@ static vshmm::AdaptBounds Bounds(TS ts, PetscReal DeltaT)
   vshmm::AdaptBounds b;
 
   b.fixedMicroStep = vs->micro_dt > 0 ? true : false;
-  b.fixedRatios    = !vs->savings.empty() || vs->no_separation;
+  b.fixedRatios    = !vs->savings.empty() || (vs->no_separation && vs->adapt_verified.empty());
   b.maxMicroStep   = kStableFraction * vs->level_max_step.back();
   if (!std::isfinite(b.maxMicroStep) || b.maxMicroStep > DeltaT / kMinCycles) b.maxMicroStep = DeltaT / kMinCycles;
   if (!b.fixedMicroStep) b.maxMicroStep = AccurateMicroStep(ts, vs->adapt_params, b.maxMicroStep);
@@ -209,6 +211,15 @@ static vshmm::AdaptBounds Bounds(TS ts, PetscReal DeltaT)
       b.maxRatio.resize(vs->adapt_no_savings.size(), PETSC_INFINITY);
       b.maxRatio[l] = 1.0;
     }
+  if (vs->no_separation && vs->savings.empty() && !vs->adapt_verified.empty()) { /* savings up to those a single-rate step confirmed */
+    bool any = false;
+    b.maxRatio.resize(vs->adapt_verified.size(), PETSC_INFINITY);
+    for (size_t l = 0; l < vs->adapt_verified.size(); ++l) {
+      b.maxRatio[l] = PetscMin(b.maxRatio[l], vs->adapt_verified[l]);
+      any           = any || b.maxRatio[l] > 1.0;
+    }
+    b.fixedRatios = !any;
+  }
   return b;
 }
 
@@ -310,6 +321,46 @@ static std::vector<double> Saturations(TS ts, const vshmm::AdaptParameters &p)
   return s;
 }
 
+/* The first time ratios of -ts_vshmm_adapt as if every pair were separated (p's micro step). */
+static std::vector<double> SeparatedRatios(TS ts, const vshmm::AdaptParameters &p0)
+{
+  TS_VSHMM              *vs = (TS_VSHMM *)ts->data;
+  const PetscInt         K  = (PetscInt)vs->level_end.size() - 1;
+  vshmm::AdaptParameters p  = p0;
+
+  p.ratios.assign(K, 1.0);
+  for (PetscInt l = 0; l < K; ++l) {
+    /* Where the application set the separations, sigma_l = kInitialSeparation (its separations are
+       the pairs' saturation scales, and the estimate sees them). Otherwise a faster level that only
+       decays starts at sigma_l = kInitialDecaySeparation, but at most 1 + s_l / 2 (Saturations():
+       near and beyond the saturation scale a coarser comparison changes little, and an error
+       there, an initial layer, could not be seen); one that oscillates at kInitialSeparation. */
+    const PetscBool given = (PetscInt)vs->separations.size() > l ? PETSC_TRUE : PETSC_FALSE;
+    const PetscBool decay = (!given && LevelDecays(vs, l + 1)) ? PETSC_TRUE : PETSC_FALSE;
+    const PetscReal S     = given ? RadiusRatio(vs, l) : Separation(vs, l); /* a slow rate inside a faster level (OwnRatio()) starts the ratio low */
+    p.ratios[l]           = PetscMax(1.0, PetscMin(S / (decay ? kInitialDecaySeparation : kInitialSeparation), 1e8));
+    if (decay) {
+      const std::vector<double> sat = Saturations(ts, p);
+      if (sat[l] > 0) p.ratios[l] = PetscMin(p.ratios[l], 1.0 + 0.5 * sat[l]);
+    }
+  }
+  return p.ratios;
+}
+
+/* Where the scales are not separated, the time ratios to test against a single-rate step
+   (VerifySavings()): the separated start `ratios`, where they save something and every faster
+   level decays (an oscillating level's savings shift its phases, and on the sparse-spectral
+   advection scenes the admitted ones cost more than they saved); empty otherwise. */
+static std::vector<double> SavingsCandidate(TS ts, const std::vector<double> &ratios)
+{
+  TS_VSHMM *vs  = (TS_VSHMM *)ts->data;
+  bool      any = false;
+
+  for (double r : ratios) any = any || r - 1.0 >= kNegligibleSavings;
+  for (PetscInt l = 1; l < (PetscInt)vs->level_end.size(); ++l) any = any && LevelDecays(vs, l);
+  return any ? ratios : std::vector<double>();
+}
+
 /* The separation check: spectral radii of consecutive levels (or the separations set). */
 PetscErrorCode TSVSHMMCheckSeparation_Private(TS ts)
 {
@@ -342,8 +393,14 @@ PetscErrorCode TSVSHMMCheckSeparation_Private(TS ts)
   const char *what = (vs->separations.empty() && !own) ? "ratio of the spectral radii of consecutive levels" : "separation of consecutive levels";
   PetscCheck(vs->check_separation != TSVSHMM_SEPARATION_ERROR, comm, PETSC_ERR_ARG_INCOMP, "TSVSHMM separation check at t = %g: the time scales of the RHS splits are not separated (%s, at least %g needed: %s). VSHMM samples the faster scales statistically and would change the answer here; use a single-rate TS type (-ts_type rk) or a multirate one (-ts_type mprk), or -ts_vshmm_check_separation warn to run anyway",
              (double)ts->ptime, what, (double)kMinSeparation, figures.c_str());
+  vshmm::AdaptParameters separated; /* the first time ratios as if separated: tested against a single-rate step where every faster level decays */
+  separated.microStep = ts->time_step;
+  const bool tested   = vs->adapt && vs->savings.empty() && !SavingsCandidate(ts, SeparatedRatios(ts, separated)).empty();
   PetscCall(TSVSHMMWarn_Private(ts, "TSVSHMM warning: separation check at t = %g: the time scales of the RHS splits are not separated (%s, at least %g needed: %s). VSHMM samples the faster scales statistically and %s; a single-rate TS type (-ts_type rk) or a multirate one (-ts_type mprk) is the right tool. (-ts_vshmm_check_separation error makes this an error, off silences it.)\n",
-                                (double)ts->ptime, what, (double)kMinSeparation, figures.c_str(), vs->adapt && vs->savings.empty() ? "-ts_vshmm_adapt therefore takes no savings (every level steps with the micro step)" : "its answer will be wrong by an amount it cannot estimate"));
+                                (double)ts->ptime, what, (double)kMinSeparation, figures.c_str(),
+                                !(vs->adapt && vs->savings.empty()) ? "its answer will be wrong by an amount it cannot estimate"
+                                : tested                            ? "-ts_vshmm_adapt therefore takes savings only where a comparison with a single-rate macro step admits them (every faster level decays)"
+                                                                    : "-ts_vshmm_adapt therefore takes no savings (every level steps with the micro step)"));
   PetscFunctionReturn(0);
 }
 
@@ -394,26 +451,16 @@ PetscErrorCode TSVSHMMAdaptSetUp_Private(TS ts)
     if (rho > 0 && oscillating && AllowedAmplitudeLoss(ts) < 1) p.microStep = PetscMin(p.microStep, std::pow(tol, 1.0 / vs->tableau->order) / rho);
     p.microStep = PetscMin(p.microStep, kStableFraction * vs->level_max_step[K]);
   }
+  vs->adapt_candidate.clear();
+  vs->adapt_verified.clear();
   if (!vs->savings.empty()) p.ratios = vshmm::timeRatiosFromSavings(vs->savings);
   else {
-    p.ratios.assign(K, 1.0);
-    if (!vs->no_separation)
-      for (PetscInt l = 0; l < K; ++l) {
-        /* Where the application set the separations, sigma_l = kInitialSeparation (its
-           separations are the pairs' saturation scales, and the estimate sees them). Otherwise a
-           faster level that only decays starts at sigma_l = kInitialDecaySeparation, but no deeper
-           than its pair's saturation scale (Saturations(): beyond it a coarser comparison changes
-           nothing, and an error there, an initial layer, could not be seen); one that oscillates
-           at kInitialSeparation. */
-        const PetscBool given = (PetscInt)vs->separations.size() > l ? PETSC_TRUE : PETSC_FALSE;
-        const PetscBool decay = (!given && LevelDecays(vs, l + 1)) ? PETSC_TRUE : PETSC_FALSE;
-        const PetscReal S     = given ? RadiusRatio(vs, l) : Separation(vs, l); /* a slow rate inside a faster level (OwnRatio()) starts the ratio low */
-        p.ratios[l]           = PetscMax(1.0, PetscMin(S / (decay ? kInitialDecaySeparation : kInitialSeparation), 1e8));
-        if (decay) {
-          const std::vector<double> sat = Saturations(ts, p);
-          if (sat[l] > 0) p.ratios[l] = PetscMin(p.ratios[l], 1.0 + 0.5 * sat[l]);
-        }
-      }
+    p.ratios = SeparatedRatios(ts, p);
+    if (vs->no_separation) { /* not separated: no savings until a comparison with a single-rate step admits some (VerifySavings()) */
+      vs->adapt_candidate = SavingsCandidate(ts, p.ratios);
+      PetscCall(PetscInfo(ts, "Adapt: the scales are not separated: no savings%s\n", vs->adapt_candidate.empty() ? "" : " until a single-rate macro step admits them"));
+      p.ratios.assign(K, 1.0);
+    }
   }
   LimitToStableSteps(ts, p);
   const vshmm::AdaptBounds b = Bounds(ts, DeltaT);
@@ -593,6 +640,56 @@ static PetscErrorCode Calibrate(TS ts, const vshmm::AdaptParameters &p, PetscRea
 }
 
 /* One macro step with accuracy control; the accepted result is left in ts->vec_sol. */
+/* Where the separation check found the scales not separated, adapt's steps take no savings: the
+   estimate compares runs with savings, and it can be blind to what savings do there (a slow
+   process inside a fast level, slowed with it, is slowed in the comparison too). After the first
+   macro step, taken single-rate (its result in vs->Xbase, from vs->X0), the savings adapt would
+   start from were the scales separated (vs->adapt_candidate) are tested against it: the same
+   macro step with those time ratios and the same micro step. Their difference is the savings'
+   own error in that step; where it is within the step's share of the tolerance as if every step's
+   error added up coherently (kSafety tol DeltaT / span), the savings are admitted, as the upper
+   bound of adapt's choice for the rest of the solve (Bounds()); otherwise once more with r_l - 1
+   scaled to half the share, and then none. The candidate ratios, the difference and the decision
+   are shown with -info; the decision by -ts_view. */
+static PetscErrorCode VerifySavings(TS ts, const vshmm::AdaptParameters &p, PetscReal t0, PetscReal DeltaT)
+{
+  TS_VSHMM       *vs       = (TS_VSHMM *)ts->data;
+  const PetscInt  K        = (PetscInt)p.ratios.size();
+  const PetscReal span     = ts->max_time - vs->adapt_tstart;
+  const PetscReal fraction = (span > 0 && std::isfinite(span) && span < PETSC_MAX_REAL / 2) ? PetscMin(1.0, DeltaT / span) : 1.0 / kOscillationSpanSteps;
+  const PetscReal budget   = kSafety * fraction; /* in units of the tolerance */
+
+  PetscFunctionBegin;
+  vs->adapt_verified.assign(K, 1.0);
+  vshmm::AdaptParameters q = p;
+  q.ratios                 = vs->adapt_candidate;
+  for (int attempt = 0; attempt < kSavingsTests; ++attempt) {
+    const vshmm::AdaptBounds b = Bounds(ts, DeltaT);
+    LimitAllToStableSteps(vs, q);
+    vshmm::fitCycle(q, b.maxCycle, false, true);
+    q.microStep = p.microStep;
+    bool any    = false;
+    for (double r : q.ratios) any = any || r - 1.0 >= kNegligibleSavings;
+    if (!any) break;
+    PetscReal d;
+    PetscCall(TrialStep(ts, q, t0, DeltaT, vs->Xtrial));
+    PetscCall(ObservableDifference(ts, t0 + DeltaT, vs->Xbase, vs->Xtrial, &d));
+    std::string ratios;
+    for (double r : q.ratios) ratios += (ratios.empty() ? "" : ",") + std::to_string(r);
+    PetscCall(PetscInfo(ts, "Adapt: the scales are not separated; savings tested against the single-rate macro step [%g, %g]: time ratios %s differ by %g of the tolerance (admitted up to %g)\n", (double)t0, (double)(t0 + DeltaT), ratios.c_str(), (double)d, (double)(kSavingsMargin * budget)));
+    if (std::isfinite(d) && d <= kSavingsMargin * budget) {
+      vs->adapt_verified = q.ratios;
+      break;
+    }
+    const PetscReal scale = (std::isfinite(d) && d > 0) ? 0.5 * kSavingsMargin * budget / d : 0.0;
+    for (double &r : q.ratios) r = 1.0 + (r - 1.0) * scale;
+  }
+  bool any = false;
+  for (double r : vs->adapt_verified) any = any || r > 1.0;
+  if (any) vs->adapt_calibrated = PETSC_FALSE; /* the error model's split is measured again with the savings */
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
 {
   TS_VSHMM       *vs     = (TS_VSHMM *)ts->data;
@@ -758,6 +855,16 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
     vs->adapt_used       = p;
     vs->adapt_last_ratio = std::isfinite(E) && E >= 0 ? E / budget : PETSC_MAX_REAL;
     SnapNegligibleSavings(vs, next, bounds); /* after an accepted step only: the retries of an initial layer take the savings down on their way to a start */
+    if (!vs->adapt_candidate.empty() && vs->adapt_verified.empty()) {
+      PetscCall(VerifySavings(ts, p, t0, DeltaT));
+      bool any = false;
+      for (double r : vs->adapt_verified) any = any || r > 1.0;
+      if (any) {
+        next.ratios = vs->adapt_verified;
+        LimitToStableSteps(ts, next);
+        vshmm::fitCycle(next, Bounds(ts, DeltaT).maxCycle, false, true);
+      }
+    }
     p = next;
     break;
   }

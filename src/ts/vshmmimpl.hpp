@@ -85,6 +85,8 @@ struct TS_VSHMM {
   vshmm::ErrorModel      adapt_model;
   PetscBool              adapt_ready = PETSC_FALSE; // initial parameters chosen
   std::vector<PetscBool> adapt_no_savings;          // per time ratio: no savings for the rest of the solve (they were negligible)
+  std::vector<PetscReal> adapt_candidate;           // scales not separated: the time ratios to test against a single-rate step (empty: none)
+  std::vector<PetscReal> adapt_verified;            // the time ratios that test admitted, adapt's upper bound (empty: not tested yet)
   PetscInt               adapt_since_calibration = 0;
   PetscBool              adapt_calibrated        = PETSC_FALSE; // the model's split between the terms was measured
   PetscInt               adapt_calibrated_times  = 0;           // calibrations in this solve
