@@ -186,6 +186,12 @@ PetscErrorCode SolveObservingX0(const char *options, SplitProblem &p, const std:
   PetscCall(GatherState(&p, x, run->x));
   PetscCall(TSVSHMMGetStatistics(ts, &run->stats));
   run->evaluations = std::accumulate(run->stats.rhs_evaluations, run->stats.rhs_evaluations + run->stats.nsplits, (PetscInt64)0);
+  {
+    PetscInt         n;
+    const PetscReal *alpha;
+    PetscCall(TSVSHMMGetSavingsFactors(ts, &n, &alpha));
+    run->savings.assign(alpha, alpha + n);
+  }
   PetscCall(DestroySplitTS(&p, &ts, &x));
   PetscFunctionReturn(0);
 }
@@ -414,6 +420,52 @@ TEST(VSHMMAdapt, AnOscillatingLevelIsCalibratedOnSchedule)
     AdaptRun run;
     ASSERT_EQ(SolveRotation(options, params, 2, &run), 0);
     EXPECT_GE(run.stats.adapt_calibrations, 5) << options;
+  }
+}
+
+// Two relaxations 9 apart (not separated): y' = -y + z (slow {y}), z' = -9 (z - g(y)) (fast {z}),
+// DeltaT = 1 to t = 4. With g = 1/2 and z(0) = 1/2 the fast variable sits on its slow manifold and
+// savings change nothing: the time ratio adapt would start from were the levels separated (4.5)
+// is tested against the first, single-rate macro step (they differ by 1e-6 of the tolerance) and
+// admitted (savings factor 1.5 at the end).
+// With g = cos(3 y) the fast variable lags behind a moving target, and savings, which slow its
+// relaxation, move y: the first test differs by 5.4 tolerances at 1e-2, the second (r - 1 scaled
+// to fit) would save nothing, and no savings are taken.
+struct RelaxParams {
+  bool moving = false;
+};
+void RelaxSlow(const void *, PetscReal, const PetscScalar *x, PetscScalar *f)
+{
+  f[0] = -x[0] + x[1];
+  f[1] = 0;
+}
+void RelaxFast(const void *ctx, PetscReal, const PetscScalar *x, PetscScalar *f)
+{
+  const RelaxParams *p = (const RelaxParams *)ctx;
+  f[0]                 = 0;
+  f[1]                 = -9.0 * (x[1] - (p->moving ? std::cos(3.0 * x[0]) : 0.5));
+}
+
+TEST(VSHMMAdapt, SavingsAreTestedWhereTheScalesAreNotSeparated)
+{
+  for (const bool moving : {false, true}) {
+    RelaxParams  params;
+    SplitProblem p;
+    params.moving          = moving;
+    p.terms                = {RelaxSlow, RelaxFast};
+    p.params               = &params;
+    const double T         = 4;
+    const auto   Reference = [&](double h) { return Rk4Reference({RelaxSlow, RelaxFast}, &params, {1.0, 0.5}, T, h); };
+    const double ref       = Reference(1e-4);
+    EXPECT_NEAR(ref, Reference(5e-5), 1e-10);
+    for (const double tol : {1e-2, 1e-3}) {
+      const std::string options = "-ts_vshmm_adapt -ts_vshmm_warnings_viewer none -ts_rtol " + std::to_string(tol) + " -ts_atol " + std::to_string(tol);
+      AdaptRun          run;
+      ASSERT_EQ(SolveObservingX0(options.c_str(), p, {1.0, 0.5}, {"slow", "fast"}, 1.0, T, &run), 0);
+      EXPECT_LE(std::abs(run.x[0] - ref), tol * (1 + std::abs(ref))) << options << (moving ? " (moving)" : " (resting)") << ": y(4) = " << run.x[0] << ", reference " << ref << ", savings " << (run.savings.empty() ? -1.0 : run.savings[0]);
+      if (!moving) EXPECT_GT(run.savings.size() == 1 ? run.savings[0] : 0.0, 0.5) << options << ": the savings were not admitted";
+      else EXPECT_EQ(run.savings.size() == 1 ? run.savings[0] : -1.0, 0.0) << options << ": savings admitted where they move y by 5 tolerances in the first macro step";
+    }
   }
 }
 
