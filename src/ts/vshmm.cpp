@@ -537,8 +537,16 @@ static PetscErrorCode TSView_VSHMM(TS ts, PetscViewer viewer)
   for (PetscInt64 n : vs->rhs_evaluations) evals += n;
   PetscCall(PetscViewerASCIIPrintf(viewer, "  work: %" PetscInt64_FMT " macro steps, %" PetscInt64_FMT " micro cycles, %" PetscInt64_FMT " Runge-Kutta steps, %" PetscInt64_FMT " split RHS evaluations\n", vs->macro_steps, vs->micro_cycles, steps, evals));
   if (vs->adapt) {
-    PetscCall(
-      PetscViewerASCIIPrintf(viewer, "  accuracy control (-ts_vshmm_adapt): rtol %g, atol %g on %s; savings factors %s\n", (double)ts->rtol, (double)ts->atol, vs->observables ? "the observables" : "the whole state (weighted norm)", vs->savings.empty() ? (vs->no_separation ? "none (scales not separated)" : "chosen") : "set"));
+    std::string admitted; /* scales not separated: the time ratios a single-rate step admitted */
+    for (PetscReal r : vs->adapt_verified) admitted += (admitted.empty() ? "" : ", ") + std::to_string(r).substr(0, 6);
+    bool any = false;
+    for (PetscReal r : vs->adapt_verified) any = any || r > 1.0;
+    const std::string what = !vs->savings.empty()                                          ? "set"
+                             : !vs->no_separation                                          ? "chosen"
+                             : any                                                         ? "chosen up to the time ratios " + admitted + " (scales not separated; admitted by a comparison with a single-rate macro step)"
+                             : !vs->adapt_candidate.empty() && !vs->adapt_verified.empty() ? "none (scales not separated; a comparison with a single-rate macro step admitted none)"
+                                                                                           : "none (scales not separated)";
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  accuracy control (-ts_vshmm_adapt): rtol %g, atol %g on %s; savings factors %s\n", (double)ts->rtol, (double)ts->atol, vs->observables ? "the observables" : "the whole state (weighted norm)", what.c_str()));
     PetscCall(PetscViewerASCIIPrintf(viewer, "    error estimate: last macro step %g, sum over the run %g (1 = the tolerance); %" PetscInt64_FMT " calibrations, %" PetscInt64_FMT " rejected macro steps, %" PetscInt64_FMT " split RHS evaluations for estimates and rejected steps\n",
                                      (double)vs->error_estimate, (double)vs->error_estimate_total, vs->adapt_calibrations, vs->adapt_rejections, vs->adapt_evaluations));
     bool saturating = false;
