@@ -322,6 +322,22 @@ static std::vector<double> Saturations(TS ts, const vshmm::AdaptParameters &p)
   return s;
 }
 
+/* Whether every level faster than the slowest only decays (no oscillating limiting mode). */
+static bool FasterLevelsDecay(TS_VSHMM *vs)
+{
+  for (PetscInt l = 1; l < (PetscInt)vs->level_end.size(); ++l)
+    if (!LevelDecays(vs, l)) return false;
+  return true;
+}
+
+/* Whether a comparison with a single-rate step admitted savings (VerifySavings()). */
+static bool SavingsAdmitted(const TS_VSHMM *vs)
+{
+  for (PetscReal r : vs->adapt_verified)
+    if (r > 1.0) return true;
+  return false;
+}
+
 /* The first time ratios of -ts_vshmm_adapt as if every pair were separated (p's micro step). */
 static std::vector<double> SeparatedRatios(TS ts, const vshmm::AdaptParameters &p0)
 {
@@ -361,8 +377,7 @@ static std::vector<double> SavingsCandidate(TS ts, const std::vector<double> &ra
   PetscReal R  = 1;
 
   for (double r : ratios) R *= r;
-  bool worth = R >= kWorthTesting;
-  for (PetscInt l = 1; l < (PetscInt)vs->level_end.size(); ++l) worth = worth && LevelDecays(vs, l);
+  const bool worth = R >= kWorthTesting && FasterLevelsDecay(vs);
   return worth ? ratios : std::vector<double>();
 }
 
@@ -644,17 +659,18 @@ static PetscErrorCode Calibrate(TS ts, const vshmm::AdaptParameters &p, PetscRea
   PetscFunctionReturn(0);
 }
 
-/* One macro step with accuracy control; the accepted result is left in ts->vec_sol. */
 /* Where the separation check found the scales not separated, adapt's steps take no savings: the
    estimate compares runs with savings, and it can be blind to what savings do there (a slow
    process inside a fast level, slowed with it, is slowed in the comparison too). After the first
    macro step, taken single-rate (its result in vs->Xbase, from vs->X0), the savings adapt would
    start from were the scales separated (vs->adapt_candidate) are tested against it: the same
    macro step with those time ratios and the same micro step. Their difference is the savings'
-   own error in that step; where it is within the step's share of the tolerance as if every step's
-   error added up coherently (kSafety tol DeltaT / span), the savings are admitted, as the upper
-   bound of adapt's choice for the rest of the solve (Bounds()); otherwise once more with r_l - 1
-   scaled to half the share, and then none. The candidate ratios, the difference and the decision
+   own error in that step; where it is within kSavingsMargin of the step's share of the tolerance
+   as if every step's error added up coherently (kSafety tol DeltaT / span), the savings are
+   admitted, as the upper
+   bound of adapt's choice for the rest of the solve (Bounds()); otherwise again with r_l - 1
+   scaled to half what would pass (the savings' error grows with r_l - 1), kSavingsTests tests in
+   all, and then none. The candidate ratios, the difference and the decision
    are shown with -info; the decision by -ts_view. */
 static PetscErrorCode VerifySavings(TS ts, const vshmm::AdaptParameters &p, PetscReal t0, PetscReal DeltaT)
 {
@@ -689,12 +705,11 @@ static PetscErrorCode VerifySavings(TS ts, const vshmm::AdaptParameters &p, Pets
     const PetscReal scale = (std::isfinite(d) && d > 0) ? 0.5 * kSavingsMargin * budget / d : 0.0;
     for (double &r : q.ratios) r = 1.0 + (r - 1.0) * scale;
   }
-  bool any = false;
-  for (double r : vs->adapt_verified) any = any || r > 1.0;
-  if (any) vs->adapt_calibrated = PETSC_FALSE; /* the error model's split is measured again with the savings */
+  if (SavingsAdmitted(vs)) vs->adapt_calibrated = PETSC_FALSE; /* the error model's split is measured again with the savings */
   PetscFunctionReturn(0);
 }
 
+/* One macro step with accuracy control; the accepted result is left in ts->vec_sol. */
 PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
 {
   TS_VSHMM       *vs     = (TS_VSHMM *)ts->data;
@@ -762,10 +777,8 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
     for (double r : p.ratios) pinned = pinned && r == 1.0;
     if (pinned) d = -1;
     else PetscCall(Compare(ts, p, t0, DeltaT, (modelled && vs->adapt_calibrated) ? PETSC_TRUE : PETSC_FALSE, &q, &d));
-    PetscReal E        = d < 0 ? vs->adapt_model.total(p) : Estimate(vs->adapt_model, p, q, d);
-    PetscBool decaying = PETSC_TRUE;
-    for (PetscInt l = 1; l <= K; ++l) decaying = LevelDecays(vs, l) ? decaying : PETSC_FALSE;
-    if (calibrate && decaying && attempt == 0 && vs->adapt_calibrated_times >= kTrustedCalibrations && d > 0 && std::isfinite(E) && E > 0) {
+    PetscReal E = d < 0 ? vs->adapt_model.total(p) : Estimate(vs->adapt_model, p, q, d);
+    if (calibrate && FasterLevelsDecay(vs) && attempt == 0 && vs->adapt_calibrated_times >= kTrustedCalibrations && d > 0 && std::isfinite(E) && E > 0) {
       /* a scheduled measurement of the split that the model has just predicted: it predicted this
          step's estimate within kMissFactor (from the last step's, with this step's parameters), so
          the split stands and is not measured again until the next one is due. Only where every
@@ -862,9 +875,7 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
     SnapNegligibleSavings(vs, next, bounds); /* after an accepted step only: the retries of an initial layer take the savings down on their way to a start */
     if (!vs->adapt_candidate.empty() && vs->adapt_verified.empty()) {
       PetscCall(VerifySavings(ts, p, t0, DeltaT));
-      bool any = false;
-      for (double r : vs->adapt_verified) any = any || r > 1.0;
-      if (any) {
+      if (SavingsAdmitted(vs)) {
         next.ratios = vs->adapt_verified;
         LimitToStableSteps(ts, next);
         vshmm::fitCycle(next, Bounds(ts, DeltaT).maxCycle, false, true);
