@@ -309,8 +309,13 @@ static PetscErrorCode FastestJacobianApply(TS ts, Vec X, Vec G, Vec V, Vec Xp, V
    per unit time and relative amplitude of the oscillation, over ||X||: a thin fast rotation that a
    slow variable squares (y' = -y + C u^2 with small u) holds little of the state but moves the slow
    variable by its whole size per unit time and relative amplitude, and a relative amplitude error
-   E left by the micro step moves the slow variables by about E times this rate times the run
-   (AllowedAmplitudeLoss() in vshmmadapt.cpp).
+   E left by the micro step moves the slow variables by about E times this rate times the time
+   they keep it (AllowedAmplitudeLoss() in vshmmadapt.cpp). vs->fastest_drive is that displacement
+   per unit E: the drive's norm times the response of y' = J_K y + drive over half the run
+   (vshmm::forcedResponse() on an Arnoldi space of J_K started at the drive; at most half the run),
+   over ||X||. The full field's J_K, not the slower fields' alone: a drive of a fast component
+   is rotated away by the fast field (the paper's oscillators: the medium split's y2^2 / eps pushes
+   x1, which rotates at 1e6; with the slower fields' Jacobian their runs were 2-20x dearer).
 
    The oscillation's part of the state, P, is the fastest level's own components (mask; component
    splits) or -J_K^2 X / rho_K^2 (additive splits: the oscillating modes at rate rho_K, the slower
