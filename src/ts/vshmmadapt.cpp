@@ -142,16 +142,22 @@ static PetscErrorCode TrialStep(TS ts, const vshmm::AdaptParameters &p, PetscRea
    its own components' norm, or for additive splits ||G_K(X)|| / (rho_K ||X||)): the stiffest
    wavenumbers of a sparse spectral advection scene hold about 5e-3 of ||u||, and their damping is
    not the answer's error. dtMax where the fastest level has no oscillating mode. */
-/* The run over which the micro step's amplitude error adds up: from the solve's start (or the
-   last restart of the accuracy control) to the final time, kOscillationSpanSteps macro steps where
-   there is none. */
-PetscReal TSVSHMMAmplitudeSpan_Private(TS ts)
+/* The run the accuracy control answers for: from the solve's start (or the last restart of the
+   accuracy control) to the final time; 0 where there is no final time. */
+static PetscReal RunSpan(TS ts)
 {
   const TS_VSHMM *vs   = (TS_VSHMM *)ts->data;
-  PetscReal       span = ts->max_time - (vs->adapt_ready ? vs->adapt_tstart : ts->ptime);
+  const PetscReal span = ts->max_time - (vs->adapt_ready ? vs->adapt_tstart : ts->ptime);
 
-  if (!(span > 0) || !std::isfinite(span) || span >= PETSC_MAX_REAL / 2) span = kOscillationSpanSteps * ts->time_step;
-  return PetscMax(span, ts->time_step);
+  return (span > 0 && std::isfinite(span) && span < PETSC_MAX_REAL / 2) ? span : 0.0;
+}
+
+/* The run over which the micro step's amplitude error adds up: RunSpan(), kOscillationSpanSteps
+   macro steps where there is no final time. */
+PetscReal TSVSHMMAmplitudeSpan_Private(TS ts)
+{
+  const PetscReal span = RunSpan(ts);
+  return PetscMax(span > 0 ? span : kOscillationSpanSteps * ts->time_step, ts->time_step);
 }
 
 /* What a relative amplitude error E of the fastest level's oscillations at the end of the run costs
@@ -338,12 +344,12 @@ static bool SavingsAdmitted(const TS_VSHMM *vs)
   return false;
 }
 
-/* The first time ratios of -ts_vshmm_adapt as if every pair were separated (p's micro step). */
-static std::vector<double> SeparatedRatios(TS ts, const vshmm::AdaptParameters &p0)
+/* The first time ratios of -ts_vshmm_adapt as if every pair were separated. */
+static std::vector<double> SeparatedRatios(TS ts)
 {
   TS_VSHMM              *vs = (TS_VSHMM *)ts->data;
   const PetscInt         K  = (PetscInt)vs->level_end.size() - 1;
-  vshmm::AdaptParameters p  = p0;
+  vshmm::AdaptParameters p; /* Saturations() reads its ratios only */
 
   p.ratios.assign(K, 1.0);
   for (PetscInt l = 0; l < K; ++l) {
@@ -413,9 +419,7 @@ PetscErrorCode TSVSHMMCheckSeparation_Private(TS ts)
   const char *what = (vs->separations.empty() && !own) ? "ratio of the spectral radii of consecutive levels" : "separation of consecutive levels";
   PetscCheck(vs->check_separation != TSVSHMM_SEPARATION_ERROR, comm, PETSC_ERR_ARG_INCOMP, "TSVSHMM separation check at t = %g: the time scales of the RHS splits are not separated (%s, at least %g needed: %s). VSHMM samples the faster scales statistically and would change the answer here; use a single-rate TS type (-ts_type rk) or a multirate one (-ts_type mprk), or -ts_vshmm_check_separation warn to run anyway",
              (double)ts->ptime, what, (double)kMinSeparation, figures.c_str());
-  vshmm::AdaptParameters separated; /* the first time ratios as if separated: tested against a single-rate step where every faster level decays */
-  separated.microStep = ts->time_step;
-  const bool tested   = vs->adapt && vs->savings.empty() && !SavingsCandidate(ts, SeparatedRatios(ts, separated)).empty();
+  const bool tested = vs->adapt && vs->savings.empty() && !SavingsCandidate(ts, SeparatedRatios(ts)).empty(); /* the first time ratios as if separated, tested against a single-rate step */
   PetscCall(TSVSHMMWarn_Private(ts, "TSVSHMM warning: separation check at t = %g: the time scales of the RHS splits are not separated (%s, at least %g needed: %s). VSHMM samples the faster scales statistically and %s; a single-rate TS type (-ts_type rk) or a multirate one (-ts_type mprk) is the right tool. (-ts_vshmm_check_separation error makes this an error, off silences it.)\n",
                                 (double)ts->ptime, what, (double)kMinSeparation, figures.c_str(),
                                 !(vs->adapt && vs->savings.empty()) ? "its answer will be wrong by an amount it cannot estimate"
@@ -475,7 +479,7 @@ PetscErrorCode TSVSHMMAdaptSetUp_Private(TS ts)
   vs->adapt_verified.clear();
   if (!vs->savings.empty()) p.ratios = vshmm::timeRatiosFromSavings(vs->savings);
   else {
-    p.ratios = SeparatedRatios(ts, p);
+    p.ratios = SeparatedRatios(ts);
     if (vs->no_separation) { /* not separated: no savings until a comparison with a single-rate step admits some (VerifySavings()) */
       vs->adapt_candidate = SavingsCandidate(ts, p.ratios);
       PetscCall(PetscInfo(ts, "Adapt: the scales are not separated: no savings%s\n", vs->adapt_candidate.empty() ? "" : " until a single-rate macro step admits them"));
@@ -512,9 +516,9 @@ PetscErrorCode TSVSHMMAdaptSetUp_Private(TS ts)
 static PetscReal StepBudget(TS ts, PetscReal DeltaT)
 {
   TS_VSHMM       *vs   = (TS_VSHMM *)ts->data;
-  const PetscReal span = ts->max_time - vs->adapt_tstart;
+  const PetscReal span = RunSpan(ts);
 
-  if (!(span > 0) || span >= PETSC_MAX_REAL / 2 || !std::isfinite(span)) return 1.0;
+  if (!(span > 0)) return 1.0;
   PetscReal gamma = 0.5;
   if (vs->adapt_accepted >= kCoherenceSteps && !vs->adapt_signed.empty() && vs->error_estimate_total > 0) {
     PetscReal S = 0;
@@ -676,8 +680,8 @@ static PetscErrorCode VerifySavings(TS ts, const vshmm::AdaptParameters &p, Pets
 {
   TS_VSHMM       *vs       = (TS_VSHMM *)ts->data;
   const PetscInt  K        = (PetscInt)p.ratios.size();
-  const PetscReal span     = ts->max_time - vs->adapt_tstart;
-  const PetscReal fraction = (span > 0 && std::isfinite(span) && span < PETSC_MAX_REAL / 2) ? PetscMin(1.0, DeltaT / span) : 1.0 / kOscillationSpanSteps;
+  const PetscReal span     = RunSpan(ts);
+  const PetscReal fraction = span > 0 ? PetscMin(1.0, DeltaT / span) : 1.0 / kOscillationSpanSteps;
   const PetscReal budget   = kSafety * fraction; /* in units of the tolerance */
 
   PetscFunctionBegin;
