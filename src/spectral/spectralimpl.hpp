@@ -69,7 +69,9 @@ PETSC_INTERN const char *const VSHMMSpectralNormalizations[];
 
 /* The cluster detection's outcome, for VSHMMSpectralView() (the library prints nothing itself). */
 struct VSHMMSpectralDetection {
-  PetscReal              dt = 0;             /* time step of the detection DNS (0: no DNS) */
+  PetscReal              dt         = 0; /* RK3 time step of the detection DNS (0: no DNS); its looks are at multiples of it */
+  PetscInt               rkc_stages = 0; /* > 0: the DNS took RKC steps of rkc_step with this many stages instead */
+  PetscReal              rkc_step   = 0;
   std::vector<PetscReal> times;              /* its snapshot times */
   PetscInt               support     = 0;    /* wavenumbers above the threshold */
   PetscInt               merged      = 0;    /* bands (groups of wavenumbers) found */
@@ -124,10 +126,11 @@ struct VSHMMSpectral_Data {
   std::string              detect_file;
   PetscReal                detect_dt          = 0;
   PetscInt                 detect_max_steps   = 32768;
-  PetscInt                 detect_first_steps = 64;   /* steps before the first automatic look (then doubled) */
-  PetscInt                 detect_agreeing    = 3;    /* automatic looks in a row that agree end the detection */
-  PetscReal                min_band_share     = 0.05; /* the detection's highest bands holding less than this times cluster_tol of ||u|| are left out */
-  PetscReal                cluster_tol        = 1e-2; /* merged bands are undone if what the merge adds holds at most this of ||u|| */
+  PetscInt                 detect_first_steps = 64;         /* steps before the first automatic look (then doubled) */
+  PetscInt                 detect_agreeing    = 3;          /* automatic looks in a row that agree end the detection */
+  PetscBool                detect_rkc         = PETSC_TRUE; /* automatic looks: RKC steps where they need fewer evaluations than RK3 */
+  PetscReal                min_band_share     = 0.05;       /* the detection's highest bands holding less than this times cluster_tol of ||u|| are left out */
+  PetscReal                cluster_tol        = 1e-2;       /* merged bands are undone if what the merge adds holds at most this of ||u|| */
   VSHMMSpectralProjection  projection         = VSHMMSPECTRAL_PROJECTION_AUTO;
   VSHMMSpectralEvaluation  evaluation         = VSHMMSPECTRAL_EVALUATION_FFT;
   VSHMMSpectralPlanner     planner            = VSHMMSPECTRAL_PLANNER_ESTIMATE;
@@ -204,7 +207,7 @@ PETSC_INTERN PetscErrorCode VSHMMSpectralBuildCoefficients_Private(VSHMMSpectral
 PETSC_INTERN PetscErrorCode VSHMMSpectralBuildExtraTerms_Private(VSHMMSpectral, spc::ExtraTerms &);
 /* spectralstable.cpp: the Ritz values of op's Jacobian at the coefficients c0 (Arnoldi), and the
    stable step of a TSRK type for them (0.9 times the largest; PETSC_INFINITY if none limits it). */
-PETSC_INTERN PetscErrorCode VSHMMSpectralRitzValues_Private(MPI_Comm, spc::SpectralOperator &, const std::vector<double> &, std::vector<std::complex<double>> &);
+PETSC_INTERN PetscErrorCode VSHMMSpectralRitzValues_Private(MPI_Comm, spc::SpectralOperator &, const std::vector<double> &, std::vector<std::complex<double>> &, PetscInt *);
 PETSC_INTERN PetscErrorCode VSHMMSpectralStableStepOf_Private(MPI_Comm, const std::vector<std::complex<double>> &, TSRKType, PetscReal *);
 /* The whole state on every rank (the Vec's own array on one rank, a gathered copy otherwise). */
 PETSC_INTERN PetscErrorCode VSHMMSpectralGetCoefficients_Private(VSHMMSpectral, Vec, const PetscScalar **);

@@ -4,8 +4,11 @@
 */
 #include "spectralimpl.hpp"
 
+#include "rkc.hpp"
+
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <sstream>
 
 static spc::Planner CorePlanner(VSHMMSpectralPlanner p)
@@ -58,7 +61,9 @@ static std::vector<double> FullMagnitudes(const spc::Layout &full, int N, const 
 }
 
 static constexpr double kDecayingBand     = 0.5; /* -spectral_cluster_min_band_share leaves out only a band whose decay share (spc::bandAction()) is at least this */
-static constexpr double kMaxBandInfluence = 1.0; /* and whose influence on the other retained bands is below this */
+static constexpr double kMaxBandInfluence = 1.0;
+static constexpr int    kRKCStepsPerLook  = 8;                                                             /* RKC steps of the detection DNS between consecutive looks */
+static constexpr double kRKCSafety        = 0.9; /* the RKC step's margin on the Ritz values (as RK3's) */ /* and whose influence on the other retained bands is below this */
 
 /* The detection DNS's right-hand side, with its work counted. */
 struct DetectCtx {
@@ -66,24 +71,26 @@ struct DetectCtx {
   PetscInt               evaluations = 0, steps = 0;
   const spc::Layout     *full = nullptr; /* set: keep the largest |c_k| over every step in peak */
   std::vector<double>    peak;
-  std::vector<double>    meansq;      /* sum over the states seen of (|c_k| / ||u||)^2 */
-  PetscInt               samples = 0; /* states summed in meansq */
-  void                   keep(const std::vector<double> &m)
+  std::vector<double>    meansq;      /* sum over the states seen of weight x (|c_k| / ||u||)^2 */
+  double                 samples = 0; /* the weights summed in meansq */
+  /* a state seen: its |c_k| (full layout); weight: the time it stands for, in RK3 steps (1 for
+     each RK3 step, h / dt for an RKC step of h: the mean stays a mean over time) */
+  void keep(const std::vector<double> &m, double weight = 1)
   {
     double n2 = 0;
     for (size_t k = 0; k < m.size(); ++k) n2 += (spc::isRealOnly(full->N(), (int)k) ? 1.0 : 2.0) * m[k] * m[k];
     if (peak.empty()) peak.assign(m.size(), 0.0), meansq.assign(m.size(), 0.0);
     for (size_t k = 0; k < m.size(); ++k) {
       peak[k] = std::max(peak[k], m[k]);
-      if (n2 > 0) meansq[k] += m[k] * m[k] / n2;
+      if (n2 > 0) meansq[k] += weight * m[k] * m[k] / n2;
     }
-    samples++;
+    samples += weight;
   }
   /* the root mean square over the states seen of |c_k| / ||u|| (relative norm 1) */
   std::vector<double> mean() const
   {
     std::vector<double> r(meansq.size());
-    for (size_t k = 0; k < r.size(); ++k) r[k] = std::sqrt(meansq[k] / (double)std::max<PetscInt>(samples, 1));
+    for (size_t k = 0; k < r.size(); ++k) r[k] = std::sqrt(meansq[k] / std::max(samples, 1.0));
     return r;
   }
 };
@@ -233,7 +240,7 @@ static PetscErrorCode LeaveOutThinBands(VSHMMSpectral sp, DetectCtx *dctx, Vec U
    wavenumbers outside the earlier bands hold at most -spectral_cluster_tolerance of ||u|| (root
    mean square over the steps so far), the earlier look's bands are kept: the merging modes carry
    less than the tolerance can see. */
-static PetscErrorCode DetectionDNS(VSHMMSpectral sp, DetectCtx *dctx, const std::vector<double> &u0, std::vector<std::vector<double>> &mags)
+static PetscErrorCode DetectionDNS(VSHMMSpectral sp, DetectCtx *dctx, const std::vector<double> &u0, std::vector<std::vector<double>> &mags, bool *rkc_failed)
 {
   VSHMMSpectral_Data *s    = sp->data;
   spc::Layout         full = spc::Layout::full((int)s->N);
@@ -244,15 +251,31 @@ static PetscErrorCode DetectionDNS(VSHMMSpectral sp, DetectCtx *dctx, const std:
 
   PetscFunctionBegin;
   PetscCheck(s->detect == VSHMMSPECTRAL_DETECT_AUTO || !s->detect_times.empty(), PetscObjectComm((PetscObject)sp), PETSC_ERR_ARG_WRONGSTATE, "-%sspectral_cluster_detect dns needs -%sspectral_cluster_detect_times t1,t2,...: the snapshot times of the short direct simulation (or use -%sspectral_cluster_detect auto)", VSHMMSpectralPrefix(sp), VSHMMSpectralPrefix(sp), VSHMMSpectralPrefix(sp));
+  const bool automatic = s->detect_times.empty();
   PetscCall(VecCreateSeq(PETSC_COMM_SELF, full.size(), &U));
   PetscCall(VecGetArray(U, &u));
   dctx->op->analyze(u0.data(), u);
-  if (!(dt > 0)) { /* the operator's stable RK3 step (spectralstable.cpp) */
-    std::vector<std::complex<double>> ritz;
-    PetscCall(VSHMMSpectralRitzValues_Private(PETSC_COMM_SELF, *dctx->op, std::vector<double>(u, u + full.size()), ritz));
-    PetscCall(VSHMMSpectralStableStepOf_Private(PETSC_COMM_SELF, ritz, TSRK3, &dt));
+  std::vector<std::complex<double>> ritz;
+  if (!(dt > 0) || (automatic && s->detect_rkc)) { /* the operator's extreme eigenvalues (spectralstable.cpp), counted */
+    PetscInt n;
+    PetscCall(VSHMMSpectralRitzValues_Private(PETSC_COMM_SELF, *dctx->op, std::vector<double>(u, u + full.size()), ritz, &n));
+    dctx->evaluations += n;
   }
+  if (!(dt > 0)) PetscCall(VSHMMSpectralStableStepOf_Private(PETSC_COMM_SELF, ritz, TSRK3, &dt)); /* the stable RK3 step */
   PetscCall(VecRestoreArray(U, &u));
+  /* RKC (-spectral_cluster_detect_rkc): the first look's steps are RK3's (the initial transient:
+     the stiff modes' forcing by faster-changing ones changes within an RKC step, and RKC's peaks
+     there were off at the threshold: a spurious top band, a missing single wavenumber); after it
+     kRKCStepsPerLook steps between consecutive looks, each with the fewest stages for which every
+     Ritz value (the step 1/0.9 longer, RK3's margin) lies in the stability region; used if the
+     second look's steps need fewer evaluations than RK3's three per step dt */
+  bool use_rkc = false;
+  if (automatic && s->detect_rkc && std::isfinite(dt)) {
+    const PetscReal h      = (PetscReal)s->detect_first_steps * dt / kRKCStepsPerLook;
+    const int       stages = vshmm::ChebyshevRK2::stagesFor(h / kRKCSafety, ritz);
+    use_rkc                = stages > 0 && stages * dt < 3 * h;
+    PetscCall(PetscInfo(sp, "cluster detection DNS: an RKC step %g needs %d stages (0: none is stable), RK3 steps of %g 3 per step: %s\n", (double)h, stages, (double)dt, use_rkc ? "RKC" : "RK3"));
+  }
   PetscCall(TSCreate(PETSC_COMM_SELF, &ts));
   PetscCall(TSSetOptionsPrefix(ts, ((PetscObject)sp)->prefix));
   PetscCall(TSAppendOptionsPrefix(ts, "spectral_cluster_detect_"));
@@ -265,8 +288,13 @@ static PetscErrorCode DetectionDNS(VSHMMSpectral sp, DetectCtx *dctx, const std:
   PetscCall(TSSetMaxSteps(ts, PETSC_MAX_INT));
   PetscCall(TSSetExactFinalTime(ts, TS_EXACTFINALTIME_MATCHSTEP));
   PetscCall(TSSetFromOptions(ts));
-  s->detection.dt      = dt;
-  const bool automatic = s->detect_times.empty();
+  s->detection.dt = dt;
+  std::vector<double> y, work; /* the RKC path's state (from the first look on) */
+  PetscReal           t_rkc = 0;
+  const auto          F     = [dctx](const double *v, double *f) {
+    dctx->op->apply(v, f);
+    dctx->evaluations++;
+  };
   if (automatic) {
     const PetscScalar *c;
     dctx->full = &full;
@@ -285,10 +313,45 @@ static PetscErrorCode DetectionDNS(VSHMMSpectral sp, DetectCtx *dctx, const std:
       if (i == s->detect_times.size()) break;
       t = s->detect_times[i];
     } else t = PetscMin((double)s->detect_first_steps * std::ldexp(1.0, (int)PetscMin(i, (size_t)60)), (double)s->detect_max_steps) * dt;
-    if (t > 0) {
+    if (t > 0 && use_rkc && i > 0) { /* kRKCStepsPerLook RKC steps to t */
+      const PetscReal h = (t - t_rkc) / kRKCStepsPerLook;
+      PetscInt        stages;
+      try {
+        stages = vshmm::ChebyshevRK2::stagesFor(h / kRKCSafety, ritz);
+      } catch (const std::exception &e) {
+        SETERRQ(PETSC_COMM_SELF, PETSC_ERR_PLIB, "cluster detection: %s", e.what());
+      }
+      if (!stages) { /* none up to 1000 stages (a far complex Ritz value): RK3 instead */
+        *rkc_failed = true;
+        break;
+      }
+      const vshmm::ChebyshevRK2 rkc((int)stages);
+      s->detection.rkc_stages = PetscMax(s->detection.rkc_stages, stages);
+      s->detection.rkc_step   = PetscMax(s->detection.rkc_step, h);
+      for (int j = 0; j < kRKCStepsPerLook; ++j) {
+        rkc.step(F, h, y, work);
+        dctx->steps++;
+        for (double v : y)
+          if (!std::isfinite(v)) *rkc_failed = true; /* the caller runs the detection again with RK3 */
+        if (*rkc_failed) break;
+        dctx->keep(FullMagnitudes(full, (int)s->N, y.data()), h / dt);
+      }
+      if (*rkc_failed) break;
+      t_rkc = t;
+      PetscCall(VecGetArray(U, &u));
+      std::copy(y.begin(), y.end(), u);
+      PetscCall(VecRestoreArray(U, &u));
+    } else if (t > 0) {
       PetscCall(TSSetMaxTime(ts, t));
       PetscCall(TSSetTimeStep(ts, dt));
       PetscCall(TSSolve(ts, U));
+      if (use_rkc) {
+        const PetscScalar *c;
+        PetscCall(VecGetArrayRead(U, &c));
+        y.assign(c, c + full.size());
+        PetscCall(VecRestoreArrayRead(U, &c));
+        t_rkc = t;
+      }
     }
     if (automatic) mags.assign(1, dctx->peak); /* the largest |c_k| over every step so far */
     else {
@@ -339,7 +402,7 @@ static PetscErrorCode DetectionDNS(VSHMMSpectral sp, DetectCtx *dctx, const std:
       }
     }
   }
-  if (automatic) { /* the share of ||u|| the bands leave out, RMS over every step */
+  if (automatic && !*rkc_failed) { /* the share of ||u|| the bands leave out, RMS over every step */
     std::vector<int> support;
     spc::ClusterSet  cs;
     PetscCall(ClustersOf(sp, mags, s->norm, VSHMMSpectralLambda(s), support, &cs));
@@ -413,7 +476,26 @@ static PetscErrorCode DetectionSnapshots(VSHMMSpectral sp, const std::vector<dou
     PetscCall(AutoNeedsDNS(sp, &dctx, u, &dns));
     if (!dns) mags.push_back(spc::coefficientMagnitudes(u));
   }
-  if (dns) PetscCall(DetectionDNS(sp, &dctx, u, mags));
+  if (dns) {
+    bool failed = false;
+    PetscCall(DetectionDNS(sp, &dctx, u, mags, &failed));
+    if (failed) { /* RKC met a mode outside its region (the Ritz values missed it): again with RK3, both counted */
+      const PetscBool rkc = s->detect_rkc;
+      PetscCall(PetscInfo(sp, "cluster detection DNS: the RKC steps gave Inf or NaN; again with RK3\n"));
+      DetectCtx again;
+      again.op          = &op;
+      again.evaluations = dctx.evaluations;
+      dctx              = again;
+      mags.clear();
+      s->detection.times.clear();
+      s->detection.rkc_stages = 0;
+      s->detection.rkc_step   = 0;
+      s->detect_rkc           = PETSC_FALSE;
+      PetscErrorCode ierr     = DetectionDNS(sp, &dctx, u, mags, &failed);
+      s->detect_rkc           = rkc;
+      PetscCall(ierr);
+    }
+  }
   s->detection.steps       = dctx.steps;
   s->detection.evaluations = dctx.evaluations;
   PetscFunctionReturn(0);

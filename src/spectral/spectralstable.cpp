@@ -28,7 +28,7 @@ static constexpr PetscReal kSafety         = 0.9;
 static constexpr PetscReal kGrowingMode    = 0.1; /* Re lambda > this |lambda|: a growing mode, not limiting */
 static constexpr PetscInt  kGrowthInterval = 8;   /* the growth check looks at every 8th step */
 
-PetscErrorCode VSHMMSpectralRitzValues_Private(MPI_Comm comm, spc::SpectralOperator &op, const std::vector<double> &c0, std::vector<std::complex<double>> &ritz)
+PetscErrorCode VSHMMSpectralRitzValues_Private(MPI_Comm comm, spc::SpectralOperator &op, const std::vector<double> &c0, std::vector<std::complex<double>> &ritz, PetscInt *evaluations)
 {
   const int                 n       = op.layout().size();
   const std::vector<double> weights = spc::parsevalWeights(op.layout());
@@ -49,6 +49,7 @@ PetscErrorCode VSHMMSpectralRitzValues_Private(MPI_Comm comm, spc::SpectralOpera
     },
     weights, kArnoldiSteps);
   op.counters() = saved;
+  if (evaluations) *evaluations = ar.k + 1; /* F(c0) and one per Arnoldi step */
   PetscCheck(ar.finite, comm, PETSC_ERR_FP, "The spectral operator is not finite near the initial state: no stable time step can be estimated");
   ritz.clear();
   if (ar.k > 0) {
@@ -78,7 +79,7 @@ static PetscErrorCode OperatorRitzValues(VSHMMSpectral sp)
   PetscCall(VSHMMSpectralSampleField_Private(sp, "u0", s->u0, u0));
   c0.resize(s->layout->size());
   s->op->analyze(u0.data(), c0.data());
-  PetscCall(VSHMMSpectralRitzValues_Private(PetscObjectComm((PetscObject)sp), *s->op, c0, s->ritz));
+  PetscCall(VSHMMSpectralRitzValues_Private(PetscObjectComm((PetscObject)sp), *s->op, c0, s->ritz, nullptr));
   s->cache_valid = PETSC_FALSE; /* the operator's buffers were used */
   s->ritz_done   = PETSC_TRUE;
   PetscCall(PetscLogEventEnd(VSHMMSPECTRAL_Eigen, sp, 0, 0, 0));
@@ -225,7 +226,7 @@ PetscErrorCode VSHMMSpectralGetStableTimeStepAt(VSHMMSpectral sp, Vec U, TSRKTyp
   PetscCall(VSHMMSpectralGetCoefficients_Private(sp, U, &c));
   const std::vector<double> cu(c, c + s->layout->size());
   PetscCall(VSHMMSpectralRestoreCoefficients_Private(sp, U, &c));
-  PetscCall(VSHMMSpectralRitzValues_Private(PetscObjectComm((PetscObject)sp), *s->op, cu, ritz));
+  PetscCall(VSHMMSpectralRitzValues_Private(PetscObjectComm((PetscObject)sp), *s->op, cu, ritz, nullptr));
   s->cache_valid = PETSC_FALSE; /* the operator's buffers were used */
   PetscCall(PetscLogEventEnd(VSHMMSPECTRAL_Eigen, sp, 0, 0, 0));
   PetscCall(VSHMMSpectralStableStepOf_Private(PetscObjectComm((PetscObject)sp), ritz, type, dt));

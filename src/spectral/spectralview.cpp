@@ -11,7 +11,10 @@ static std::string DescribeDetection(const VSHMMSpectral_Data *s)
   std::ostringstream m;
   if (!s->detection.rule.empty()) m << "cluster detection " << s->detection.rule << "\n";
   if (s->detection.dt > 0) {
-    m << "cluster detection: direct simulation with " << s->N << " modes, RK3 dt = " << s->detection.dt << ", snapshots at";
+    m << "cluster detection: direct simulation with " << s->N << " modes, ";
+    if (s->detection.rkc_stages > 0) m << "RK3 to the first look, then RKC steps of up to " << s->detection.rkc_step << " with up to " << s->detection.rkc_stages << " stages (RK3: dt = " << s->detection.dt << ")";
+    else m << "RK3 dt = " << s->detection.dt;
+    m << ", snapshots at";
     for (PetscReal t : s->detection.times) m << " " << t;
     if (!s->detection.converged) m << " (the clusters still changed at -spectral_cluster_detect_max_steps " << s->detect_max_steps << ")";
     m << "\n";
