@@ -107,6 +107,7 @@ typedef struct {
   PetscInt64        adapt_evaluations;
   PetscInt64        adapt_rejections;
   PetscInt64        adapt_calibrations;
+  PetscInt64        adapt_uncompared;
 } TSVSHMMStatistics;
 
 PETSC_EXTERN PetscErrorCode TSVSHMMInitializePackage(void);

@@ -549,6 +549,8 @@ static PetscErrorCode TSView_VSHMM(TS ts, PetscViewer viewer)
     PetscCall(PetscViewerASCIIPrintf(viewer, "  accuracy control (-ts_vshmm_adapt): rtol %g, atol %g on %s; savings factors %s\n", (double)ts->rtol, (double)ts->atol, vs->observables ? "the observables" : "the whole state (weighted norm)", what.c_str()));
     PetscCall(PetscViewerASCIIPrintf(viewer, "    error estimate: last macro step %g, sum over the run %g (1 = the tolerance); %" PetscInt64_FMT " calibrations, %" PetscInt64_FMT " rejected macro steps, %" PetscInt64_FMT " split RHS evaluations for estimates and rejected steps\n",
                                      (double)vs->error_estimate, (double)vs->error_estimate_total, vs->adapt_calibrations, vs->adapt_rejections, vs->adapt_evaluations));
+    if (vs->adapt_uncompared_total > 0)
+      PetscCall(PetscViewerASCIIPrintf(viewer, "    %" PetscInt64_FMT " macro steps without a comparison (nothing left to coarsen and the estimates far below their shares: the model's prediction stood in)\n", vs->adapt_uncompared_total));
     bool saturating = false;
     for (double x : vs->adapt_model.saturation) saturating = saturating || (x > 0 && std::isfinite(x));
     if (saturating) { /* where each pair's error term stops growing (an initial layer, a band of rates, the separations set) */
@@ -844,6 +846,7 @@ static PetscErrorCode TSVSHMMGetStatistics_VSHMM(TS ts, TSVSHMMStatistics *stats
   stats->adapt_evaluations     = vs->adapt_evaluations;
   stats->adapt_rejections      = vs->adapt_rejections;
   stats->adapt_calibrations    = vs->adapt_calibrations;
+  stats->adapt_uncompared      = vs->adapt_uncompared_total;
   PetscFunctionReturn(0);
 }
 
@@ -853,16 +856,17 @@ static PetscErrorCode TSVSHMMResetStatistics_VSHMM(TS ts)
   size_t    n = vs->splits.size(), nscales = vs->level_end.size();
 
   PetscFunctionBegin;
-  vs->macro_steps           = 0;
-  vs->micro_cycles          = 0;
-  vs->stability_checks      = 0;
-  vs->stability_evaluations = 0;
-  vs->stability_warnings    = 0;
-  vs->error_estimate        = 0;
-  vs->error_estimate_total  = 0;
-  vs->adapt_evaluations     = 0;
-  vs->adapt_rejections      = 0;
-  vs->adapt_calibrations    = 0;
+  vs->macro_steps            = 0;
+  vs->micro_cycles           = 0;
+  vs->stability_checks       = 0;
+  vs->stability_evaluations  = 0;
+  vs->stability_warnings     = 0;
+  vs->error_estimate         = 0;
+  vs->error_estimate_total   = 0;
+  vs->adapt_evaluations      = 0;
+  vs->adapt_rejections       = 0;
+  vs->adapt_calibrations     = 0;
+  vs->adapt_uncompared_total = 0;
   vs->warned_ratio.assign(nscales, 0.0);
   vs->fast_energy_min    = 0;
   vs->fast_energy_warned = 0;

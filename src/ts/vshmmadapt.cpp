@@ -59,6 +59,9 @@ static constexpr PetscReal kMissFactor             = 2;    /* a retry whose esti
 static constexpr PetscInt  kSavingsTests           = 3;    /* scales not separated: time ratios tested against a single-rate step at most this many times */
 static constexpr PetscReal kWorthTesting           = 4;    /* the product of the time ratios at least this for a savings test */
 static constexpr PetscReal kSavingsMargin          = 0.5;  /* and admitted where they differ by at most this fraction of the step's coherent share */
+static constexpr PetscReal kUncomparedBelow        = 10;   /* a steady step's last two estimates below 1/this of their shares: its comparison may be left out */
+static constexpr PetscInt  kMaxUncompared          = 3;    /* at most this many steps in a row */
+static constexpr PetscReal kPostponeBelow          = 10;   /* a scheduled calibration at a step whose estimate is below 1/this of its share waits a step */
 static constexpr PetscInt  kTrustedCalibrations    = 2;    /* after this many calibrations a scheduled one is skipped where the model predicted the step's estimate */
 static constexpr PetscReal kOscillationShare       = 1.0;  /* of the tolerance: the fastest level's oscillations' amplitude error over the run */
 static constexpr PetscReal kOscillationSpanSteps   = 100;  /* macro steps taken as the run where it has no final time */
@@ -439,11 +442,14 @@ PetscErrorCode TSVSHMMAdaptReset_Private(TS ts)
   vs->adapt_since_calibration = 0;
   vs->adapt_calibrated        = PETSC_FALSE;
   vs->adapt_calibrated_times  = 0;
+  vs->adapt_postponed         = PETSC_FALSE;
   vs->no_separation           = PETSC_FALSE;
   vs->adapt_no_savings.clear();
   vs->adapt_signed.clear();
   vs->adapt_accepted   = 0;
   vs->adapt_last_ratio = PETSC_MAX_REAL;
+  vs->adapt_prev_ratio = PETSC_MAX_REAL;
+  vs->adapt_uncompared = 0;
   vs->floor_warned     = PETSC_FALSE;
   PetscFunctionReturn(0);
 }
@@ -502,6 +508,8 @@ PetscErrorCode TSVSHMMAdaptSetUp_Private(TS ts)
   vs->adapt_signed.clear();
   vs->adapt_accepted   = 0;
   vs->adapt_last_ratio = PETSC_MAX_REAL;
+  vs->adapt_prev_ratio = PETSC_MAX_REAL;
+  vs->adapt_uncompared = 0;
   PetscCall(PetscInfo(ts, "Adapt: first parameters dt = %g, cycle %g (DeltaT %g), tolerance %g\n", (double)p.microStep, (double)vshmm::cycleLength(p), (double)DeltaT, (double)tol));
   PetscFunctionReturn(0);
 }
@@ -623,15 +631,16 @@ static void SnapNegligibleSavings(TS_VSHMM *vs, vshmm::AdaptParameters &p, const
     }
 }
 
-static PetscErrorCode Calibrate(TS ts, const vshmm::AdaptParameters &p, PetscReal t0, PetscReal DeltaT, vshmm::AdaptBounds &bounds)
+static PetscErrorCode Calibrate(TS ts, const vshmm::AdaptParameters &p, PetscReal t0, PetscReal DeltaT, vshmm::AdaptBounds &bounds, PetscInt only = -1)
 {
   TS_VSHMM                           *vs = (TS_VSHMM *)ts->data;
   const PetscInt                      K  = (PetscInt)p.ratios.size();
-  std::vector<vshmm::AdaptParameters> coarse(K + 1);
+  std::vector<vshmm::AdaptParameters> coarse(K + 1, p);
   std::vector<double>                 d(K + 1, 0.0);
 
   PetscFunctionBegin;
   for (PetscInt i = 0; i <= K; ++i) {
+    if (only >= 0 && i != only) continue;
     coarse[i] = Comparison(ts, p, vshmm::coarsened(p, (int)i, i ? kRatioCoarsening : 2.0));
     /* one parameter at a time: the others as in p */
     if (i > 0) coarse[i].microStep = p.microStep;
@@ -654,12 +663,20 @@ static PetscErrorCode Calibrate(TS ts, const vshmm::AdaptParameters &p, PetscRea
     d[i] = di;
     PetscCall(PetscInfo(ts, "Adapt: calibration of parameter %" PetscInt_FMT ": dt %g, cycle %g, difference %g\n", i, (double)coarse[i].microStep, (double)vshmm::cycleLength(coarse[i]), (double)di));
   }
+  if (only >= 0) { /* the dominant term measured again, the others kept */
+    const vshmm::ErrorModel m = vshmm::ErrorModel::fromDifferences(p, coarse, d, vs->tableau->order, Saturations(ts, p));
+    if (only == 0) vs->adapt_model.cMicro = m.cMicro;
+    else vs->adapt_model.c[only - 1] = m.c[only - 1];
+    if (!(vs->adapt_model.total(p) > 0)) vs->adapt_model = vshmm::ErrorModel::equalShares(p, vs->tableau->order, 1.0, Saturations(ts, p));
+    PetscFunctionReturn(0);
+  }
   vs->adapt_model = vshmm::ErrorModel::fromDifferences(p, coarse, d, vs->tableau->order, Saturations(ts, p));
   if (!(vs->adapt_model.total(p) > 0)) vs->adapt_model = vshmm::ErrorModel::equalShares(p, vs->tableau->order, 1.0, Saturations(ts, p));
   vs->adapt_calibrations++;
   vs->adapt_calibrated_times++;
   vs->adapt_since_calibration = 0;
   vs->adapt_calibrated        = PETSC_TRUE;
+  vs->adapt_postponed         = PETSC_FALSE;
   PetscFunctionReturn(0);
 }
 
@@ -779,7 +796,14 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
     const bool modelled = attempt == 0 && !calibrate && vs->adapt_model.total(p) > 0;
     bool       pinned   = modelled && vs->adapt_last_ratio < kNegligibleEstimate && p.microStep >= 0.999 * bounds.maxMicroStep;
     for (double r : p.ratios) pinned = pinned && r == 1.0;
-    if (pinned) d = -1;
+    /* a step that cannot be coarsened (micro step and cycle at their bounds), after two steps far
+       below their share whose estimates agreed (within kMissFactor), where every faster level
+       decays: the comparison is left out (up to kMaxUncompared steps in a row) and the model's
+       prediction stands in */
+    const bool steady = modelled && vs->adapt_calibrated && FasterLevelsDecay(vs) && bounds.maxCycle > 0 && vshmm::cycleLength(p) >= 0.999 * bounds.maxCycle && (bounds.fixedMicroStep || p.microStep >= 0.999 * bounds.maxMicroStep) && vs->adapt_last_ratio < 1.0 / kUncomparedBelow && vs->adapt_prev_ratio < 1.0 / kUncomparedBelow && vs->adapt_last_ratio < kMissFactor * vs->adapt_prev_ratio && vs->adapt_prev_ratio < kMissFactor * vs->adapt_last_ratio && vs->adapt_uncompared < kMaxUncompared;
+    if (steady && !pinned)
+      PetscCall(PetscInfo(ts, "Adapt: macro step [%g, %g]: at the cycle and micro step bounds, the last two estimates %g and %g of their shares: no comparison\n", (double)t0, (double)t1, (double)vs->adapt_prev_ratio, (double)vs->adapt_last_ratio));
+    if (pinned || steady) d = -1;
     else PetscCall(Compare(ts, p, t0, DeltaT, (modelled && vs->adapt_calibrated) ? PETSC_TRUE : PETSC_FALSE, &q, &d));
     PetscReal E = d < 0 ? vs->adapt_model.total(p) : Estimate(vs->adapt_model, p, q, d);
     if (calibrate && FasterLevelsDecay(vs) && attempt == 0 && vs->adapt_calibrated_times >= kTrustedCalibrations && d > 0 && std::isfinite(E) && E > 0) {
@@ -795,7 +819,17 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
         calibrate = PETSC_FALSE;
         vs->adapt_calibrated_times++;
         vs->adapt_since_calibration = -1; /* counted up with this step */
+        vs->adapt_postponed         = PETSC_FALSE;
       }
+    }
+    if (calibrate && attempt == 0 && vs->adapt_calibrated && !vs->adapt_postponed && FasterLevelsDecay(vs) && d > 0 && std::isfinite(E) && E < budget / kPostponeBelow) {
+      /* a scheduled measurement of the split at a step far below its share: the parameters are
+         about to coarsen (by up to kMaxCheaper in work), and the measurement, one run per
+         parameter at this step's cost, is made at the next step's cheaper parameters instead
+         (once: it is still due there) */
+      PetscCall(PetscInfo(ts, "Adapt: macro step [%g, %g]: estimate %g far below its share %g: the calibration waits for the next step\n", (double)t0, (double)t1, (double)E, (double)budget));
+      calibrate           = PETSC_FALSE;
+      vs->adapt_postponed = PETSC_TRUE;
     }
     if (calibrate || (E > budget && !vs->adapt_calibrated) || (attempt > 0 && (E > kFloorAccept * budget || (E > budget && E > kMissFactor * predicted)))) {
       PetscCall(Calibrate(ts, p, t0, DeltaT, bounds));
@@ -875,7 +909,10 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
     vs->adapt_since_calibration++;
     vs->savings_used     = vshmm::savingsFromTimeRatios(p.ratios); /* what this step used (for view and getters) */
     vs->adapt_used       = p;
+    vs->adapt_prev_ratio = vs->adapt_last_ratio;
     vs->adapt_last_ratio = std::isfinite(E) && E >= 0 ? E / budget : PETSC_MAX_REAL;
+    vs->adapt_uncompared = d < 0 ? vs->adapt_uncompared + 1 : 0;
+    if (d < 0) vs->adapt_uncompared_total++;
     SnapNegligibleSavings(vs, next, bounds); /* after an accepted step only: the retries of an initial layer take the savings down on their way to a start */
     if (!vs->adapt_candidate.empty() && vs->adapt_verified.empty()) {
       PetscCall(VerifySavings(ts, p, t0, DeltaT));

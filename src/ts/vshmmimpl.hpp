@@ -82,6 +82,8 @@ struct TS_VSHMM {
   vshmm::AdaptParameters adapt_params;                      // micro step and time ratios for the next macro step
   vshmm::AdaptParameters adapt_used;                        // those of the last accepted macro step
   PetscReal              adapt_last_ratio = PETSC_MAX_REAL; // the last accepted step's estimate over its share
+  PetscReal              adapt_prev_ratio = PETSC_MAX_REAL; // the one before it
+  PetscInt               adapt_uncompared = 0;              // accepted steps in a row whose comparison was left out
   vshmm::ErrorModel      adapt_model;
   PetscBool              adapt_ready = PETSC_FALSE; // initial parameters chosen
   std::vector<PetscBool> adapt_no_savings;          // per time ratio: no savings for the rest of the solve (they were negligible)
@@ -90,6 +92,7 @@ struct TS_VSHMM {
   PetscInt               adapt_since_calibration = 0;
   PetscBool              adapt_calibrated        = PETSC_FALSE; // the model's split between the terms was measured
   PetscInt               adapt_calibrated_times  = 0;           // calibrations in this solve
+  PetscBool              adapt_postponed         = PETSC_FALSE; // the due calibration waited one step (its step was far below its share)
   PetscReal              adapt_tstart            = 0.0;         // the time the solve started (the error budget runs from it)
   PetscBool              no_separation           = PETSC_FALSE; // no pair of levels is separated
   PetscBool              floor_warned            = PETSC_FALSE; // told that the estimate does not fall
@@ -101,6 +104,7 @@ struct TS_VSHMM {
   PetscInt               adapt_accepted = 0; // accepted macro steps of this solve
   PetscReal              error_estimate = 0, error_estimate_total = 0;
   PetscInt64             adapt_evaluations = 0, adapt_rejections = 0, adapt_calibrations = 0;
+  PetscInt64             adapt_uncompared_total = 0; // accepted steps whose comparison was left out (statistics)
 
   // Statistics since set-up
   enum Counter {
