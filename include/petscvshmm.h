@@ -85,7 +85,8 @@ PETSC_EXTERN const char *const TSVSHMMSeparationChecks[];
 .  error_estimate_total - the sum of error_estimate over the macro steps: an estimate of the error at the current time
 .  adapt_evaluations - split RHS evaluations spent on error estimation and rejected macro steps (not in rhs_evaluations)
 .  adapt_rejections - macro steps redone with finer parameters
--  adapt_calibrations - macro steps at which every parameter's error term was measured
+.  adapt_calibrations - macro steps at which every parameter's error term was measured
+-  adapt_uncompared - accepted macro steps whose comparison was left out (nothing left to coarsen, the estimates far below their shares: the model's prediction stood in)
 
    Level: intermediate
 
