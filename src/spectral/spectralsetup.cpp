@@ -61,9 +61,9 @@ static std::vector<double> FullMagnitudes(const spc::Layout &full, int N, const 
 }
 
 static constexpr double kDecayingBand     = 0.5; /* -spectral_cluster_min_band_share leaves out only a band whose decay share (spc::bandAction()) is at least this */
-static constexpr double kMaxBandInfluence = 1.0;
-static constexpr int    kRKCStepsPerLook  = 8;                                                             /* RKC steps of the detection DNS between consecutive looks */
-static constexpr double kRKCSafety        = 0.9; /* the RKC step's margin on the Ritz values (as RK3's) */ /* and whose influence on the other retained bands is below this */
+static constexpr double kMaxBandInfluence = 1.0; /* and whose influence on the other retained bands is below this */
+static constexpr int    kRKCStepsPerLook  = 8;   /* RKC steps of the detection DNS between consecutive looks */
+static constexpr double kRKCSafety        = 0.9; /* the RKC step's margin on the Ritz values (as RK3's) */
 
 /* The detection DNS's right-hand side, with its work counted. */
 struct DetectCtx {
