@@ -631,16 +631,15 @@ static void SnapNegligibleSavings(TS_VSHMM *vs, vshmm::AdaptParameters &p, const
     }
 }
 
-static PetscErrorCode Calibrate(TS ts, const vshmm::AdaptParameters &p, PetscReal t0, PetscReal DeltaT, vshmm::AdaptBounds &bounds, PetscInt only = -1)
+static PetscErrorCode Calibrate(TS ts, const vshmm::AdaptParameters &p, PetscReal t0, PetscReal DeltaT, vshmm::AdaptBounds &bounds)
 {
   TS_VSHMM                           *vs = (TS_VSHMM *)ts->data;
   const PetscInt                      K  = (PetscInt)p.ratios.size();
-  std::vector<vshmm::AdaptParameters> coarse(K + 1, p);
+  std::vector<vshmm::AdaptParameters> coarse(K + 1);
   std::vector<double>                 d(K + 1, 0.0);
 
   PetscFunctionBegin;
   for (PetscInt i = 0; i <= K; ++i) {
-    if (only >= 0 && i != only) continue;
     coarse[i] = Comparison(ts, p, vshmm::coarsened(p, (int)i, i ? kRatioCoarsening : 2.0));
     /* one parameter at a time: the others as in p */
     if (i > 0) coarse[i].microStep = p.microStep;
@@ -662,13 +661,6 @@ static PetscErrorCode Calibrate(TS ts, const vshmm::AdaptParameters &p, PetscRea
     }
     d[i] = di;
     PetscCall(PetscInfo(ts, "Adapt: calibration of parameter %" PetscInt_FMT ": dt %g, cycle %g, difference %g\n", i, (double)coarse[i].microStep, (double)vshmm::cycleLength(coarse[i]), (double)di));
-  }
-  if (only >= 0) { /* the dominant term measured again, the others kept */
-    const vshmm::ErrorModel m = vshmm::ErrorModel::fromDifferences(p, coarse, d, vs->tableau->order, Saturations(ts, p));
-    if (only == 0) vs->adapt_model.cMicro = m.cMicro;
-    else vs->adapt_model.c[only - 1] = m.c[only - 1];
-    if (!(vs->adapt_model.total(p) > 0)) vs->adapt_model = vshmm::ErrorModel::equalShares(p, vs->tableau->order, 1.0, Saturations(ts, p));
-    PetscFunctionReturn(0);
   }
   vs->adapt_model = vshmm::ErrorModel::fromDifferences(p, coarse, d, vs->tableau->order, Saturations(ts, p));
   if (!(vs->adapt_model.total(p) > 0)) vs->adapt_model = vshmm::ErrorModel::equalShares(p, vs->tableau->order, 1.0, Saturations(ts, p));
