@@ -62,6 +62,8 @@ static constexpr PetscReal kSavingsMargin          = 0.5;  /* and admitted where
 static constexpr PetscReal kUncomparedBelow        = 10;   /* a steady step's last two estimates below 1/this of their shares: its comparison may be left out */
 static constexpr PetscInt  kMaxUncompared          = 3;    /* at most this many steps in a row */
 static constexpr PetscReal kPostponeBelow          = 10;   /* a scheduled calibration at a step whose estimate is below 1/this of its share waits a step */
+static constexpr PetscReal kNegligibleTerm         = 0.05; /* a calibration difference below this fraction of the largest: a negligible term */
+static constexpr PetscInt  kNegligibleCalibrations = 2;    /* negligible in this many of a macro step's calibrations in a row: a retry's calibration does not measure it again */
 static constexpr PetscInt  kTrustedCalibrations    = 2;    /* after this many calibrations a scheduled one is skipped where the model predicted the step's estimate */
 static constexpr PetscReal kOscillationShare       = 1.0;  /* of the tolerance: the fastest level's oscillations' amplitude error over the run */
 static constexpr PetscReal kOscillationSpanSteps   = 100;  /* macro steps taken as the run where it has no final time */
@@ -631,15 +633,23 @@ static void SnapNegligibleSavings(TS_VSHMM *vs, vshmm::AdaptParameters &p, const
     }
 }
 
-static PetscErrorCode Calibrate(TS ts, const vshmm::AdaptParameters &p, PetscReal t0, PetscReal DeltaT, vshmm::AdaptBounds &bounds)
+static PetscErrorCode Calibrate(TS ts, const vshmm::AdaptParameters &p, PetscReal t0, PetscReal DeltaT, vshmm::AdaptBounds &bounds, PetscBool retry)
 {
   TS_VSHMM                           *vs = (TS_VSHMM *)ts->data;
   const PetscInt                      K  = (PetscInt)p.ratios.size();
   std::vector<vshmm::AdaptParameters> coarse(K + 1);
   std::vector<double>                 d(K + 1, 0.0);
+  std::vector<bool>                   skipped(K + 1, false);
 
   PetscFunctionBegin;
+  if (!retry || vs->adapt_negligible.size() != (size_t)K + 1) vs->adapt_negligible.assign(K + 1, 0);
   for (PetscInt i = 0; i <= K; ++i) {
+    if (retry && vs->adapt_negligible[i] >= kNegligibleCalibrations) { /* measured as negligible by this macro step's last calibrations: not run again */
+      coarse[i]  = p;
+      skipped[i] = true;
+      PetscCall(PetscInfo(ts, "Adapt: calibration of parameter %" PetscInt_FMT ": negligible in the last %" PetscInt_FMT " calibrations of this macro step, not measured again\n", i, vs->adapt_negligible[i]));
+      continue;
+    }
     coarse[i] = Comparison(ts, p, vshmm::coarsened(p, (int)i, i ? kRatioCoarsening : 2.0));
     /* one parameter at a time: the others as in p */
     if (i > 0) coarse[i].microStep = p.microStep;
@@ -662,6 +672,10 @@ static PetscErrorCode Calibrate(TS ts, const vshmm::AdaptParameters &p, PetscRea
     d[i] = di;
     PetscCall(PetscInfo(ts, "Adapt: calibration of parameter %" PetscInt_FMT ": dt %g, cycle %g, difference %g\n", i, (double)coarse[i].microStep, (double)vshmm::cycleLength(coarse[i]), (double)di));
   }
+  PetscReal largest = 0;
+  for (double x : d) largest = PetscMax(largest, PetscAbsReal(x));
+  for (PetscInt i = 0; i <= K; ++i)
+    if (!skipped[i]) vs->adapt_negligible[i] = PetscAbsReal(d[i]) <= kNegligibleTerm * largest ? vs->adapt_negligible[i] + 1 : 0;
   vs->adapt_model = vshmm::ErrorModel::fromDifferences(p, coarse, d, vs->tableau->order, Saturations(ts, p));
   if (!(vs->adapt_model.total(p) > 0)) vs->adapt_model = vshmm::ErrorModel::equalShares(p, vs->tableau->order, 1.0, Saturations(ts, p));
   vs->adapt_calibrations++;
@@ -824,7 +838,7 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
       vs->adapt_postponed = PETSC_TRUE;
     }
     if (calibrate || (E > budget && !vs->adapt_calibrated) || (attempt > 0 && (E > kFloorAccept * budget || (E > budget && E > kMissFactor * predicted)))) {
-      PetscCall(Calibrate(ts, p, t0, DeltaT, bounds));
+      PetscCall(Calibrate(ts, p, t0, DeltaT, bounds, (!calibrate && attempt > 0) ? PETSC_TRUE : PETSC_FALSE));
       calibrate = PETSC_FALSE;
       E         = Estimate(vs->adapt_model, p, q, d);
     }
