@@ -341,6 +341,20 @@ static bool FasterLevelsDecay(TS_VSHMM *vs)
   return true;
 }
 
+/* A steady step, whose comparison is left out (the model's prediction stands in): where every
+   faster level decays, a step that cannot be coarsened (micro step and cycle at their bounds),
+   after two accepted steps far below their shares (kUncomparedBelow) whose estimates agreed
+   within kMissFactor, at most kMaxUncompared steps in a row. */
+static bool SteadyStep(TS_VSHMM *vs, const vshmm::AdaptParameters &p, const vshmm::AdaptBounds &b)
+{
+  const PetscReal last = vs->adapt_last_ratio, prev = vs->adapt_prev_ratio;
+
+  if (!vs->adapt_calibrated || !FasterLevelsDecay(vs) || vs->adapt_uncompared >= kMaxUncompared) return false;
+  if (!(b.maxCycle > 0) || vshmm::cycleLength(p) < 0.999 * b.maxCycle || (!b.fixedMicroStep && p.microStep < 0.999 * b.maxMicroStep)) return false; /* something left to coarsen */
+  const bool agree = last < kMissFactor * prev && prev < kMissFactor * last;
+  return last < 1.0 / kUncomparedBelow && prev < 1.0 / kUncomparedBelow && agree;
+}
+
 /* Whether a comparison with a single-rate step admitted savings (VerifySavings()). */
 static bool SavingsAdmitted(const TS_VSHMM *vs)
 {
@@ -802,11 +816,7 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
     const bool modelled = attempt == 0 && !calibrate && vs->adapt_model.total(p) > 0;
     bool       pinned   = modelled && vs->adapt_last_ratio < kNegligibleEstimate && p.microStep >= 0.999 * bounds.maxMicroStep;
     for (double r : p.ratios) pinned = pinned && r == 1.0;
-    /* a step that cannot be coarsened (micro step and cycle at their bounds), after two steps far
-       below their share whose estimates agreed (within kMissFactor), where every faster level
-       decays: the comparison is left out (up to kMaxUncompared steps in a row) and the model's
-       prediction stands in */
-    const bool steady = modelled && vs->adapt_calibrated && FasterLevelsDecay(vs) && bounds.maxCycle > 0 && vshmm::cycleLength(p) >= 0.999 * bounds.maxCycle && (bounds.fixedMicroStep || p.microStep >= 0.999 * bounds.maxMicroStep) && vs->adapt_last_ratio < 1.0 / kUncomparedBelow && vs->adapt_prev_ratio < 1.0 / kUncomparedBelow && vs->adapt_last_ratio < kMissFactor * vs->adapt_prev_ratio && vs->adapt_prev_ratio < kMissFactor * vs->adapt_last_ratio && vs->adapt_uncompared < kMaxUncompared;
+    const bool steady = modelled && SteadyStep(vs, p, bounds);
     if (steady && !pinned)
       PetscCall(PetscInfo(ts, "Adapt: macro step [%g, %g]: at the cycle and micro step bounds, the last two estimates %g and %g of their shares: no comparison\n", (double)t0, (double)t1, (double)vs->adapt_prev_ratio, (double)vs->adapt_last_ratio));
     if (pinned || steady) d = -1;
