@@ -314,19 +314,14 @@ static PetscErrorCode DetectionDNS(VSHMMSpectral sp, DetectCtx *dctx, const std:
       t = s->detect_times[i];
     } else t = PetscMin((double)s->detect_first_steps * std::ldexp(1.0, (int)PetscMin(i, (size_t)60)), (double)s->detect_max_steps) * dt;
     if (t > 0 && use_rkc && i > 0) { /* kRKCStepsPerLook RKC steps to t */
-      const PetscReal h = (t - t_rkc) / kRKCStepsPerLook;
-      PetscInt        stages;
-      try {
-        stages = vshmm::ChebyshevRK2::stagesFor(h / kRKCSafety, ritz);
-      } catch (const std::exception &e) {
-        SETERRQ(PETSC_COMM_SELF, PETSC_ERR_PLIB, "cluster detection: %s", e.what());
-      }
+      const PetscReal h      = (t - t_rkc) / kRKCStepsPerLook;
+      const int       stages = vshmm::ChebyshevRK2::stagesFor(h / kRKCSafety, ritz);
       if (!stages) { /* none up to 1000 stages (a far complex Ritz value): RK3 instead */
         *rkc_failed = true;
         break;
       }
-      const vshmm::ChebyshevRK2 rkc((int)stages);
-      s->detection.rkc_stages = PetscMax(s->detection.rkc_stages, stages);
+      const vshmm::ChebyshevRK2 rkc(stages);
+      s->detection.rkc_stages = PetscMax(s->detection.rkc_stages, (PetscInt)stages);
       s->detection.rkc_step   = PetscMax(s->detection.rkc_step, h);
       for (int j = 0; j < kRKCStepsPerLook; ++j) {
         rkc.step(F, h, y, work);
