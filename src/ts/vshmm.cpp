@@ -539,8 +539,7 @@ static PetscErrorCode TSView_VSHMM(TS ts, PetscViewer viewer)
   if (vs->adapt) {
     std::string admitted; /* scales not separated: the time ratios a single-rate step admitted */
     for (PetscReal r : vs->adapt_verified) admitted += (admitted.empty() ? "" : ", ") + std::to_string(r).substr(0, 6);
-    bool any = false;
-    for (PetscReal r : vs->adapt_verified) any = any || r > 1.0;
+    const bool        any  = TSVSHMMSavingsAdmitted_Private(vs);
     const std::string what = !vs->savings.empty()                                          ? "set"
                              : !vs->no_separation                                          ? "chosen"
                              : any                                                         ? "chosen up to the time ratios " + admitted + " (scales not separated; admitted by a comparison with a single-rate macro step)"

@@ -355,14 +355,6 @@ static bool SteadyStep(TS_VSHMM *vs, const vshmm::AdaptParameters &p, const vshm
   return last < 1.0 / kUncomparedBelow && prev < 1.0 / kUncomparedBelow && agree;
 }
 
-/* Whether a comparison with a single-rate step admitted savings (VerifySavings()). */
-static bool SavingsAdmitted(const TS_VSHMM *vs)
-{
-  for (PetscReal r : vs->adapt_verified)
-    if (r > 1.0) return true;
-  return false;
-}
-
 /* The first time ratios of -ts_vshmm_adapt as if every pair were separated. */
 static std::vector<double> SeparatedRatios(TS ts)
 {
@@ -746,7 +738,7 @@ static PetscErrorCode VerifySavings(TS ts, const vshmm::AdaptParameters &p, Pets
     const PetscReal scale = (std::isfinite(d) && d > 0) ? 0.5 * kSavingsMargin * budget / d : 0.0;
     for (double &r : q.ratios) r = 1.0 + (r - 1.0) * scale;
   }
-  if (SavingsAdmitted(vs)) vs->adapt_calibrated = PETSC_FALSE; /* the error model's split is measured again with the savings */
+  if (TSVSHMMSavingsAdmitted_Private(vs)) vs->adapt_calibrated = PETSC_FALSE; /* the error model's split is measured again with the savings */
   PetscFunctionReturn(0);
 }
 
@@ -932,7 +924,7 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
     SnapNegligibleSavings(vs, next, bounds); /* after an accepted step only: the retries of an initial layer take the savings down on their way to a start */
     if (!vs->adapt_candidate.empty() && vs->adapt_verified.empty()) {
       PetscCall(VerifySavings(ts, p, t0, DeltaT));
-      if (SavingsAdmitted(vs)) {
+      if (TSVSHMMSavingsAdmitted_Private(vs)) {
         next.ratios = vs->adapt_verified;
         LimitToStableSteps(ts, next);
         vshmm::fitCycle(next, Bounds(ts, DeltaT).maxCycle, false, true);

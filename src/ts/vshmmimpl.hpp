@@ -130,6 +130,15 @@ struct TS_VSHMM {
   PetscInt64 field_evaluations = 0, nonfinite_evaluation = -1; // level-field evaluations so far (the same on every rank); the faulty one
 };
 
+/* Whether a comparison with a single-rate step admitted savings where the scales are not
+   separated (VerifySavings() in vshmmadapt.cpp). */
+static inline bool TSVSHMMSavingsAdmitted_Private(const TS_VSHMM *vs)
+{
+  for (PetscReal r : vs->adapt_verified)
+    if (r > 1.0) return true;
+  return false;
+}
+
 static constexpr PetscInt  kDefaultMicroStepsPerMacroStep = 100;
 static constexpr PetscReal kMinMicroStepFraction          = 1e-13; /* dt / DeltaT below this cannot advance time */
 
