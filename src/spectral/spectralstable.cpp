@@ -121,7 +121,7 @@ PetscErrorCode VSHMMSpectralStableStepOf_Private(MPI_Comm comm, const std::vecto
     if (std::abs(lambda) == 0 || lambda.real() > kGrowingMode * std::abs(lambda)) continue;
     h = std::min(h, R.largestStableStep(lambda));
   }
-  *dt = std::isfinite(h) ? kSafety * h : PETSC_INFINITY;
+  *dt = h < PETSC_INFINITY ? kSafety * h : PETSC_INFINITY; /* PETSC_INFINITY is finite: compared, not std::isfinite() */
   PetscFunctionReturn(0);
 }
 

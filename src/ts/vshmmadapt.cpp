@@ -36,6 +36,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 static constexpr PetscReal kMinSeparation          = 10;   /* a pair of levels this far apart in spectral radius is separated */
@@ -69,6 +70,10 @@ static constexpr PetscReal kOscillationShare       = 1.0;  /* of the tolerance: 
 static constexpr PetscReal kOscillationSpanSteps   = 100;  /* macro steps taken as the run where it has no final time */
 static constexpr PetscReal kMaxDearer              = 4;    /* and rise by this factor at most per try (the estimate is noisy: refining in steps wastes less) */
 static constexpr PetscReal kNegligibleEstimate     = 1e-3; /* a single-rate step pinned at its bounds after a step this far below its share is not compared */
+static constexpr PetscReal kBlowUpGrowth           = 1e6;  /* a comparison this many times larger than its step and their start blew up */
+/* The difference to a run that blew up: IEEE infinity, which std::isfinite() rejects (PETSC_INFINITY
+   is PETSC_MAX_REAL / 4, a finite number, and was once read as an estimate of 4.5e307 tolerances) */
+static constexpr PetscReal kBlownUp = std::numeric_limits<PetscReal>::infinity();
 
 const char *const TSVSHMMSeparationChecks[] = {"off", "warn", "error", "TSVSHMMSeparationCheck", "TSVSHMM_SEPARATION_", nullptr};
 
@@ -82,7 +87,7 @@ static PetscErrorCode ObservableDifference(TS ts, PetscReal t, Vec Xa, Vec Xb, P
   PetscCall(VecNorm(Xa, NORM_1, &xa)); /* the 1-norm: a NaN in any entry makes it NaN (the max-norm may skip it) */
   PetscCall(VecNorm(Xb, NORM_1, &xb));
   if (!std::isfinite(xa) || !std::isfinite(xb)) { /* a run blew up */
-    *norm = PETSC_INFINITY;
+    *norm = kBlownUp;
     PetscFunctionReturn(0);
   }
   if (!vs->observables) {
@@ -101,7 +106,7 @@ static PetscErrorCode ObservableDifference(TS ts, PetscReal t, Vec Xa, Vec Xb, P
     const PetscReal w = ts->atol + ts->rtol * PetscMax(PetscAbsReal(a), PetscAbsReal(b));
     const PetscReal e = (b - a) / w;
     vs->obs_diff[i]   = std::isfinite(e) ? e : 0.0;
-    sum += std::isfinite(e) ? e * e : PETSC_MAX_REAL / (10 * vs->nobservables);
+    sum += std::isfinite(e) ? e * e : kBlownUp;
   }
   *norm = std::sqrt(sum / vs->nobservables);
   PetscFunctionReturn(0);
@@ -570,11 +575,29 @@ static vshmm::AdaptParameters Comparison(TS ts, const vshmm::AdaptParameters &p,
   return q;
 }
 
+/* Whether the comparison run (vs->Xtrial) blew up: not finite, or kBlowUpGrowth times larger than
+   the step it is compared with (vs->Xbase) and its start (vs->X0). Both started from X0 with
+   parameters that differ by a factor 2 in each error term; a finite but astronomically large
+   comparison is an unstable run, not an error estimate. */
+static PetscErrorCode ComparisonBlewUp(TS ts, PetscBool *blown)
+{
+  TS_VSHMM *vs = (TS_VSHMM *)ts->data;
+  PetscReal trial, base, start;
+
+  PetscFunctionBegin;
+  PetscCall(VecNorm(vs->Xtrial, NORM_1, &trial));
+  PetscCall(VecNorm(vs->Xbase, NORM_1, &base));
+  PetscCall(VecNorm(vs->X0, NORM_1, &start));
+  *blown = (!std::isfinite(trial) || (std::isfinite(base) && trial > kBlowUpGrowth * (base + start))) ? PETSC_TRUE : PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
 /* The comparison of the macro step just taken from X0 into Xbase with p: the same step with every
    error term doubled (vshmm::termsScaled). Under the model its difference d is the error of p
    (Estimate); the faster levels' phase at the sampling time makes it noisy (a factor 3 either way
-   on the oscillators). A comparison that is not finite is tried again with the micro step of p;
-   if that is not finite either, d is infinite (no estimate). */
+   on the oscillators). A comparison that blew up (ComparisonBlewUp()) is tried again with the micro step
+   of p; if that blew up too, d is infinite (no estimate: the step is redone with every parameter
+   finer). */
 static PetscErrorCode Compare(TS ts, const vshmm::AdaptParameters &p, PetscReal t0, PetscReal DeltaT, PetscBool predict, vshmm::AdaptParameters *q, PetscReal *d)
 {
   TS_VSHMM *vs = (TS_VSHMM *)ts->data;
@@ -592,14 +615,26 @@ static PetscErrorCode Compare(TS ts, const vshmm::AdaptParameters &p, PetscReal 
     }
     *q = vshmm::coarsened(p, 0, 0.5);
   }
+  PetscBool blown;
   PetscCall(TrialStep(ts, *q, t0, DeltaT, vs->Xtrial));
-  PetscCall(ObservableDifference(ts, t0 + DeltaT, vs->Xbase, vs->Xtrial, d));
-  if (!std::isfinite(*d) && q->microStep > p.microStep) {
-    PetscCall(PetscInfo(ts, "Adapt: the comparison with dt %g is not finite; comparing with dt %g\n", (double)q->microStep, (double)p.microStep));
+  PetscCall(ComparisonBlewUp(ts, &blown));
+  if (blown && q->microStep > p.microStep) {
+    PetscCall(PetscInfo(ts, "Adapt: the comparison with dt %g blew up; comparing with dt %g\n", (double)q->microStep, (double)p.microStep));
     q->microStep = p.microStep;
     PetscCall(TrialStep(ts, *q, t0, DeltaT, vs->Xtrial));
-    PetscCall(ObservableDifference(ts, t0 + DeltaT, vs->Xbase, vs->Xtrial, d));
+    PetscCall(ComparisonBlewUp(ts, &blown));
   }
+  if (blown) {
+    /* the coarser savings are unstable (the levels' stable steps were estimated at another state,
+       or the composed cycle grows where each level alone does not): p is near the edge, and a
+       difference of that size is no estimate */
+    PetscCall(PetscInfo(ts, "Adapt: the comparison with dt %g, cycle %g blew up: no estimate\n", (double)q->microStep, (double)vshmm::cycleLength(*q)));
+    *d = kBlownUp;
+    vs->obs_diff.clear();
+    vs->step_signed.clear();
+    PetscFunctionReturn(0);
+  }
+  PetscCall(ObservableDifference(ts, t0 + DeltaT, vs->Xbase, vs->Xtrial, d));
   PetscCall(PetscInfo(ts, "Adapt: comparison dt %g, cycle %g: difference %g\n", (double)q->microStep, (double)vshmm::cycleLength(*q), (double)*d));
   vs->step_signed = vs->obs_diff;
   PetscFunctionReturn(0);
