@@ -19,11 +19,21 @@ std::vector<double> parsevalWeights(const Layout &layout)
   return w;
 }
 
+// Four partial sums: one running sum is bound by the latency of its additions (the compiler may
+// not reorder them), and the 40-step Arnoldi's 1,700 products took most of the detection's
+// set-up time on 2,048 modes.
 static double weightedDot(const std::vector<double> &w, const double *x, const double *y)
 {
-  double s = 0;
-  for (size_t i = 0; i < w.size(); ++i) s += w[i] * x[i] * y[i];
-  return s;
+  const size_t n = w.size(), n4 = n - n % 4;
+  double       s0 = 0, s1 = 0, s2 = 0, s3 = 0;
+  for (size_t i = 0; i < n4; i += 4) {
+    s0 += w[i] * x[i] * y[i];
+    s1 += w[i + 1] * x[i + 1] * y[i + 1];
+    s2 += w[i + 2] * x[i + 2] * y[i + 2];
+    s3 += w[i + 3] * x[i + 3] * y[i + 3];
+  }
+  for (size_t i = n4; i < n; ++i) s0 += w[i] * x[i] * y[i];
+  return (s0 + s1) + (s2 + s3);
 }
 
 ArnoldiResult arnoldi(const std::function<void(const double *, double *)> &apply, const std::vector<double> &weights, int m)
