@@ -475,6 +475,12 @@ PetscErrorCode TSVSHMMAdaptSetUp_Private(TS ts)
 
   PetscFunctionBegin;
   if (!vs->adapt) PetscFunctionReturn(0);
+  /* the tolerances are the weights of the error estimate: a zero one divides by zero where the
+     other is zero too (every estimate infinite, every step refined to the limit), a negative or
+     non-finite one makes the estimate meaningless */
+  PetscCheck(std::isfinite(ts->rtol) && std::isfinite(ts->atol) && ts->rtol >= 0 && ts->atol >= 0, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "-ts_vshmm_adapt: the tolerances -ts_rtol %g and -ts_atol %g (TSSetTolerances()) must be finite and non-negative",
+             (double)ts->rtol, (double)ts->atol);
+  PetscCheck(ts->rtol > 0 || ts->atol > 0, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "-ts_vshmm_adapt needs a positive tolerance: -ts_rtol and -ts_atol (TSSetTolerances()) are both 0");
   PetscCall(VecDuplicate(ts->vec_sol, &vs->Xtrial));
   PetscCall(VecDuplicate(ts->vec_sol, &vs->Xbase));
   if (vs->spectra_time != ts->ptime || (PetscInt)vs->level_radius.size() != nscales) PetscCall(TSVSHMMLevelSpectra_Private(ts));

@@ -766,6 +766,10 @@ TEST(VSHMMBadInput, EachBadSettingIsAClearError)
     {"-ts_vshmm_scale_separations inf,5", 3, "must be positive and finite"},
     {"-ts_vshmm_scale_separations", 3, "-ts_vshmm_scale_separations is given without a value: it takes a comma-separated list of real numbers"},
     {"-ts_vshmm_warnings_viewer nowhere", 3, "-ts_vshmm_warnings_viewer nowhere: Unsupported viewer nowhere; the option takes stderr, none, or an ASCII viewer ascii[:file]"},
+    {"-ts_vshmm_adapt -ts_rtol 0 -ts_atol 0", 3, "-ts_vshmm_adapt needs a positive tolerance: -ts_rtol and -ts_atol (TSSetTolerances()) are both 0"},
+    {"-ts_vshmm_adapt -ts_rtol -1e-2 -ts_atol 1e-2", 3, "-ts_vshmm_adapt: the tolerances -ts_rtol -0.01 and -ts_atol 0.01 (TSSetTolerances()) must be finite and non-negative"},
+    {"-ts_vshmm_adapt -ts_rtol nan -ts_atol 1e-2", 3, "must be finite and non-negative"},
+    {"-ts_vshmm_adapt -ts_rtol 1e-2 -ts_atol inf", 3, "must be finite and non-negative"},
   };
   for (const BadInput &bad : cases) {
     CapturedError e = SetUpWith(bad);
@@ -780,6 +784,8 @@ TEST(VSHMMBadInput, EachBadSettingIsAClearError)
   // The good settings of the same TS set up without error.
   EXPECT_EQ(SetUpWith({"-ts_vshmm_kernel polynomial -ts_vshmm_kernel_order 4 -ts_vshmm_subintervals 1,3 -ts_vshmm_rk_type 5dp", 3, ""}).code, 0);
   EXPECT_EQ(SetUpWith({"-ts_vshmm_kernel cosine -ts_vshmm_kernel_order 1", 3, ""}).code, 0);
+  EXPECT_EQ(SetUpWith({"-ts_vshmm_adapt -ts_rtol 0 -ts_atol 1e-2", 3, ""}).code, 0);                                         // one of the two may be 0
+  EXPECT_EQ(SetUpWith({"-ts_rtol 0 -ts_atol 0", 3, ""}).code, 0);                                                            // without adapt they are not read
   EXPECT_EQ(SetUpWith({"-ts_vshmm_kernel COSINE -ts_vshmm_check_stability -ts_vshmm_warnings_viewer none", 3, ""}).code, 0); // PETSc's readers: names in any case, a flag alone is true
   // A method with a longer stability interval accepts a micro step that RK4 does not.
   EXPECT_NE(SetUpWith({"-ts_vshmm_micro_dt 3.2e-4", 3, ""}).code, 0);
