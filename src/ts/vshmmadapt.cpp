@@ -481,6 +481,13 @@ PetscErrorCode TSVSHMMAdaptSetUp_Private(TS ts)
   PetscCheck(std::isfinite(ts->rtol) && std::isfinite(ts->atol) && ts->rtol >= 0 && ts->atol >= 0, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "-ts_vshmm_adapt: the tolerances -ts_rtol %g and -ts_atol %g (TSSetTolerances()) must be finite and non-negative",
              (double)ts->rtol, (double)ts->atol);
   PetscCheck(ts->rtol > 0 || ts->atol > 0, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "-ts_vshmm_adapt needs a positive tolerance: -ts_rtol and -ts_atol (TSSetTolerances()) are both 0");
+  if (vs->observables) { /* at the initial state: a function that returns NaN (an entry of q[] not set) would make every estimate infinite */
+    std::vector<PetscReal> q0(vs->nobservables, 0.0);
+    PetscCall(vs->observables(ts, ts->ptime, ts->vec_sol, q0.data(), vs->observables_ctx));
+    for (PetscInt i = 0; i < vs->nobservables; ++i)
+      PetscCheck(std::isfinite(q0[i]), PetscObjectComm((PetscObject)ts), PETSC_ERR_FP, "TSVSHMMSetObservables(): observable %" PetscInt_FMT " (of %" PetscInt_FMT ") is %g at the initial state (t = %g): the observables function must set q[0..%" PetscInt_FMT "] to finite values", i, vs->nobservables, (double)q0[i],
+                 (double)ts->ptime, vs->nobservables - 1);
+  }
   PetscCall(VecDuplicate(ts->vec_sol, &vs->Xtrial));
   PetscCall(VecDuplicate(ts->vec_sol, &vs->Xbase));
   if (vs->spectra_time != ts->ptime || (PetscInt)vs->level_radius.size() != nscales) PetscCall(TSVSHMMLevelSpectra_Private(ts));

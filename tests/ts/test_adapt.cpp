@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <string>
 #include <unistd.h>
 #include <numeric>
@@ -673,6 +674,38 @@ TEST(VSHMMAdapt, AComparisonThatBlowsUpIsNoEstimate)
   EXPECT_LT(run.stats.error_estimate_total, 10.0); // the accepted steps' estimates, in tolerances
   constexpr double kXiAt2 = 1.4816640204;          // docs/dissipative.md (converged DNS)
   EXPECT_LE(std::abs(run.x[0] - kXiAt2), 2e-3 * (1 + kXiAt2));
+}
+
+// An observables function that leaves a quantity unset (NaN here) is an error at set-up naming it,
+// not a run whose every estimate is infinite (each macro step refined to the try limit).
+PetscErrorCode NaNSecondObservable(TS, PetscReal, Vec X, PetscReal q[], void *ctx)
+{
+  PetscFunctionBeginUser;
+  PetscCall(XiObservable(nullptr, 0, X, q, ctx));
+  q[1] = std::numeric_limits<PetscReal>::quiet_NaN();
+  PetscFunctionReturn(0);
+}
+
+TEST(VSHMMAdapt, ANonFiniteObservableIsAnError)
+{
+  const CapturedError e = CaptureError([] {
+    Guard             guard("-ts_vshmm_adapt -ts_rtol 1e-2 -ts_atol 1e-2");
+    DissipativeParams params;
+    SplitProblem      p;
+    TS                ts;
+    Vec               x;
+    DissipativeProblem(&p, &params);
+    PetscCall(CreateSplitTS(PETSC_COMM_WORLD, &p, SplitKind::Component, {5, -10, 5}, {"slow", "medium", "fast"}, &ts, &x));
+    PetscCall(TSSetTimeStep(ts, 0.1));
+    PetscCall(TSSetMaxTime(ts, 0.2));
+    PetscCall(TSVSHMMSetObservables(ts, 2, NaNSecondObservable, &p));
+    PetscCall(TSSetFromOptions(ts));
+    const PetscErrorCode ierr = TSSolve(ts, x);
+    PetscCall(DestroySplitTS(&p, &ts, &x));
+    return ierr;
+  });
+  EXPECT_EQ(e.code, PETSC_ERR_FP);
+  EXPECT_NE(e.message.find("TSVSHMMSetObservables(): observable 1 (of 2) is nan. at the initial state (t = 0.)"), std::string::npos) << "message: " << e.message;
 }
 
 // Without adapt nothing changes: no estimate, no extra work.
