@@ -176,7 +176,7 @@ static std::vector<PetscReal> ClusterSeparations(const std::vector<std::vector<P
     for (PetscInt k : clusters[j]) fastest = std::max(fastest, md * k * (double)k + ma * k);
     for (PetscInt k : clusters[j + 1])
       if (k > 0) slowest = std::min(slowest, ad * k * (double)k + aa * k);
-    if (!(fastest > 0) || !(slowest > 0) || !std::isfinite(slowest)) return {};
+    if (!(fastest > 0) || !(slowest > 0) || !(slowest < PETSC_INFINITY)) return {}; /* PETSC_INFINITY is finite: no k > 0 in the faster cluster */
     S.push_back(slowest / fastest);
   }
   return S;
