@@ -86,7 +86,8 @@ PETSC_EXTERN const char *const TSVSHMMSeparationChecks[];
 .  adapt_evaluations - split RHS evaluations spent on error estimation and rejected macro steps (not in rhs_evaluations)
 .  adapt_rejections - macro steps redone with finer parameters
 .  adapt_calibrations - macro steps at which every parameter's error term was measured
--  adapt_uncompared - accepted macro steps whose comparison was left out (nothing left to coarsen, the estimates far below their shares: the model's prediction stood in)
+.  adapt_uncompared - accepted macro steps whose comparison was left out (nothing left to coarsen, the estimates far below their shares: the model's prediction stood in)
+-  adapt_layer_estimates - tries of the first macro step estimated again from a second comparison (an initial layer, where the error grows faster than the error model's terms)
 
    Level: intermediate
 
@@ -109,6 +110,7 @@ typedef struct {
   PetscInt64        adapt_rejections;
   PetscInt64        adapt_calibrations;
   PetscInt64        adapt_uncompared;
+  PetscInt64        adapt_layer_estimates;
 } TSVSHMMStatistics;
 
 PETSC_EXTERN PetscErrorCode TSVSHMMInitializePackage(void);

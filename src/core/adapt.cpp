@@ -72,6 +72,26 @@ AdaptParameters termsScaled(const AdaptParameters &p, double factor, int order)
   return q;
 }
 
+double errorFromTwoComparisons(double d1, double f1, double d2, double f2, double *kappa, double kappaMin, double kappaMax)
+{
+  // (f2^k - 1) / (f1^k - 1) grows with k (from ln f2 / ln f1 at k = 0): bisection on log k
+  const auto   ratio  = [&](double k) { return std::expm1(k * std::log(f2)) / std::expm1(k * std::log(f1)); };
+  const double target = d2 / d1;
+  double       k;
+  if (target <= ratio(kappaMin)) k = kappaMin;
+  else if (target >= ratio(kappaMax)) k = kappaMax;
+  else {
+    double lo = std::log(kappaMin), hi = std::log(kappaMax);
+    for (int it = 0; it < 80; ++it) {
+      const double mid                          = 0.5 * (lo + hi);
+      (ratio(std::exp(mid)) < target ? lo : hi) = mid;
+    }
+    k = std::exp(0.5 * (lo + hi));
+  }
+  if (kappa) *kappa = k;
+  return d2 / std::expm1(k * std::log(f2));
+}
+
 void limitWorkChange(AdaptParameters &next, const AdaptParameters &now, double maxCheaper, double maxDearer)
 {
   // log changes of the cycle length's factors: > 0 coarsens (cheaper), < 0 refines

@@ -72,6 +72,13 @@ double pairUnitInverse(double u, double s);
 // (none: linear).
 std::vector<double> layerSaturations(const AdaptParameters &p, double macroStep, const std::vector<double> &rate);
 
+// The error of p from two comparisons with every error term scaled by f1 and by f2 > f1 > 1
+// (termsScaled()), their differences d1 and d2 from p, where the error grows as a power of the
+// scaling, e(f) = e(1) f^kappa, whatever the model says (an initial layer: faster than linearly,
+// the fastest level slowed by the product of the ratios; or slower, saturated): d2 / d1 =
+// (f2^kappa - 1) / (f1^kappa - 1) gives kappa, clamped to [kappaMin, kappaMax], and the error is
+// d2 / (f2^kappa - 1). *kappa (if not null) receives the exponent. d1, d2 must be positive.
+double errorFromTwoComparisons(double d1, double f1, double d2, double f2, double *kappa = nullptr, double kappaMin = 0.02, double kappaMax = 6.0);
 // The error model: e_dt = cMicro dt^order / prod r_l, e_l = c[l] g(r_l - 1, saturation[l]).
 struct ErrorModel {
   double              cMicro = 0.0;

@@ -550,6 +550,7 @@ static PetscErrorCode TSView_VSHMM(TS ts, PetscViewer viewer)
                                      (double)vs->error_estimate, (double)vs->error_estimate_total, vs->adapt_calibrations, vs->adapt_rejections, vs->adapt_evaluations));
     if (vs->adapt_uncompared_total > 0)
       PetscCall(PetscViewerASCIIPrintf(viewer, "    %" PetscInt64_FMT " macro steps without a comparison (nothing left to coarsen and the estimates far below their shares: the model's prediction stood in)\n", vs->adapt_uncompared_total));
+    if (vs->adapt_layer_fits > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "    %" PetscInt64_FMT " tries of the first macro step estimated again from a second comparison (an initial layer)\n", vs->adapt_layer_fits));
     bool saturating = false;
     for (double x : vs->adapt_model.saturation) saturating = saturating || (x > 0 && std::isfinite(x));
     if (saturating) { /* where each pair's error term stops growing (an initial layer, a band of rates, the separations set) */
@@ -846,6 +847,7 @@ static PetscErrorCode TSVSHMMGetStatistics_VSHMM(TS ts, TSVSHMMStatistics *stats
   stats->adapt_rejections      = vs->adapt_rejections;
   stats->adapt_calibrations    = vs->adapt_calibrations;
   stats->adapt_uncompared      = vs->adapt_uncompared_total;
+  stats->adapt_layer_estimates = vs->adapt_layer_fits;
   PetscFunctionReturn(0);
 }
 
@@ -866,6 +868,7 @@ static PetscErrorCode TSVSHMMResetStatistics_VSHMM(TS ts)
   vs->adapt_rejections       = 0;
   vs->adapt_calibrations     = 0;
   vs->adapt_uncompared_total = 0;
+  vs->adapt_layer_fits       = 0;
   vs->warned_ratio.assign(nscales, 0.0);
   vs->fast_energy_min    = 0;
   vs->fast_energy_warned = 0;

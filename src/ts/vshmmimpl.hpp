@@ -106,6 +106,7 @@ struct TS_VSHMM {
   PetscReal              error_estimate = 0, error_estimate_total = 0;
   PetscInt64             adapt_evaluations = 0, adapt_rejections = 0, adapt_calibrations = 0;
   PetscInt64             adapt_uncompared_total = 0; // accepted steps whose comparison was left out (statistics)
+  PetscInt64             adapt_layer_fits       = 0; // tries estimated again from a second comparison (LayerEstimate(); statistics)
 
   // Statistics since set-up
   enum Counter {

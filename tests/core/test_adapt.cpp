@@ -158,6 +158,29 @@ TEST(Adapt, ScaledTermsAndEqualShares)
   EXPECT_LE(f.term(p, 3) / f.total(p), 0.05);
 }
 
+// Two comparisons (every term x 1.5 and x 2) recover an error that grows as a power of the
+// scaling, faster than linearly (an initial layer), linearly, or saturated; beyond the exponent's
+// range it is clamped.
+TEST(Adapt, ErrorFromTwoComparisons)
+{
+  for (double kappa : {0.3, 1.0, 2.4, 4.0})
+    for (double E : {1e-3, 0.7}) {
+      const double d1 = E * (std::pow(1.5, kappa) - 1), d2 = E * (std::pow(2.0, kappa) - 1);
+      double       k;
+      EXPECT_NEAR(errorFromTwoComparisons(d1, 1.5, d2, 2.0, &k), E, 1e-9 * E) << "kappa " << kappa;
+      EXPECT_NEAR(k, kappa, 1e-9) << "kappa " << kappa;
+    }
+  double k;
+  // d2 / d1 below ln 2 / ln 1.5 (no exponent gives it: noise, or a term that shrinks): the smallest exponent
+  EXPECT_NEAR(errorFromTwoComparisons(1.0, 1.5, 1.2, 2.0, &k), 1.2 / (std::pow(2.0, 0.02) - 1), 1e-9);
+  EXPECT_DOUBLE_EQ(k, 0.02);
+  // far above the ratio of exponent 6: the largest
+  EXPECT_NEAR(errorFromTwoComparisons(1.0, 1.5, 100.0, 2.0, &k), 100.0 / 63.0, 1e-9);
+  EXPECT_DOUBLE_EQ(k, 6.0);
+  // the linear case, d2 = 2 d1: the comparison's own difference d2 is the error (what the model assumes)
+  EXPECT_NEAR(errorFromTwoComparisons(0.5, 1.5, 1.0, 2.0), 1.0, 1e-9);
+}
+
 // The work change of a choice is limited by moving back only the parameters that go the wrong way.
 TEST(Adapt, WorkChangeIsLimitedByTheParametersThatCauseIt)
 {
