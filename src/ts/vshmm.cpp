@@ -550,7 +550,7 @@ static PetscErrorCode TSView_VSHMM(TS ts, PetscViewer viewer)
                                      (double)vs->error_estimate, (double)vs->error_estimate_total, vs->adapt_calibrations, vs->adapt_rejections, vs->adapt_evaluations));
     if (vs->adapt_uncompared_total > 0)
       PetscCall(PetscViewerASCIIPrintf(viewer, "    %" PetscInt64_FMT " macro steps without a comparison (nothing left to coarsen and the estimates far below their shares: the model's prediction stood in)\n", vs->adapt_uncompared_total));
-    if (vs->adapt_layer_fits > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "    %" PetscInt64_FMT " tries of the first macro step estimated again from a second comparison (an initial layer)\n", vs->adapt_layer_fits));
+    if (vs->adapt_layer_fits > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "    first macro step (an initial layer): tries estimated again from a second comparison %" PetscInt64_FMT "\n", vs->adapt_layer_fits));
     bool saturating = false;
     for (double x : vs->adapt_model.saturation) saturating = saturating || (x > 0 && std::isfinite(x));
     if (saturating) { /* where each pair's error term stops growing (an initial layer, a band of rates, the separations set) */
