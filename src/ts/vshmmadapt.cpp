@@ -795,7 +795,6 @@ static PetscErrorCode VerifySavings(TS ts, const vshmm::AdaptParameters &p, Pets
   PetscFunctionReturn(0);
 }
 
-/* One macro step with accuracy control; the accepted result is left in ts->vec_sol. */
 /* In the first macro step of the accuracy control (an initial layer, where the faster variables
    start off their slow manifold) the comparison's difference d overstates the error 2.5-4 times:
    the slow error grows faster than linearly as the comparison doubles the terms (the fastest level
@@ -832,6 +831,7 @@ static PetscErrorCode LayerEstimate(TS ts, const vshmm::AdaptParameters &p, cons
   PetscFunctionReturn(0);
 }
 
+/* One macro step with accuracy control; the accepted result is left in ts->vec_sol. */
 PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
 {
   TS_VSHMM       *vs     = (TS_VSHMM *)ts->data;
