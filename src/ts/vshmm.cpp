@@ -344,8 +344,10 @@ static PetscErrorCode TSStep_VSHMM(TS ts)
   PetscCall(VecCopy(ts->vec_sol, vs->X0));
   vs->nonfinite_split = -1;
   vs->nonfinite_time  = PETSC_MAX_REAL;
-  if (vs->adapt) PetscCall(TSVSHMMAdaptStep_Private(ts, t0, DeltaT));
-  else {
+  if (vs->adapt) {
+    PetscCall(TSVSHMMAdaptStep_Private(ts, t0, DeltaT));
+    if (ts->reason == TS_DIVERGED_STEP_REJECTED) PetscFunctionReturn(0); /* no estimate: the solution stays at t0 */
+  } else {
     vshmm::MacroStepCounts counts;
     PetscCall(TSVSHMMRunMacroStep_Private(ts, *vs->schedule, t0, DeltaT, ts->vec_sol, &counts));
     vs->micro_cycles += counts.cycles;

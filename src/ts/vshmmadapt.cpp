@@ -45,6 +45,7 @@ static constexpr PetscReal kInitialDecaySeparation = 2;    /* the same where the
 static constexpr PetscReal kSafety                 = 0.8;  /* the parameters aim at this fraction of a step's share */
 static constexpr PetscInt  kRecalibrate            = 10;   /* macro steps between full measurements of the model */
 static constexpr PetscInt  kMaxAttempts            = 12;   /* tries of one macro step */
+static constexpr PetscInt  kMaxBlownTries          = 6;    /* tries in a row without an estimate (every comparison blew up) before the step fails */
 static constexpr PetscInt  kMinCycles              = 5;    /* micro cycles per macro step at least */
 static constexpr PetscReal kCompareCycles          = 2;    /* a comparison's cycle is at most this times the longer of the step's and DeltaT / kMinCycles */
 static constexpr PetscReal kStableFraction         = 0.9;  /* of the largest stable step */
@@ -853,6 +854,7 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
   vshmm::AdaptBounds bounds    = Bounds(ts, DeltaT);
   PetscReal          Emin      = PETSC_MAX_REAL; /* the lowest estimate of this macro step's tries */
   PetscInt           stalled   = 0;
+  PetscInt           blown     = 0;              /* tries in a row without a finite estimate */
   PetscReal          predicted = PETSC_MAX_REAL; /* the model's error of the try after a rejection */
   for (PetscInt attempt = 0;; ++attempt) {
     vshmm::AdaptParameters &p = vs->adapt_params;
@@ -981,6 +983,21 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
       PetscCall(PetscInfo(ts, "Adapt: macro step [%g, %g] try %" PetscInt_FMT " accepted on the layer's estimate %g (the comparison's %g)\n", (double)t0, (double)t1, attempt, (double)Elayer, (double)E));
       E    = Elayer;
       next = p;
+    }
+    blown = std::isfinite(E) ? 0 : blown + 1;
+    if (std::isfinite(xnorm) && (blown >= kMaxBlownTries || (!std::isfinite(E) && !(E > budget && refinable && !floor && attempt + 1 < kMaxAttempts)))) {
+      /* the step ran, but no comparison of it stayed finite (in kMaxBlownTries tries in a row,
+         each with every parameter finer, or in the last try): no estimate, and accepting the step
+         would be a guess (y' = y^2 past its blow-up at t = 1 was accepted so, with a warning, and
+         failed a step later). A step whose own result is not finite goes on to the split check
+         instead, which names the split. */
+      PetscCall(VecCopy(vs->X0, ts->vec_sol));
+      DiscardTry(vs, rhs0, lev0);
+      ts->reason = TS_DIVERGED_STEP_REJECTED;
+      PetscCheck(!ts->errorifstepfailed, PetscObjectComm((PetscObject)ts), PETSC_ERR_NOT_CONVERGED, "TSVSHMM (-ts_vshmm_adapt): no finite error estimate for the macro step from t = %g to %g after %" PetscInt_FMT " tries: the comparisons of the last %" PetscInt_FMT " gave no finite difference, down to the micro step %g (a comparison run blew up: the solution may grow without bound there, or the savings are unstable; or an observable was not finite); the solution was left at t = %g (use -ts_error_if_step_fails false to stop with TS_DIVERGED_STEP_REJECTED instead)", (double)t0, (double)t1, attempt + 1, blown,
+                 (double)p.microStep, (double)t0);
+      PetscCall(TSVSHMMWarn_Private(ts, "TSVSHMM (-ts_vshmm_adapt): no finite error estimate for the macro step from t = %g to %g after %" PetscInt_FMT " tries (the comparisons of the last %" PetscInt_FMT " gave no finite difference); the solve stops with TS_DIVERGED_STEP_REJECTED at t = %g\n", (double)t0, (double)t1, attempt + 1, blown, (double)t0));
+      PetscFunctionReturn(0);
     }
     if (E > budget && refinable && !floor && attempt + 1 < kMaxAttempts) { /* redo with finer parameters */
       DiscardTry(vs, rhs0, lev0);

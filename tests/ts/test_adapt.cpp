@@ -729,6 +729,60 @@ TEST(VSHMMAdapt, ANonFiniteObservableIsAnError)
   EXPECT_NE(e.message.find("TSVSHMMSetObservables(): observable 1 (of 2) is nan. at the initial state (t = 0.)"), std::string::npos) << "message: " << e.message;
 }
 
+// A step without any finite estimate fails; it is not accepted as a guess. The observables here
+// are finite at the initial state (the set-up check passes) and NaN ever after, so no comparison
+// gives a finite difference: after 6 tries in a row, each with every parameter finer, the solve
+// stops with a PETSc error naming the macro step, or (-ts_error_if_step_fails false) with
+// TS_DIVERGED_STEP_REJECTED and the solution left at the step's start.
+PetscErrorCode LaterNaNObservable(TS ts, PetscReal t, Vec X, PetscReal q[], void *ctx)
+{
+  PetscFunctionBeginUser;
+  PetscCall(XiObservable(ts, t, X, q, ctx));
+  if (t > 0) q[0] = std::numeric_limits<PetscReal>::quiet_NaN();
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SolveWithLaterNaN(const char *options, std::vector<PetscReal> *xout, TSConvergedReason *reason, PetscReal *time)
+{
+  Guard             guard(options);
+  DissipativeParams params;
+  SplitProblem      p;
+  TS                ts;
+  Vec               x;
+
+  PetscFunctionBeginUser;
+  DissipativeProblem(&p, &params);
+  PetscCall(CreateSplitTS(PETSC_COMM_WORLD, &p, SplitKind::Component, {5, -10, 5}, {"slow", "medium", "fast"}, &ts, &x));
+  PetscCall(TSSetTimeStep(ts, 0.1));
+  PetscCall(TSSetMaxTime(ts, 0.3));
+  PetscCall(TSVSHMMSetObservables(ts, 1, LaterNaNObservable, &p));
+  PetscCall(TSSetFromOptions(ts));
+  const PetscErrorCode ierr = TSSolve(ts, x);
+  if (!ierr) {
+    PetscCall(GatherState(&p, x, *xout));
+    PetscCall(TSGetConvergedReason(ts, reason));
+    PetscCall(TSGetTime(ts, time));
+  }
+  PetscCall(DestroySplitTS(&p, &ts, &x));
+  return ierr;
+}
+
+TEST(VSHMMAdapt, AStepWithoutAFiniteEstimateFails)
+{
+  std::vector<PetscReal> x;
+  TSConvergedReason      reason;
+  PetscReal              time;
+  const CapturedError    e = CaptureError([&] { return SolveWithLaterNaN("-ts_vshmm_adapt -ts_rtol 1e-2 -ts_atol 1e-2 -ts_vshmm_warnings_viewer none", &x, &reason, &time); });
+  EXPECT_EQ(e.code, PETSC_ERR_NOT_CONVERGED);
+  EXPECT_NE(e.message.find("no finite error estimate for the macro step from t = 0. to 0.1 after 6 tries: the comparisons of the last 6 gave no finite difference"), std::string::npos) << "message: " << e.message;
+  ASSERT_EQ(SolveWithLaterNaN("-ts_vshmm_adapt -ts_rtol 1e-2 -ts_atol 1e-2 -ts_vshmm_warnings_viewer none -ts_error_if_step_fails false", &x, &reason, &time), 0);
+  EXPECT_EQ(reason, TS_DIVERGED_STEP_REJECTED);
+  EXPECT_EQ(time, 0.0);
+  ASSERT_EQ(x.size(), 3u);
+  EXPECT_EQ(x[0], 5.0); // the initial state, untouched
+  EXPECT_EQ(x[1], -10.0);
+}
+
 // Without adapt nothing changes: no estimate, no extra work.
 TEST(VSHMMAdapt, OffByDefault)
 {
