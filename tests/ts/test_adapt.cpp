@@ -697,6 +697,39 @@ TEST(VSHMMAdapt, AnInitialLayerIsEstimatedFromTwoComparisons)
   EXPECT_EQ(loose.stats.adapt_layer_estimates, 0);
 }
 
+// The dissipative example (component splits, DeltaT = 0.1) to tfinal with n observables f; the
+// error code of TSSolve(), and where it succeeded the state, the converged reason and the time.
+struct ObservedRun {
+  std::vector<PetscReal> x;
+  TSConvergedReason      reason = TS_CONVERGED_ITERATING;
+  PetscReal              time   = -1;
+};
+
+PetscErrorCode SolveDissipativeObserved(const char *options, PetscReal tfinal, PetscInt n, PetscErrorCode (*f)(TS, PetscReal, Vec, PetscReal[], void *), ObservedRun *run)
+{
+  Guard             guard(options);
+  DissipativeParams params;
+  SplitProblem      p;
+  TS                ts;
+  Vec               x;
+
+  PetscFunctionBeginUser;
+  DissipativeProblem(&p, &params);
+  PetscCall(CreateSplitTS(PETSC_COMM_WORLD, &p, SplitKind::Component, {5, -10, 5}, {"slow", "medium", "fast"}, &ts, &x));
+  PetscCall(TSSetTimeStep(ts, 0.1));
+  PetscCall(TSSetMaxTime(ts, tfinal));
+  PetscCall(TSVSHMMSetObservables(ts, n, f, &p));
+  PetscCall(TSSetFromOptions(ts));
+  const PetscErrorCode ierr = TSSolve(ts, x);
+  if (!ierr) {
+    PetscCall(GatherState(&p, x, run->x));
+    PetscCall(TSGetConvergedReason(ts, &run->reason));
+    PetscCall(TSGetTime(ts, &run->time));
+  }
+  PetscCall(DestroySplitTS(&p, &ts, &x));
+  return ierr;
+}
+
 // An observables function that leaves a quantity unset (NaN here) is an error at set-up naming it,
 // not a run whose every estimate is infinite (each macro step refined to the try limit).
 PetscErrorCode NaNSecondObservable(TS, PetscReal, Vec X, PetscReal q[], void *ctx)
@@ -709,22 +742,8 @@ PetscErrorCode NaNSecondObservable(TS, PetscReal, Vec X, PetscReal q[], void *ct
 
 TEST(VSHMMAdapt, ANonFiniteObservableIsAnError)
 {
-  const CapturedError e = CaptureError([] {
-    Guard             guard("-ts_vshmm_adapt -ts_rtol 1e-2 -ts_atol 1e-2");
-    DissipativeParams params;
-    SplitProblem      p;
-    TS                ts;
-    Vec               x;
-    DissipativeProblem(&p, &params);
-    PetscCall(CreateSplitTS(PETSC_COMM_WORLD, &p, SplitKind::Component, {5, -10, 5}, {"slow", "medium", "fast"}, &ts, &x));
-    PetscCall(TSSetTimeStep(ts, 0.1));
-    PetscCall(TSSetMaxTime(ts, 0.2));
-    PetscCall(TSVSHMMSetObservables(ts, 2, NaNSecondObservable, &p));
-    PetscCall(TSSetFromOptions(ts));
-    const PetscErrorCode ierr = TSSolve(ts, x);
-    PetscCall(DestroySplitTS(&p, &ts, &x));
-    return ierr;
-  });
+  ObservedRun         run;
+  const CapturedError e = CaptureError([&] { return SolveDissipativeObserved("-ts_vshmm_adapt -ts_rtol 1e-2 -ts_atol 1e-2", 0.2, 2, NaNSecondObservable, &run); });
   EXPECT_EQ(e.code, PETSC_ERR_FP);
   EXPECT_NE(e.message.find("TSVSHMMSetObservables(): observable 1 (of 2) is nan. at the initial state (t = 0.)"), std::string::npos) << "message: " << e.message;
 }
@@ -742,45 +761,19 @@ PetscErrorCode LaterNaNObservable(TS ts, PetscReal t, Vec X, PetscReal q[], void
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SolveWithLaterNaN(const char *options, std::vector<PetscReal> *xout, TSConvergedReason *reason, PetscReal *time)
-{
-  Guard             guard(options);
-  DissipativeParams params;
-  SplitProblem      p;
-  TS                ts;
-  Vec               x;
-
-  PetscFunctionBeginUser;
-  DissipativeProblem(&p, &params);
-  PetscCall(CreateSplitTS(PETSC_COMM_WORLD, &p, SplitKind::Component, {5, -10, 5}, {"slow", "medium", "fast"}, &ts, &x));
-  PetscCall(TSSetTimeStep(ts, 0.1));
-  PetscCall(TSSetMaxTime(ts, 0.3));
-  PetscCall(TSVSHMMSetObservables(ts, 1, LaterNaNObservable, &p));
-  PetscCall(TSSetFromOptions(ts));
-  const PetscErrorCode ierr = TSSolve(ts, x);
-  if (!ierr) {
-    PetscCall(GatherState(&p, x, *xout));
-    PetscCall(TSGetConvergedReason(ts, reason));
-    PetscCall(TSGetTime(ts, time));
-  }
-  PetscCall(DestroySplitTS(&p, &ts, &x));
-  return ierr;
-}
-
 TEST(VSHMMAdapt, AStepWithoutAFiniteEstimateFails)
 {
-  std::vector<PetscReal> x;
-  TSConvergedReason      reason;
-  PetscReal              time;
-  const CapturedError    e = CaptureError([&] { return SolveWithLaterNaN("-ts_vshmm_adapt -ts_rtol 1e-2 -ts_atol 1e-2 -ts_vshmm_warnings_viewer none", &x, &reason, &time); });
+  ObservedRun         run;
+  const CapturedError e = CaptureError([&] { return SolveDissipativeObserved("-ts_vshmm_adapt -ts_rtol 1e-2 -ts_atol 1e-2 -ts_vshmm_warnings_viewer none", 0.3, 1, LaterNaNObservable, &run); });
   EXPECT_EQ(e.code, PETSC_ERR_NOT_CONVERGED);
   EXPECT_NE(e.message.find("no finite error estimate for the macro step from t = 0. to 0.1 after 6 tries: the comparisons of the last 6 gave no finite difference"), std::string::npos) << "message: " << e.message;
-  ASSERT_EQ(SolveWithLaterNaN("-ts_vshmm_adapt -ts_rtol 1e-2 -ts_atol 1e-2 -ts_vshmm_warnings_viewer none -ts_error_if_step_fails false", &x, &reason, &time), 0);
-  EXPECT_EQ(reason, TS_DIVERGED_STEP_REJECTED);
-  EXPECT_EQ(time, 0.0);
-  ASSERT_EQ(x.size(), 3u);
-  EXPECT_EQ(x[0], 5.0); // the initial state, untouched
-  EXPECT_EQ(x[1], -10.0);
+  ObservedRun stopped;
+  ASSERT_EQ(SolveDissipativeObserved("-ts_vshmm_adapt -ts_rtol 1e-2 -ts_atol 1e-2 -ts_vshmm_warnings_viewer none -ts_error_if_step_fails false", 0.3, 1, LaterNaNObservable, &stopped), 0);
+  EXPECT_EQ(stopped.reason, TS_DIVERGED_STEP_REJECTED);
+  EXPECT_EQ(stopped.time, 0.0);
+  ASSERT_EQ(stopped.x.size(), 3u);
+  EXPECT_EQ(stopped.x[0], 5.0); // the initial state, untouched
+  EXPECT_EQ(stopped.x[1], -10.0);
 }
 
 // Without adapt nothing changes: no estimate, no extra work.
