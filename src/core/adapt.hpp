@@ -79,6 +79,7 @@ std::vector<double> layerSaturations(const AdaptParameters &p, double macroStep,
 // (f2^kappa - 1) / (f1^kappa - 1) gives kappa, clamped to [kappaMin, kappaMax], and the error is
 // d2 / (f2^kappa - 1). *kappa (if not null) receives the exponent. d1, d2 must be positive.
 double errorFromTwoComparisons(double d1, double f1, double d2, double f2, double *kappa = nullptr, double kappaMin = 0.02, double kappaMax = 6.0);
+
 // The error model: e_dt = cMicro dt^order / prod r_l, e_l = c[l] g(r_l - 1, saturation[l]).
 struct ErrorModel {
   double              cMicro = 0.0;
