@@ -509,7 +509,7 @@ PetscErrorCode TSVSHMMAdaptSetUp_Private(TS ts)
        from its stability limit) */
     const PetscBool oscillating = LevelDecays(vs, K) ? PETSC_FALSE : PETSC_TRUE;
     p.microStep                 = DeltaT / kDefaultMicroStepsPerMacroStep;
-    if (!oscillating && std::isfinite(vs->level_max_step[K]) && vs->level_max_step[K] < PETSC_INFINITY) p.microStep = PetscMax(p.microStep, PetscMin(kStableFraction * vs->level_max_step[K], DeltaT / kMinCycles));
+    if (!oscillating && vs->level_max_step[K] < PETSC_INFINITY) p.microStep = PetscMax(p.microStep, PetscMin(kStableFraction * vs->level_max_step[K], DeltaT / kMinCycles));
     if (rho > 0 && oscillating && AllowedAmplitudeLoss(ts) < 1) p.microStep = PetscMin(p.microStep, std::pow(tol, 1.0 / vs->tableau->order) / rho);
     p.microStep = PetscMin(p.microStep, kStableFraction * vs->level_max_step[K]);
   }
@@ -936,7 +936,7 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
       E         = Estimate(vs->adapt_model, p, q, d);
     }
     PetscReal Elayer = -1; /* the layer's estimate from two comparisons (LayerEstimate()), where made */
-    if (PetscAbsReal(t0 - vs->adapt_tstart) <= 1e-12 * PetscMax(1.0, PetscAbsReal(t0)) && FasterLevelsDecay(vs) && d > 0 && std::isfinite(d) && E > budget && E <= kLayerFitWindow * budget) PetscCall(LayerEstimate(ts, p, q, d, t0, DeltaT, &Elayer));
+    if (vs->adapt_accepted == 0 && FasterLevelsDecay(vs) && d > 0 && std::isfinite(d) && E > budget && E <= kLayerFitWindow * budget) PetscCall(LayerEstimate(ts, p, q, d, t0, DeltaT, &Elayer));
     if (std::isfinite(E) && E > 0) {
       vs->adapt_model.scale(E / vs->adapt_model.total(p));
       vs->adapt_model.floorShares(p, kMinShare);
