@@ -225,7 +225,7 @@ static PetscBool LevelDecays(TS_VSHMM *, PetscInt);
    the step past the limit. */
 static PetscReal StableFraction(TS_VSHMM *vs, size_t l)
 {
-  return (l + 1 == vs->level_max_step.size() && LevelDecays(vs, (PetscInt)l)) ? kDecayStableFraction : kStableFraction;
+  return (!vs->level_max_step.empty() && l + 1 == vs->level_max_step.size() && LevelDecays(vs, (PetscInt)l)) ? kDecayStableFraction : kStableFraction;
 }
 
 /* The bounds of the choice: user-set parameters, stability, enough cycles per macro step. */
