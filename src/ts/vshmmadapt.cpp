@@ -225,7 +225,13 @@ static PetscBool LevelDecays(TS_VSHMM *, PetscInt);
    the step past the limit. */
 static PetscReal StableFraction(TS_VSHMM *vs, size_t l)
 {
-  return (!vs->level_max_step.empty() && l + 1 == vs->level_max_step.size() && LevelDecays(vs, (PetscInt)l)) ? kDecayStableFraction : kStableFraction;
+  return (l + 1 == vs->level_max_step.size() && LevelDecays(vs, (PetscInt)l)) ? kDecayStableFraction : kStableFraction;
+}
+
+/* The largest micro step the library chooses: the fastest level's stable fraction of its limit. */
+static PetscReal StableMicroStep(TS_VSHMM *vs)
+{
+  return vs->level_max_step.empty() ? PETSC_INFINITY : StableFraction(vs, vs->level_max_step.size() - 1) * vs->level_max_step.back();
 }
 
 /* The bounds of the choice: user-set parameters, stability, enough cycles per macro step. */
@@ -236,7 +242,7 @@ static vshmm::AdaptBounds Bounds(TS ts, PetscReal DeltaT)
 
   b.fixedMicroStep = vs->micro_dt > 0 ? true : false;
   b.fixedRatios    = !vs->savings.empty() || (vs->no_separation && vs->adapt_verified.empty());
-  b.maxMicroStep   = StableFraction(vs, vs->level_max_step.size() - 1) * vs->level_max_step.back();
+  b.maxMicroStep   = StableMicroStep(vs);
   if (!std::isfinite(b.maxMicroStep) || b.maxMicroStep > DeltaT / kMinCycles) b.maxMicroStep = DeltaT / kMinCycles;
   if (!b.fixedMicroStep) b.maxMicroStep = AccurateMicroStep(ts, vs->adapt_params, b.maxMicroStep);
   b.maxCycle = DeltaT / kMinCycles;
@@ -524,9 +530,9 @@ PetscErrorCode TSVSHMMAdaptSetUp_Private(TS ts)
        from its stability limit) */
     const PetscBool oscillating = LevelDecays(vs, K) ? PETSC_FALSE : PETSC_TRUE;
     p.microStep                 = DeltaT / kDefaultMicroStepsPerMacroStep;
-    if (!oscillating && vs->level_max_step[K] < PETSC_INFINITY) p.microStep = PetscMax(p.microStep, PetscMin(StableFraction(vs, K) * vs->level_max_step[K], DeltaT / kMinCycles));
+    if (!oscillating && vs->level_max_step[K] < PETSC_INFINITY) p.microStep = PetscMax(p.microStep, PetscMin(StableMicroStep(vs), DeltaT / kMinCycles));
     if (rho > 0 && oscillating && AllowedAmplitudeLoss(ts) < 1) p.microStep = PetscMin(p.microStep, std::pow(tol, 1.0 / vs->tableau->order) / rho);
-    p.microStep = PetscMin(p.microStep, StableFraction(vs, K) * vs->level_max_step[K]);
+    p.microStep = PetscMin(p.microStep, StableMicroStep(vs));
   }
   vs->adapt_candidate.clear();
   vs->adapt_verified.clear();
