@@ -278,6 +278,16 @@ AdaptParameters chooseParameters(const AdaptParameters &now, const ErrorModel &m
   return next;
 }
 
+double workRate(const AdaptParameters &p, const std::vector<double> &levelCost)
+{
+  const std::size_t K = p.ratios.size();
+  if (levelCost.size() != K + 1) return std::numeric_limits<double>::quiet_NaN();
+  double cost = levelCost[K];
+  for (std::size_t l = 0; l < K; ++l)
+    if (p.ratios[l] > 1.0) cost += levelCost[l];
+  return cost / cycleLength(p);
+}
+
 void fitCycle(AdaptParameters &p, double maxCycle, bool fixedRatios, bool fixedMicroStep)
 {
   const int K = (int)p.ratios.size();

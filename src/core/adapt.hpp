@@ -119,6 +119,14 @@ struct AdaptBounds {
 // starting from `now` (fixed parameters are kept and use their share of the target).
 AdaptParameters chooseParameters(const AdaptParameters &now, const ErrorModel &model, double target, const AdaptBounds &bounds);
 
+// Split evaluations per unit of time with p: the cost of a micro cycle over its length A_0. A micro
+// cycle takes one step of the fastest level (levelCost[K] split evaluations per stage) and one of
+// every level l with r_l > 1 (levelCost[l]); a level with r_l = 1 takes none (alpha_{l+1} = 0: its
+// splits are evaluated in the faster levels' steps). So savings whose product of ratios is below
+// the cycle's cost over levelCost[K] cost more work than a single-rate step with the same micro
+// step. levelCost has K + 1 entries.
+double workRate(const AdaptParameters &p, const std::vector<double> &levelCost);
+
 // Shrinks every r_l - 1 by one factor (and then dt, if fixedRatios or still needed) so that the
 // cycle length A_0 is at most maxCycle.
 void fitCycle(AdaptParameters &p, double maxCycle, bool fixedRatios, bool fixedMicroStep);

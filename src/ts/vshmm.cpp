@@ -541,8 +541,11 @@ static PetscErrorCode TSView_VSHMM(TS ts, PetscViewer viewer)
   if (vs->adapt) {
     std::string admitted; /* scales not separated: the time ratios a single-rate step admitted */
     for (PetscReal r : vs->adapt_verified) admitted += (admitted.empty() ? "" : ", ") + std::to_string(r).substr(0, 6);
-    const bool        any  = TSVSHMMSavingsAdmitted_Private(vs);
+    const bool any = TSVSHMMSavingsAdmitted_Private(vs);
+    char       from[32];
+    PetscCall(PetscSNPrintf(from, sizeof from, "%g", (double)vs->adapt_single_rate_from));
     const std::string what = !vs->savings.empty()                                          ? "set"
+                             : !vs->no_separation && vs->adapt_single_rate_from >= 0       ? "none from t = " + std::string(from) + " on (the tolerance is out of reach with savings: single-rate Runge-Kutta steps)"
                              : !vs->no_separation                                          ? "chosen"
                              : any                                                         ? "chosen up to the time ratios " + admitted + " (scales not separated; admitted by a comparison with a single-rate macro step)"
                              : !vs->adapt_candidate.empty() && !vs->adapt_verified.empty() ? "none (scales not separated; a comparison with a single-rate macro step admitted none)"

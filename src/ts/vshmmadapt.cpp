@@ -483,11 +483,13 @@ PetscErrorCode TSVSHMMAdaptReset_Private(TS ts)
   vs->no_separation           = PETSC_FALSE;
   vs->adapt_no_savings.clear();
   vs->adapt_signed.clear();
-  vs->adapt_accepted   = 0;
-  vs->adapt_last_ratio = PETSC_MAX_REAL;
-  vs->adapt_prev_ratio = PETSC_MAX_REAL;
-  vs->adapt_uncompared = 0;
-  vs->floor_warned     = PETSC_FALSE;
+  vs->adapt_accepted         = 0;
+  vs->adapt_last_ratio       = PETSC_MAX_REAL;
+  vs->adapt_prev_ratio       = PETSC_MAX_REAL;
+  vs->adapt_uncompared       = 0;
+  vs->floor_warned           = PETSC_FALSE;
+  vs->no_savings_warned      = PETSC_FALSE;
+  vs->adapt_single_rate_from = -1;
   PetscFunctionReturn(0);
 }
 
@@ -877,11 +879,14 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
      A first step accepted as it was tried is no layer, and the estimate (an Arnoldi run per
      level, 12% of the sparse-spectral diffusion scenes' work at 1e-2) is not made again. */
   if (calibrate || (vs->adapt_accepted == 1 && vs->adapt_rejections > 0)) PetscCall(UpdateStableSteps(ts));
-  vshmm::AdaptBounds bounds    = Bounds(ts, DeltaT);
-  PetscReal          Emin      = PETSC_MAX_REAL; /* the lowest estimate of this macro step's tries */
-  PetscInt           stalled   = 0;
-  PetscInt           blown     = 0;              /* tries in a row without a finite estimate */
-  PetscReal          predicted = PETSC_MAX_REAL; /* the model's error of the try after a rejection */
+  vshmm::AdaptBounds     bounds     = Bounds(ts, DeltaT);
+  PetscReal              Emin       = PETSC_MAX_REAL; /* the lowest estimate of this macro step's tries */
+  PetscInt               stalled    = 0;
+  PetscInt               blown      = 0;              /* tries in a row without a finite estimate */
+  PetscReal              predicted  = PETSC_MAX_REAL; /* the model's error of the try after a rejection */
+  PetscBool              singleRate = PETSC_FALSE;    /* the tries are the savings' limit: none (a floor above the share, below) */
+  vshmm::AdaptParameters beforeSingleRate;            /* the try that found that floor */
+  PetscReal              floorEstimate = 0;           /* and its estimate */
   for (PetscInt attempt = 0;; ++attempt) {
     vshmm::AdaptParameters &p = vs->adapt_params;
     vs->nonfinite_split       = -1;
@@ -1025,6 +1030,31 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
       PetscCall(TSVSHMMWarn_Private(ts, "TSVSHMM (-ts_vshmm_adapt): no finite error estimate for the macro step from t = %g to %g after %" PetscInt_FMT " tries (the comparisons of the last %" PetscInt_FMT " gave no finite difference); the solve stops with TS_DIVERGED_STEP_REJECTED at t = %g\n", (double)t0, (double)t1, attempt + 1, blown, (double)t0));
       PetscFunctionReturn(0);
     }
+    if (floor && savings && E > budget && !singleRate && attempt + 1 < kMaxAttempts) {
+      /* a floor above the share while savings are left: their limit, none (every time ratio 1, the
+         same micro step: a single-rate Runge-Kutta step of the whole field), is tried where it
+         costs at most kMaxDearer times this try (vshmm::workRate(): the levels' steps a micro cycle
+         takes). Where the tolerance asks for more than the separation gives (effects of the order
+         of the scale ratio in the slow values: the oscillators at eps = 1e-2, tol 1e-3) no savings
+         meet it, and accepting the floor leaves an error the estimates do not fall below. Where
+         the savings are large (the oscillators at eps = 1e-3: products of ratios of thousands)
+         the single-rate step is far too dear and the floor stands. */
+      vshmm::AdaptParameters    single = p;
+      const std::vector<double> cost(vs->level_end.begin(), vs->level_end.end());
+      for (double &r : single.ratios) r = 1.0;
+      const PetscReal dearer = vshmm::workRate(single, cost) / vshmm::workRate(p, cost);
+      if (dearer <= kMaxDearer) {
+        PetscCall(PetscInfo(ts, "Adapt: macro step [%g, %g] try %" PetscInt_FMT ": the estimate %g does not fall below its share %g with the savings: tried without them (single-rate, %g times the work)\n", (double)t0, (double)t1, attempt, (double)E, (double)budget, (double)dearer));
+        DiscardTry(vs, rhs0, lev0);
+        beforeSingleRate = p;
+        floorEstimate    = E;
+        singleRate       = PETSC_TRUE;
+        stalled          = 0;
+        predicted        = PETSC_MAX_REAL;
+        p                = single;
+        continue;
+      }
+    }
     if (E > budget && refinable && !floor && attempt + 1 < kMaxAttempts) { /* redo with finer parameters */
       DiscardTry(vs, rhs0, lev0);
       predicted = vs->adapt_model.total(next);
@@ -1064,6 +1094,24 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
     vs->adapt_last_ratio = std::isfinite(Ecompared) && Ecompared >= 0 ? Ecompared / budget : PETSC_MAX_REAL;
     vs->adapt_uncompared = d < 0 ? vs->adapt_uncompared + 1 : 0;
     if (d < 0) vs->adapt_uncompared_total++;
+    if (singleRate) {
+      /* accepted without savings: where a faster level oscillates its phases now follow the true
+         dynamics, and savings taken up again would shift them by an amount of the order of the
+         scale ratio at once (the floor seen): none for the rest of the solve. Fast variables that
+         decay onto the slow manifold keep no such memory; the next step starts from the savings
+         that found the floor (an initial layer may be what set it). */
+      if (FasterLevelsDecay(vs)) next = beforeSingleRate;
+      else {
+        vs->adapt_no_savings.assign(next.ratios.size(), PETSC_TRUE);
+        for (double &r : next.ratios) r = 1.0;
+        if (vs->adapt_single_rate_from < 0) vs->adapt_single_rate_from = t0;
+        if (!vs->no_savings_warned) {
+          vs->no_savings_warned = PETSC_TRUE;
+          PetscCall(TSVSHMMWarn_Private(ts, "TSVSHMM warning (-ts_vshmm_adapt): the tolerance (rtol %g, atol %g) is out of reach with savings: in the macro step [%g, %g] the error estimate stayed at %g times its share with finer savings factors and micro steps, and fell to %g without savings. The rest of the solve takes none (one Runge-Kutta step of the whole field per micro step, with VSHMM's error estimates on top). The scales are not separated enough for VSHMM at this tolerance (their ratio shows in the slow values); a single-rate TS type (-ts_type rk -ts_adapt_type basic) does the same work without the estimates, or loosen the tolerance. This warning is given once per solve.\n",
+                                        (double)ts->rtol, (double)ts->atol, (double)t0, (double)t1, (double)(floorEstimate / budget), (double)(E / budget)));
+        }
+      }
+    }
     SnapNegligibleSavings(vs, next, bounds); /* after an accepted step only: the retries of an initial layer take the savings down on their way to a start */
     if (!vs->adapt_candidate.empty() && vs->adapt_verified.empty()) {
       PetscCall(VerifySavings(ts, p, t0, DeltaT));

@@ -94,9 +94,11 @@ struct TS_VSHMM {
   PetscInt               adapt_calibrated_times  = 0;           // calibrations in this solve
   PetscBool              adapt_postponed         = PETSC_FALSE; // the due calibration waited one step (its step was far below its share)
   std::vector<PetscInt>  adapt_negligible;                      // per parameter: this macro step's calibrations in a row that measured its term as negligible
-  PetscReal              adapt_tstart  = 0.0;                   // the time the solve started (the error budget runs from it)
-  PetscBool              no_separation = PETSC_FALSE;           // no pair of levels is separated
-  PetscBool              floor_warned  = PETSC_FALSE;           // told that the estimate does not fall
+  PetscReal              adapt_tstart           = 0.0;          // the time the solve started (the error budget runs from it)
+  PetscBool              no_separation          = PETSC_FALSE;  // no pair of levels is separated
+  PetscBool              floor_warned           = PETSC_FALSE;  // told that the estimate does not fall
+  PetscBool              no_savings_warned      = PETSC_FALSE;  // told that the tolerance leaves no savings worth their work
+  PetscReal              adapt_single_rate_from = -1;           // the start of the macro step from which the tolerance left no savings (-1: none)
   Vec                    Xtrial = nullptr, Xbase = nullptr;
   std::vector<PetscReal> obs_a, obs_b;
   std::vector<PetscReal> obs_diff;           // the last ObservableDifference, signed and weighted, per observable

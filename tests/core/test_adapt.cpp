@@ -233,6 +233,32 @@ TEST(Adapt, StableStepsLimitMicroStepAndPeakSteps)
   EXPECT_NEAR(a[0] * p.microStep * 2, 1e-2, 1e-15);
 }
 
+// The work rate counts the level steps a micro cycle takes (a level with r_l = 1 takes none) at
+// their costs, against the steps of runMacroStep() (up to the last cycle, cut at the macro
+// step's end: at most one cycle's cost, 6); savings whose product of ratios is below the
+// cycle's cost over the fastest level's cost are dearer than the single-rate step.
+TEST(Adapt, WorkRateCountsTheLevelStepsOfACycle)
+{
+  const std::vector<double> cost   = {1, 2, 3}; // level l evaluates splits 0..l
+  const auto                kernel = Kernel::create(KernelType::Constant);
+  const double              DeltaT = 1.0;
+  for (const std::vector<double> &ratios : std::vector<std::vector<double>>{{1.1, 1.2}, {1, 2}, {3, 1}, {1, 1}, {10, 10}}) {
+    const AdaptParameters    p{1e-3, ratios};
+    const MesoscopicSchedule schedule(*kernel, p.microStep, savingsFromTimeRatios(ratios), {1, 1});
+    MacroStepCounts          counts;
+    ASSERT_EQ(runMacroStep(
+                schedule, DeltaT, [](int, double, double) { return 0; }, &counts),
+              0);
+    double evaluations = 0;
+    for (int l = 0; l < 3; ++l) evaluations += cost[l] * counts.levelSteps[l];
+    EXPECT_NEAR(workRate(p, cost) * DeltaT, evaluations, 6.0) << ratios[0] << ", " << ratios[1];
+  }
+  const AdaptParameters single{1e-3, {1, 1}};
+  EXPECT_GT(workRate({1e-3, {1.1, 1.2}}, cost), workRate(single, cost)); // 6 / 1.32 against 3 per dt
+  EXPECT_LT(workRate({1e-3, {1.5, 1.5}}, cost), workRate(single, cost)); // 6 / 2.25
+  EXPECT_TRUE(std::isnan(workRate(single, {1, 2})));
+}
+
 // The running product: a mode amplified near the kernel's peak but damped over the macro step
 // shows a largest running growth far above its net change.
 TEST(Adapt, LevelAmplificationReportsGrowthWithinTheMacroStep)
