@@ -111,14 +111,25 @@ LevelAmplification levelAmplification(const StabilityFunction &R, const Mesoscop
   return a;
 }
 
-double slowestRate(const std::vector<std::complex<double>> &modes)
+bool ambiguousAmplitudeRate(const std::vector<std::complex<double>> &modes)
+{
+  double largest = 0;
+  for (const std::complex<double> &lambda : modes) largest = std::max(largest, std::abs(lambda));
+  for (const std::complex<double> &lambda : modes) {
+    const double size = std::abs(lambda), re = std::fabs(lambda.real());
+    if (size > 1e-8 * largest && oscillates(lambda) && re > kAmplitudeRateCentralNoise * size && re <= kAmplitudeRateNoise * size) return true;
+  }
+  return false;
+}
+
+double slowestRate(const std::vector<std::complex<double>> &modes, double noise)
 {
   double largest = 0, slowest = std::numeric_limits<double>::infinity();
   for (const std::complex<double> &lambda : modes) largest = std::max(largest, std::abs(lambda));
   for (const std::complex<double> &lambda : modes) {
     const double size = std::abs(lambda), re = std::fabs(lambda.real());
     if (!(size > 1e-8 * largest)) continue;
-    const bool amplitude = oscillates(lambda) && re > kAmplitudeRateNoise * size;
+    const bool amplitude = oscillates(lambda) && re > noise * size;
     slowest              = std::min(slowest, amplitude ? re : size);
   }
   return std::isfinite(slowest) ? slowest : 0.0;

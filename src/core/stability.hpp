@@ -56,11 +56,16 @@ inline bool oscillates(std::complex<double> lambda)
 }
 
 // The slowest rate of a level's modes: |lambda| for each mode, except that an oscillation whose
-// amplitude changes (|Im| > |Re| > kAmplitudeRateNoise |lambda|) changes on the time scale of its
-// amplitude, |Re lambda|. Modes below 1e-8 of the largest |lambda| (zero modes) are not counted;
-// 0 where none is left.
-double           slowestRate(const std::vector<std::complex<double>> &modes);
-constexpr double kAmplitudeRateNoise = 1e-6; // below this fraction of |lambda| a real part is the estimate's noise
+// amplitude changes (|Im| > |Re| > noise |lambda|) changes on the time scale of its amplitude,
+// |Re lambda|. Modes below 1e-8 of the largest |lambda| (zero modes) are not counted; 0 where none
+// is left. `noise`: the fraction of |lambda| below which a real part is the estimate's noise.
+double           slowestRate(const std::vector<std::complex<double>> &modes, double noise = 1e-6);
+constexpr double kAmplitudeRateNoise        = 1e-6; // Ritz values from forward differences: below this fraction of |lambda| a real part is noise
+constexpr double kAmplitudeRateCentralNoise = 1e-8; // from central differences (no first-order truncation error)
+// Whether an oscillation's amplitude rate lies between the two noise levels (|Re| / |lambda| in
+// (kAmplitudeRateCentralNoise, kAmplitudeRateNoise]): forward differences cannot tell a slow
+// damping from their truncation error there, and central differences can.
+bool ambiguousAmplitudeRate(const std::vector<std::complex<double>> &modes);
 
 // The amplitude error of one step of size h on the mode y' = lambda y: |log |R(h lambda)| - h Re lambda|
 // (what the step takes from, or adds to, the mode's amplitude beyond the exact flow, relative).

@@ -39,7 +39,7 @@ static constexpr PetscReal kNegligibleDrive    = 1e-3; /* of the fastest level's
    field: an orthonormal basis V[0..k-1] of a Krylov space (V has m + 1 vectors, m = min(16, N),
    destroyed by the caller with VecDestroyVecs(m + 1, &V)) and the k x k Hessenberg matrix
    V^T J V (column-major, leading dimension m + 1, in H). k = 0 where the field is not finite near X. */
-static PetscErrorCode LevelArnoldi(TS ts, PetscInt level, PetscReal t, Vec X, Vec **Vout, PetscInt *mout, std::vector<PetscScalar> &H, PetscInt *kout, PetscReal *delta_out, Vec mask = nullptr, Vec start = nullptr)
+static PetscErrorCode LevelArnoldi(TS ts, PetscInt level, PetscReal t, Vec X, Vec **Vout, PetscInt *mout, std::vector<PetscScalar> &H, PetscInt *kout, PetscReal *delta_out, Vec mask = nullptr, Vec start = nullptr, PetscBool central = PETSC_FALSE)
 {
   TS_VSHMM    *vs = (TS_VSHMM *)ts->data;
   PetscInt     N, rstart, rend;
@@ -69,17 +69,25 @@ static PetscErrorCode LevelArnoldi(TS ts, PetscInt level, PetscReal t, Vec X, Ve
 
   PetscCall(VecNorm(X, NORM_2, &xnorm));
   const PetscReal delta = std::sqrt(PETSC_MACHINE_EPSILON) * (1.0 + xnorm);
-  PetscCall(TSVSHMMEvaluateLevel_Private(vs, level, t, X, G0));
+  if (!central) PetscCall(TSVSHMMEvaluateLevel_Private(vs, level, t, X, G0));
 
   H.assign((m + 1) * m, 0.0);
   std::vector<PetscScalar> h(m + 1);
   PetscInt                 k = 0; /* Krylov dimension reached */
   for (PetscInt j = 0; j < m; ++j) {
-    /* W = J V_j ~ (G(X + delta V_j) - G(X)) / delta */
+    /* W = J V_j ~ (G(X + delta V_j) - G(X)) / delta, or with central differences
+       (G(X + delta V_j) - G(X - delta V_j)) / (2 delta) */
     PetscCall(VecWAXPY(Xp, delta, V[j], X));
     PetscCall(TSVSHMMEvaluateLevel_Private(vs, level, t, Xp, W));
-    PetscCall(VecAXPY(W, -1.0, G0));
-    PetscCall(VecScale(W, 1.0 / delta));
+    if (central) {
+      PetscCall(VecWAXPY(Xp, -delta, V[j], X));
+      PetscCall(TSVSHMMEvaluateLevel_Private(vs, level, t, Xp, G0));
+      PetscCall(VecAXPY(W, -1.0, G0));
+      PetscCall(VecScale(W, 0.5 / delta));
+    } else {
+      PetscCall(VecAXPY(W, -1.0, G0));
+      PetscCall(VecScale(W, 1.0 / delta));
+    }
     if (mask) PetscCall(VecPointwiseMult(W, W, mask)); /* the block of the masked components */
     /* Gram-Schmidt, twice */
     for (int pass = 0; pass < 2; ++pass) {
@@ -152,7 +160,7 @@ static PetscErrorCode Eigenvalues(PetscInt k, PetscInt lda, const PetscScalar *A
 
 /* Ritz values of the Jacobian of level l's field at (t, X) (with a mask: of its block on the
    masked components). */
-static PetscErrorCode LevelRitzValues(TS ts, PetscInt level, PetscReal t, Vec X, std::vector<std::complex<double>> &ritz, PetscBool *finite, Vec mask = nullptr)
+static PetscErrorCode LevelRitzValues(TS ts, PetscInt level, PetscReal t, Vec X, std::vector<std::complex<double>> &ritz, PetscBool *finite, Vec mask = nullptr, PetscBool central = PETSC_FALSE)
 {
   Vec                     *V;
   PetscInt                 m, k;
@@ -160,7 +168,7 @@ static PetscErrorCode LevelRitzValues(TS ts, PetscInt level, PetscReal t, Vec X,
 
   PetscFunctionBegin;
   ritz.clear();
-  PetscCall(LevelArnoldi(ts, level, t, X, &V, &m, H, &k, NULL, mask));
+  PetscCall(LevelArnoldi(ts, level, t, X, &V, &m, H, &k, NULL, mask, nullptr, central));
   PetscCall(VecDestroyVecs(m + 1, &V));
   *finite = k > 0 ? PETSC_TRUE : PETSC_FALSE;
   if (!k) PetscFunctionReturn(0);
@@ -448,9 +456,19 @@ PetscErrorCode TSVSHMMLevelOwnRates_Private(TS ts)
       PetscCall(PetscInfo(ts, "Level %" PetscInt_FMT " at t = %g: its own components hold %g of the state norm\n", level, (double)ts->ptime, (double)vs->fastest_share));
       if (vs->adapt && n_all > 0 && n_own > 0) PetscCall(FastestLevelDrive(ts, mask, n_all));
     }
+    double noise = vshmm::kAmplitudeRateNoise;
+    if (finite && vshmm::ambiguousAmplitudeRate(ritz)) {
+      /* an oscillation whose amplitude rate forward differences cannot tell from their truncation
+         error (a damping at 1e-7 of a rotation's frequency against van der Pol's 1.8e-8 of noise
+         where its Jacobian is a rotation): the Ritz values again from central differences, whose
+         noise is the rounding's (5e-10 on a linear rotation) */
+      PetscCall(LevelRitzValues(ts, level, ts->ptime, ts->vec_sol, ritz, &finite, mask, PETSC_TRUE));
+      noise = vshmm::kAmplitudeRateCentralNoise;
+      PetscCall(PetscInfo(ts, "Own components of level %" PetscInt_FMT " at t = %g: amplitude rates between %g and %g of the frequency, estimated again by central differences\n", level, (double)ts->ptime, vshmm::kAmplitudeRateCentralNoise, vshmm::kAmplitudeRateNoise));
+    }
     PetscCall(VecDestroy(&mask));
     if (!finite) continue;
-    const double slowest = vshmm::slowestRate(ritz);
+    const double slowest = vshmm::slowestRate(ritz, noise);
     if (slowest > 0) vs->level_slowest[level] = slowest;
     PetscCall(PetscInfo(ts, "Own components of level %" PetscInt_FMT " at t = %g: slowest rate %g%s\n", level, (double)ts->ptime, (double)vs->level_slowest[level], level == nscales - 1 ? " (its part of the state: the line above)" : ""));
   }

@@ -174,6 +174,16 @@ TEST(SlowestRate, AnOscillationsAmplitudeRateCounts)
   // a decaying mode: its modulus; zero modes are left out; nothing left: 0
   EXPECT_DOUBLE_EQ(vshmm::slowestRate({C(-30, 10), C(1e-12, 0), C(-1000, 0)}), std::abs(C(-30, 10)));
   EXPECT_EQ(vshmm::slowestRate({}), 0.0);
+  // a real part of 1e-7 of the frequency: noise for forward differences' Ritz values, a rate for
+  // central differences' (noise 1e-8); it lies in between, where a second estimate is needed
+  const std::vector<C> damped = {C(-1e-4, 1e3), C(-1e-4, -1e3)};
+  EXPECT_DOUBLE_EQ(vshmm::slowestRate(damped), std::abs(damped[0]));
+  EXPECT_DOUBLE_EQ(vshmm::slowestRate(damped, vshmm::kAmplitudeRateCentralNoise), 1e-4);
+  EXPECT_TRUE(vshmm::ambiguousAmplitudeRate(damped));
+  EXPECT_FALSE(vshmm::ambiguousAmplitudeRate({C(5e-10 * 1e3, 1e3)}));                    // below both levels: noise
+  EXPECT_FALSE(vshmm::ambiguousAmplitudeRate({C(-0.1, 1e4)}));                           // above both: a rate either way
+  EXPECT_FALSE(vshmm::ambiguousAmplitudeRate({C(-1e-4, 0), C(-1e3, 0)}));                // no oscillation
+  EXPECT_FALSE(vshmm::ambiguousAmplitudeRate({C(-1e-13, 1e-6), C(-1e3, 0), C(0, 1e3)})); // a zero mode left out
 }
 
 TEST(LargestAccurateStep, KeepsTheAmplitudeOverTheSpan)

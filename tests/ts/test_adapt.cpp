@@ -625,6 +625,43 @@ TEST(VSHMMSeparation, ASlowDampingInsideTheFastLevelIsNotSeparated)
   EXPECT_LE(std::abs(run.x[0] - ref), tol * (1 + std::abs(ref))) << "y(2) = " << run.x[0] << ", reference " << ref;
 }
 
+// A van der Pol oscillator as the fast level: y' = -y + x1^2 / 4 (slow {y}), x1' = x2 / eps,
+// x2' = (-x1 + (1 - x1^2) x2) / eps (fast {x1, x2}), eps = 1e-3. At (x1, x2) = (1, 0) its Jacobian
+// is a rotation, but forward differences of the nonlinear field give its Ritz values a real part
+// of about 1.8e-8 of the frequency (their truncation error).
+void VdpSlow(const void *, PetscReal, const PetscScalar *x, PetscScalar *f)
+{
+  f[0] = -x[0] + 0.25 * x[1] * x[1];
+  f[1] = f[2] = 0;
+}
+void VdpFast(const void *, PetscReal, const PetscScalar *x, PetscScalar *f)
+{
+  f[0] = 0;
+  f[1] = x[2] / 1e-3;
+  f[2] = (-x[1] + (1 - x[1] * x[1]) * x[2]) / 1e-3;
+}
+
+// An amplitude rate of 1e-7 of the frequency (the rotation at 1e3 damped at 1e-4) is below the
+// noise of forward differences (1e-6 of |lambda|): such real parts are estimated again by central
+// differences, which find it (and the pair is not separated: the damping is slower than y), while
+// van der Pol's truncation noise of the same size disappears (its pair stays separated). With
+// forward differences and a threshold of 1e-8 van der Pol was called unseparated too.
+TEST(VSHMMSeparation, AnAmplitudeRateInForwardDifferencesNoiseIsJudgedByCentralDifferences)
+{
+  RotationParams params;
+  params.damping        = 1e-4;
+  const CapturedError e = CaptureError([&] {
+    AdaptRun run;
+    return SolveRotation("-ts_vshmm_micro_dt 1e-4 -ts_vshmm_savings_factors 100 -ts_vshmm_check_separation error", params, 0.1, &run);
+  });
+  EXPECT_EQ(e.code, PETSC_ERR_ARG_INCOMP);
+  EXPECT_NE(e.message.find("slowest rate of level 1's own components 0.0001"), std::string::npos) << e.message;
+  AdaptRun     run;
+  SplitProblem p;
+  p.terms = {VdpSlow, VdpFast};
+  EXPECT_EQ(SolveObservingX0("-ts_vshmm_micro_dt 1e-4 -ts_vshmm_savings_factors 100 -ts_vshmm_check_separation error", p, {0.5, 1, 0}, {"slow", "fast"}, 0.1, 0.1, &run), 0);
+}
+
 // The slow damping in the fastest of three levels is slowed by every time ratio, r_0 too: the pair
 // 0/1 is judged by it as well (the slowest own rate of every faster level), and neither pair is
 // separated (the radii alone: 99.5 and 100).
