@@ -87,7 +87,8 @@ PETSC_EXTERN const char *const TSVSHMMSeparationChecks[];
 .  adapt_rejections - macro steps redone with finer parameters
 .  adapt_calibrations - macro steps at which every parameter's error term was measured
 .  adapt_uncompared - accepted macro steps whose comparison was left out (nothing left to coarsen, the estimates far below their shares: the model's prediction stood in)
--  adapt_layer_estimates - tries of the first macro step estimated again from a second comparison (an initial layer, where the error grows faster than the error model's terms)
+.  adapt_layer_estimates - tries of the first macro step estimated again from a second comparison (an initial layer, where the error grows faster than the error model's terms)
+-  adapt_single_rate_from - the time from which -ts_vshmm_adapt took no savings because the tolerance was out of reach with them (finer savings did not lower the estimate, a single-rate step did), -1 if it did not happen
 
    Level: intermediate
 
@@ -111,6 +112,7 @@ typedef struct {
   PetscInt64        adapt_calibrations;
   PetscInt64        adapt_uncompared;
   PetscInt64        adapt_layer_estimates;
+  PetscReal         adapt_single_rate_from;
 } TSVSHMMStatistics;
 
 PETSC_EXTERN PetscErrorCode TSVSHMMInitializePackage(void);

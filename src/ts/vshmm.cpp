@@ -836,23 +836,24 @@ static PetscErrorCode TSVSHMMGetStatistics_VSHMM(TS ts, TSVSHMMStatistics *stats
   TS_VSHMM *vs = (TS_VSHMM *)ts->data;
 
   PetscFunctionBegin;
-  stats->macro_steps           = vs->macro_steps;
-  stats->micro_cycles          = vs->micro_cycles;
-  stats->nsplits               = (PetscInt)vs->rhs_evaluations.size();
-  stats->nscales               = (PetscInt)vs->level_steps.size();
-  stats->rhs_evaluations       = vs->rhs_evaluations.empty() ? nullptr : vs->rhs_evaluations.data();
-  stats->level_steps           = vs->level_steps.empty() ? nullptr : vs->level_steps.data();
-  stats->level_evaluations     = vs->level_evaluations.empty() ? nullptr : vs->level_evaluations.data();
-  stats->stability_checks      = vs->stability_checks;
-  stats->stability_evaluations = vs->stability_evaluations;
-  stats->stability_warnings    = vs->stability_warnings;
-  stats->error_estimate        = vs->error_estimate;
-  stats->error_estimate_total  = vs->error_estimate_total;
-  stats->adapt_evaluations     = vs->adapt_evaluations;
-  stats->adapt_rejections      = vs->adapt_rejections;
-  stats->adapt_calibrations    = vs->adapt_calibrations;
-  stats->adapt_uncompared      = vs->adapt_uncompared_total;
-  stats->adapt_layer_estimates = vs->adapt_layer_fits;
+  stats->macro_steps            = vs->macro_steps;
+  stats->micro_cycles           = vs->micro_cycles;
+  stats->nsplits                = (PetscInt)vs->rhs_evaluations.size();
+  stats->nscales                = (PetscInt)vs->level_steps.size();
+  stats->rhs_evaluations        = vs->rhs_evaluations.empty() ? nullptr : vs->rhs_evaluations.data();
+  stats->level_steps            = vs->level_steps.empty() ? nullptr : vs->level_steps.data();
+  stats->level_evaluations      = vs->level_evaluations.empty() ? nullptr : vs->level_evaluations.data();
+  stats->stability_checks       = vs->stability_checks;
+  stats->stability_evaluations  = vs->stability_evaluations;
+  stats->stability_warnings     = vs->stability_warnings;
+  stats->error_estimate         = vs->error_estimate;
+  stats->error_estimate_total   = vs->error_estimate_total;
+  stats->adapt_evaluations      = vs->adapt_evaluations;
+  stats->adapt_rejections       = vs->adapt_rejections;
+  stats->adapt_calibrations     = vs->adapt_calibrations;
+  stats->adapt_uncompared       = vs->adapt_uncompared_total;
+  stats->adapt_layer_estimates  = vs->adapt_layer_fits;
+  stats->adapt_single_rate_from = vs->adapt_single_rate_from;
   PetscFunctionReturn(0);
 }
 

@@ -444,10 +444,12 @@ TEST(VSHMMAdapt, AToleranceOutOfReachWithSavingsIsMetWithout)
     if (tol < 0.05) {
       if (rank == 0) EXPECT_TRUE(out) << err;
       EXPECT_EQ(run.savings[0], 0.0) << options;
+      EXPECT_EQ(run.stats.adapt_single_rate_from, 0.0) << options; // from the first macro step on
       EXPECT_LT(run.evaluations + run.stats.adapt_evaluations, 15000) << options;
     } else {
       EXPECT_FALSE(out) << err;
       EXPECT_GT(run.savings[0], 0.0) << options;
+      EXPECT_EQ(run.stats.adapt_single_rate_from, -1.0) << options;
     }
   }
 }
