@@ -111,6 +111,17 @@ LevelAmplification levelAmplification(const StabilityFunction &R, const Mesoscop
   return a;
 }
 
+double slowestAmplitudeRate(const std::vector<std::complex<double>> &modes, double noise)
+{
+  double largest = 0, slowest = std::numeric_limits<double>::infinity();
+  for (const std::complex<double> &lambda : modes) largest = std::max(largest, std::abs(lambda));
+  for (const std::complex<double> &lambda : modes) {
+    const double size = std::abs(lambda), re = std::fabs(lambda.real());
+    if (size > 1e-8 * largest && oscillates(lambda) && re > noise * size) slowest = std::min(slowest, re);
+  }
+  return std::isfinite(slowest) ? slowest : 0.0;
+}
+
 bool ambiguousAmplitudeRate(const std::vector<std::complex<double>> &modes)
 {
   double largest = 0;

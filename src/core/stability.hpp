@@ -62,6 +62,10 @@ inline bool oscillates(std::complex<double> lambda)
 double           slowestRate(const std::vector<std::complex<double>> &modes, double noise = 1e-6);
 constexpr double kAmplitudeRateNoise        = 1e-6; // Ritz values from forward differences: below this fraction of |lambda| a real part is noise
 constexpr double kAmplitudeRateCentralNoise = 1e-8; // from central differences (no first-order truncation error)
+// The slowest amplitude rate |Re lambda| among the oscillations (|Im| > |Re| > noise |lambda|,
+// |lambda| above 1e-8 of the largest); 0 where there is none. For additive splits only these count
+// as a slow process of a level (its own terms' block has many zero and interior Ritz values).
+double slowestAmplitudeRate(const std::vector<std::complex<double>> &modes, double noise = 1e-6);
 // Whether an oscillation's amplitude rate lies between the two noise levels (|Re| / |lambda| in
 // (kAmplitudeRateCentralNoise, kAmplitudeRateNoise]): forward differences cannot tell a slow
 // damping from their truncation error there, and central differences can.

@@ -445,8 +445,8 @@ PetscErrorCode TSVSHMMCheckSeparation_Private(TS ts)
     char            text[256];
     if ((PetscInt)vs->separations.size() > l) PetscCall(PetscSNPrintf(text, sizeof(text), "%slevels %" PetscInt_FMT "/%" PetscInt_FMT ": %.3g (set with -ts_vshmm_scale_separations)", l ? "; " : "", l, l + 1, (double)S));
     else if (OwnRatio(vs, l) > 0 && OwnRatio(vs, l) < RadiusRatio(vs, l))
-      PetscCall(PetscSNPrintf(text, sizeof(text), "%slevels %" PetscInt_FMT "/%" PetscInt_FMT ": %.3g (spectral radius %.3g, slowest rate of level %" PetscInt_FMT "'s own components %.3g)", l ? "; " : "", l, l + 1, (double)S, (double)vs->level_radius[l], SlowestFasterLevel(vs, l),
-                              (double)vs->level_slowest[SlowestFasterLevel(vs, l)]));
+      PetscCall(PetscSNPrintf(text, sizeof(text), "%slevels %" PetscInt_FMT "/%" PetscInt_FMT ": %.3g (spectral radius %.3g, slowest rate of level %" PetscInt_FMT "'s own %s %.3g)", l ? "; " : "", l, l + 1, (double)S, (double)vs->level_radius[l], SlowestFasterLevel(vs, l),
+                              vs->splits[vs->level_end[SlowestFasterLevel(vs, l)] - 1].additive ? "terms (an oscillation's amplitude rate)" : "components", (double)vs->level_slowest[SlowestFasterLevel(vs, l)]));
     else PetscCall(PetscSNPrintf(text, sizeof(text), "%slevels %" PetscInt_FMT "/%" PetscInt_FMT ": %.3g (spectral radii %.3g, %.3g)", l ? "; " : "", l, l + 1, (double)S, (double)vs->level_radius[l], (double)vs->level_radius[l + 1]));
     figures += text;
     best = PetscMax(best, S);

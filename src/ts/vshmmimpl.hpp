@@ -151,6 +151,7 @@ PETSC_INTERN PetscErrorCode TSCreate_VSHMM(TS);
 PETSC_INTERN PetscErrorCode TSVSHMMWarn_Private(TS, const char[], ...) PETSC_ATTRIBUTE_FORMAT(2, 3);
 /* vshmmlevel.cpp: the levels' fields and steps, their log events */
 PETSC_INTERN PetscErrorCode TSVSHMMEvaluateLevel_Private(TS_VSHMM *, PetscInt, PetscReal, Vec, Vec);
+PETSC_INTERN PetscErrorCode TSVSHMMEvaluateOwnSplits_Private(TS_VSHMM *, PetscInt, PetscReal, Vec, Vec);
 PETSC_INTERN PetscErrorCode TSVSHMMAddSplit_Private(TS_VSHMM *, PetscInt, PetscReal, Vec, Vec); /* G += output F of split k, in place or by its scatter */
 PETSC_INTERN PetscErrorCode TSVSHMMCreateSchedule_Private(TS, PetscReal, std::unique_ptr<vshmm::MesoscopicSchedule> &);
 PETSC_INTERN PetscErrorCode TSVSHMMRunMacroStep_Private(TS, const vshmm::MesoscopicSchedule &, PetscReal, PetscReal, Vec, vshmm::MacroStepCounts *);

@@ -129,6 +129,25 @@ PetscErrorCode TSVSHMMEvaluateLevel_Private(TS_VSHMM *vs, PetscInt level, PetscR
   PetscFunctionReturn(0);
 }
 
+/* G = f_{level_end[level-1]}(t,Y) + ... : the level's own splits only (those new to it), for the
+   stability checks (counted as theirs or as -ts_vshmm_adapt's, never as the steps'). level >= 1. */
+PetscErrorCode TSVSHMMEvaluateOwnSplits_Private(TS_VSHMM *vs, PetscInt level, PetscReal t, Vec Y, Vec G)
+{
+  PetscFunctionBegin;
+  const PetscInt first = vs->level_end[level - 1], n = vs->level_end[level] - first;
+  vs->current_level = level;
+  vs->field_evaluations++;
+  if (vs->counting == TS_VSHMM::COUNT_STABILITY) vs->stability_evaluations += n;
+  else vs->adapt_evaluations += n;
+  PetscCall(VecZeroEntries(G));
+  for (PetscInt k = first; k < vs->level_end[level]; ++k) {
+    VSHMMSplit &split = vs->splits[k];
+    PetscCall(TSComputeRHSFunction(split.subts, t, Y, split.F));
+    PetscCall(TSVSHMMAddSplit_Private(vs, k, t, split.F, G));
+  }
+  PetscFunctionReturn(0);
+}
+
 /* The vector operations of one explicit Runge-Kutta step of one level, on PETSc Vecs. */
 struct LevelStepOps {
   TS_VSHMM *vs;

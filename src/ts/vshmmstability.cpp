@@ -26,20 +26,21 @@
 #include <complex>
 #include <string>
 
-static constexpr PetscInt  kArnoldiSteps       = 16;
-static constexpr PetscReal kDampingTarget      = 0.5;  /* what a suggested savings factor achieves over a macro step */
-static constexpr PetscReal kGrowingMode        = 0.1;  /* Re lambda > this |lambda|: a growing mode, not checked */
-static constexpr PetscReal kMaxTransientGrowth = 100;  /* largest growth of a mode within a macro step that only warns */
-static constexpr PetscReal kMaxCouplingGrowth  = 1.05; /* largest growth of a mode over a macro step from the coupling of the levels */
-static constexpr PetscReal kFastEnergyGrowth   = 4;    /* growth of the fastest scale's oscillation energy that is warned about */
-static constexpr PetscReal kCouplingTarget     = 1.01; /* what suggested savings factors achieve */
-static constexpr PetscReal kNegligibleDrive    = 1e-3; /* of the fastest level's part of the state: a drive of the slower levels whose response is not estimated */
+static constexpr PetscInt  kArnoldiSteps        = 16;
+static constexpr PetscReal kAmplitudeSpanChange = 0.05; /* an additive level's own amplitude rate counts where it changes the amplitude by this much over the run */
+static constexpr PetscReal kDampingTarget       = 0.5;  /* what a suggested savings factor achieves over a macro step */
+static constexpr PetscReal kGrowingMode         = 0.1;  /* Re lambda > this |lambda|: a growing mode, not checked */
+static constexpr PetscReal kMaxTransientGrowth  = 100;  /* largest growth of a mode within a macro step that only warns */
+static constexpr PetscReal kMaxCouplingGrowth   = 1.05; /* largest growth of a mode over a macro step from the coupling of the levels */
+static constexpr PetscReal kFastEnergyGrowth    = 4;    /* growth of the fastest scale's oscillation energy that is warned about */
+static constexpr PetscReal kCouplingTarget      = 1.01; /* what suggested savings factors achieve */
+static constexpr PetscReal kNegligibleDrive     = 1e-3; /* of the fastest level's part of the state: a drive of the slower levels whose response is not estimated */
 
 /* Arnoldi on the Jacobian of level l's field at (t, X), applied by finite differences of the level's
    field: an orthonormal basis V[0..k-1] of a Krylov space (V has m + 1 vectors, m = min(16, N),
    destroyed by the caller with VecDestroyVecs(m + 1, &V)) and the k x k Hessenberg matrix
    V^T J V (column-major, leading dimension m + 1, in H). k = 0 where the field is not finite near X. */
-static PetscErrorCode LevelArnoldi(TS ts, PetscInt level, PetscReal t, Vec X, Vec **Vout, PetscInt *mout, std::vector<PetscScalar> &H, PetscInt *kout, PetscReal *delta_out, Vec mask = nullptr, Vec start = nullptr, PetscBool central = PETSC_FALSE)
+static PetscErrorCode LevelArnoldi(TS ts, PetscInt level, PetscReal t, Vec X, Vec **Vout, PetscInt *mout, std::vector<PetscScalar> &H, PetscInt *kout, PetscReal *delta_out, Vec mask = nullptr, Vec start = nullptr, PetscBool central = PETSC_FALSE, PetscBool own = PETSC_FALSE)
 {
   TS_VSHMM    *vs = (TS_VSHMM *)ts->data;
   PetscInt     N, rstart, rend;
@@ -54,6 +55,13 @@ static PetscErrorCode LevelArnoldi(TS ts, PetscInt level, PetscReal t, Vec X, Ve
   PetscCall(VecDuplicate(X, &G0));
   PetscCall(VecDuplicate(X, &Xp));
   PetscCall(VecDuplicate(X, &W));
+  /* the field: the level's, or with `own` its own splits' only (those new to it) */
+  const auto Field = [&](Vec Y, Vec G) -> PetscErrorCode {
+    PetscFunctionBegin;
+    if (own && level > 0) PetscCall(TSVSHMMEvaluateOwnSplits_Private(vs, level, t, Y, G));
+    else PetscCall(TSVSHMMEvaluateLevel_Private(vs, level, t, Y, G));
+    PetscFunctionReturn(0);
+  };
 
   /* The start vector given, or a deterministic one that does not depend on the number of ranks */
   if (start) PetscCall(VecCopy(start, V[0]));
@@ -69,7 +77,7 @@ static PetscErrorCode LevelArnoldi(TS ts, PetscInt level, PetscReal t, Vec X, Ve
 
   PetscCall(VecNorm(X, NORM_2, &xnorm));
   const PetscReal delta = std::sqrt(PETSC_MACHINE_EPSILON) * (1.0 + xnorm);
-  if (!central) PetscCall(TSVSHMMEvaluateLevel_Private(vs, level, t, X, G0));
+  if (!central) PetscCall(Field(X, G0));
 
   H.assign((m + 1) * m, 0.0);
   std::vector<PetscScalar> h(m + 1);
@@ -78,10 +86,10 @@ static PetscErrorCode LevelArnoldi(TS ts, PetscInt level, PetscReal t, Vec X, Ve
     /* W = J V_j ~ (G(X + delta V_j) - G(X)) / delta, or with central differences
        (G(X + delta V_j) - G(X - delta V_j)) / (2 delta) */
     PetscCall(VecWAXPY(Xp, delta, V[j], X));
-    PetscCall(TSVSHMMEvaluateLevel_Private(vs, level, t, Xp, W));
+    PetscCall(Field(Xp, W));
     if (central) {
       PetscCall(VecWAXPY(Xp, -delta, V[j], X));
-      PetscCall(TSVSHMMEvaluateLevel_Private(vs, level, t, Xp, G0));
+      PetscCall(Field(Xp, G0));
       PetscCall(VecAXPY(W, -1.0, G0));
       PetscCall(VecScale(W, 0.5 / delta));
     } else {
@@ -160,7 +168,7 @@ static PetscErrorCode Eigenvalues(PetscInt k, PetscInt lda, const PetscScalar *A
 
 /* Ritz values of the Jacobian of level l's field at (t, X) (with a mask: of its block on the
    masked components). */
-static PetscErrorCode LevelRitzValues(TS ts, PetscInt level, PetscReal t, Vec X, std::vector<std::complex<double>> &ritz, PetscBool *finite, Vec mask = nullptr, PetscBool central = PETSC_FALSE)
+static PetscErrorCode LevelRitzValues(TS ts, PetscInt level, PetscReal t, Vec X, std::vector<std::complex<double>> &ritz, PetscBool *finite, Vec mask = nullptr, PetscBool central = PETSC_FALSE, PetscBool own = PETSC_FALSE)
 {
   Vec                     *V;
   PetscInt                 m, k;
@@ -168,7 +176,7 @@ static PetscErrorCode LevelRitzValues(TS ts, PetscInt level, PetscReal t, Vec X,
 
   PetscFunctionBegin;
   ritz.clear();
-  PetscCall(LevelArnoldi(ts, level, t, X, &V, &m, H, &k, NULL, mask, nullptr, central));
+  PetscCall(LevelArnoldi(ts, level, t, X, &V, &m, H, &k, NULL, mask, nullptr, central, own));
   PetscCall(VecDestroyVecs(m + 1, &V));
   *finite = k > 0 ? PETSC_TRUE : PETSC_FALSE;
   if (!k) PetscFunctionReturn(0);
@@ -276,6 +284,61 @@ PetscErrorCode TSVSHMMLevelSpectra_Private(TS ts)
   }
   vs->spectra_time   = ts->ptime;
   vs->own_rates_time = PETSC_MIN_REAL; /* made again with these spectra where it is used */
+  PetscFunctionReturn(0);
+}
+
+/* For a level of additive splits: a slow process in its own terms (its new splits' field
+   G_l - G_{l-1}, which VSHMM slows; not the slower splits' terms it also evaluates) on the
+   components they write (nonzero at the state or near it): the block of that field's Jacobian,
+   as for component splits. Only an oscillation's amplitude rate counts (the block's other small
+   Ritz values are not a slow process of the level alone). Sets vs->level_slowest[level]. */
+static PetscErrorCode AdditiveOwnRate(TS ts, PetscInt level)
+{
+  TS_VSHMM                         *vs = (TS_VSHMM *)ts->data;
+  Vec                               own, mask, Xp;
+  std::vector<std::complex<double>> ritz;
+  PetscInt                          n;
+
+  PetscFunctionBegin;
+  PetscCall(VecDuplicate(ts->vec_sol, &own));
+  PetscCall(VecDuplicate(ts->vec_sol, &mask));
+  PetscCall(VecDuplicate(ts->vec_sol, &Xp));
+  PetscCall(VecSet(mask, 0.0));
+  PetscCall(VecCopy(ts->vec_sol, Xp));
+  {
+    PetscScalar *x;
+    PetscInt     rstart;
+    PetscCall(VecGetOwnershipRange(Xp, &rstart, NULL));
+    PetscCall(VecGetLocalSize(Xp, &n));
+    PetscCall(VecGetArray(Xp, &x));
+    for (PetscInt i = 0; i < n; ++i) x[i] += 1e-3 * (1.0 + PetscAbsScalar(x[i])) * (1.0 + 0.5 * std::sin(1.7 * (double)(rstart + i) + 0.3));
+    PetscCall(VecRestoreArray(Xp, &x));
+  }
+  for (Vec Y : {ts->vec_sol, Xp}) {
+    const PetscScalar *g;
+    PetscScalar       *w;
+    PetscCall(TSVSHMMEvaluateOwnSplits_Private(vs, level, ts->ptime, Y, own));
+    PetscCall(VecGetArrayRead(own, &g));
+    PetscCall(VecGetArray(mask, &w));
+    for (PetscInt i = 0; i < n; ++i)
+      if (g[i] != 0.0) w[i] = 1.0;
+    PetscCall(VecRestoreArray(mask, &w));
+    PetscCall(VecRestoreArrayRead(own, &g));
+  }
+  PetscBool finite = PETSC_FALSE;
+  PetscCall(LevelRitzValues(ts, level, ts->ptime, ts->vec_sol, ritz, &finite, mask, PETSC_FALSE, PETSC_TRUE));
+  double noise = vshmm::kAmplitudeRateNoise;
+  if (finite && vshmm::ambiguousAmplitudeRate(ritz)) {
+    PetscCall(LevelRitzValues(ts, level, ts->ptime, ts->vec_sol, ritz, &finite, mask, PETSC_TRUE, PETSC_TRUE));
+    noise = vshmm::kAmplitudeRateCentralNoise;
+  }
+  double rate = finite ? vshmm::slowestAmplitudeRate(ritz, noise) : 0.0;
+  if (rate * TSVSHMMAmplitudeSpan_Private(ts) < kAmplitudeSpanChange) rate = 0; /* changes the amplitude by less than kAmplitudeSpanChange over the run */
+  if (rate > 0) vs->level_slowest[level] = rate;
+  PetscCall(PetscInfo(ts, "Own terms of level %" PetscInt_FMT " (additive splits) at t = %g: slowest amplitude rate %g (0: none)\n", level, (double)ts->ptime, rate));
+  PetscCall(VecDestroy(&own));
+  PetscCall(VecDestroy(&mask));
+  PetscCall(VecDestroy(&Xp));
   PetscFunctionReturn(0);
 }
 
@@ -433,6 +496,7 @@ PetscErrorCode TSVSHMMLevelOwnRates_Private(TS ts)
         PetscCall(PetscInfo(ts, "Level %" PetscInt_FMT " (additive splits) at t = %g: %g of the state norm by its field\n", level, (double)ts->ptime, (double)vs->fastest_share));
         if (n_all > 0 && std::isfinite(n_g)) PetscCall(FastestLevelDrive(ts, nullptr, n_all));
       }
+      if (oscillates) PetscCall(AdditiveOwnRate(ts, level));
       continue;
     }
     Vec mask; /* 1 on the components the level's new splits write, added as their outputs are */
