@@ -583,7 +583,7 @@ static PetscErrorCode TSView_VSHMM(TS ts, PetscViewer viewer)
       PetscCall(PetscSNPrintf(item, sizeof(item), r > 0 ? " %.3g" : " -", (double)r));
       list += item;
     }
-    PetscCall(PetscViewerASCIIPrintf(viewer, "  slowest rate of each level's own components (component splits):%s\n", list.c_str()));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  slowest rate of each level's own components (component splits; additive: an oscillation's amplitude rate in its own splits):%s\n", list.c_str()));
   }
   if (!vs->separations.empty()) {
     std::string list;
