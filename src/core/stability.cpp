@@ -111,10 +111,20 @@ LevelAmplification levelAmplification(const StabilityFunction &R, const Mesoscop
   return a;
 }
 
+namespace {
+// The largest |lambda| of the modes (the scale below which modes count as zero modes).
+double largestModulus(const std::vector<std::complex<double>> &modes)
+{
+  double largest = 0;
+  for (const std::complex<double> &lambda : modes) largest = std::max(largest, std::abs(lambda));
+  return largest;
+}
+} // namespace
+
 double slowestAmplitudeRate(const std::vector<std::complex<double>> &modes, double noise)
 {
-  double largest = 0, slowest = std::numeric_limits<double>::infinity();
-  for (const std::complex<double> &lambda : modes) largest = std::max(largest, std::abs(lambda));
+  const double largest = largestModulus(modes);
+  double       slowest = std::numeric_limits<double>::infinity();
   for (const std::complex<double> &lambda : modes) {
     const double size = std::abs(lambda), re = std::fabs(lambda.real());
     if (size > 1e-8 * largest && oscillates(lambda) && re > noise * size) slowest = std::min(slowest, re);
@@ -124,8 +134,7 @@ double slowestAmplitudeRate(const std::vector<std::complex<double>> &modes, doub
 
 bool ambiguousAmplitudeRate(const std::vector<std::complex<double>> &modes)
 {
-  double largest = 0;
-  for (const std::complex<double> &lambda : modes) largest = std::max(largest, std::abs(lambda));
+  const double largest = largestModulus(modes);
   for (const std::complex<double> &lambda : modes) {
     const double size = std::abs(lambda), re = std::fabs(lambda.real());
     if (size > 1e-8 * largest && oscillates(lambda) && re > kAmplitudeRateCentralNoise * size && re <= kAmplitudeRateNoise * size) return true;
@@ -135,8 +144,8 @@ bool ambiguousAmplitudeRate(const std::vector<std::complex<double>> &modes)
 
 double slowestRate(const std::vector<std::complex<double>> &modes, double noise)
 {
-  double largest = 0, slowest = std::numeric_limits<double>::infinity();
-  for (const std::complex<double> &lambda : modes) largest = std::max(largest, std::abs(lambda));
+  const double largest = largestModulus(modes);
+  double       slowest = std::numeric_limits<double>::infinity();
   for (const std::complex<double> &lambda : modes) {
     const double size = std::abs(lambda), re = std::fabs(lambda.real());
     if (!(size > 1e-8 * largest)) continue;

@@ -488,7 +488,6 @@ PetscErrorCode TSVSHMMAdaptReset_Private(TS ts)
   vs->adapt_prev_ratio       = PETSC_MAX_REAL;
   vs->adapt_uncompared       = 0;
   vs->floor_warned           = PETSC_FALSE;
-  vs->no_savings_warned      = PETSC_FALSE;
   vs->adapt_single_rate_from = -1;
   PetscFunctionReturn(0);
 }
@@ -1104,9 +1103,8 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
       else {
         vs->adapt_no_savings.assign(next.ratios.size(), PETSC_TRUE);
         for (double &r : next.ratios) r = 1.0;
-        if (vs->adapt_single_rate_from < 0) vs->adapt_single_rate_from = t0;
-        if (!vs->no_savings_warned) {
-          vs->no_savings_warned = PETSC_TRUE;
+        if (vs->adapt_single_rate_from < 0) { /* the first such step of the solve (the savings are gone for the rest): said once */
+          vs->adapt_single_rate_from = t0;
           PetscCall(TSVSHMMWarn_Private(ts, "TSVSHMM warning (-ts_vshmm_adapt): the tolerance (rtol %g, atol %g) is out of reach with savings: in the macro step [%g, %g] the error estimate stayed at %g times its share with finer savings factors and micro steps, and fell to %g without savings. The rest of the solve takes none (one Runge-Kutta step of the whole field per micro step, with VSHMM's error estimates on top). The scales are not separated enough for VSHMM at this tolerance (their ratio shows in the slow values); a single-rate TS type (-ts_type rk -ts_adapt_type basic) does the same work without the estimates, or loosen the tolerance. This warning is given once per solve.\n",
                                         (double)ts->rtol, (double)ts->atol, (double)t0, (double)t1, (double)(floorEstimate / budget), (double)(E / budget)));
         }

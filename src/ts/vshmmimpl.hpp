@@ -97,7 +97,6 @@ struct TS_VSHMM {
   PetscReal              adapt_tstart           = 0.0;          // the time the solve started (the error budget runs from it)
   PetscBool              no_separation          = PETSC_FALSE;  // no pair of levels is separated
   PetscBool              floor_warned           = PETSC_FALSE;  // told that the estimate does not fall
-  PetscBool              no_savings_warned      = PETSC_FALSE;  // told that the tolerance leaves no savings worth their work
   PetscReal              adapt_single_rate_from = -1;           // the start of the macro step from which the tolerance left no savings (-1: none)
   Vec                    Xtrial = nullptr, Xbase = nullptr;
   std::vector<PetscReal> obs_a, obs_b;

@@ -94,20 +94,15 @@ PetscErrorCode TSVSHMMAddSplit_Private(TS_VSHMM *vs, PetscInt k, PetscReal t, Ve
   PetscFunctionReturn(0);
 }
 
-/* G = f_0(t,Y) + ... + f_level(t,Y): each split function called with the full state. */
-PetscErrorCode TSVSHMMEvaluateLevel_Private(TS_VSHMM *vs, PetscInt level, PetscReal t, Vec Y, Vec G)
+/* G = f_first(t,Y) + ... + f_{end-1}(t,Y): each split function called with the full state
+   (counting: the calls count as the steps', per split). */
+static PetscErrorCode EvaluateSplits(TS_VSHMM *vs, PetscInt first, PetscInt end, PetscReal t, Vec Y, Vec G, PetscBool counting)
 {
   PetscFunctionBegin;
-  vs->current_level = level;
-  vs->field_evaluations++; /* every rank evaluates every level field: a clock common to all ranks */
-  const PetscBool counting = vs->counting == TS_VSHMM::COUNT_STEPS ? PETSC_TRUE : PETSC_FALSE;
-  if (counting) vs->level_evaluations[level]++;
-  else if (vs->counting == TS_VSHMM::COUNT_STABILITY) vs->stability_evaluations += vs->level_end[level]; /* split calls */
-  else vs->adapt_evaluations += vs->level_end[level];
-  for (PetscInt k = 0; k < vs->level_end[level]; ++k) {
+  for (PetscInt k = first; k < end; ++k) {
     VSHMMSplit &split = vs->splits[k];
 
-    if (k == 0 && split.additive) { /* the slowest additive split writes G itself */
+    if (k == first && split.additive) { /* the first additive split writes G itself */
       PetscCall(TSComputeRHSFunction(split.subts, t, Y, G));
       if (counting) vs->rhs_evaluations[k]++;
       if (vs->nonfinite_split < 0) {
@@ -121,7 +116,7 @@ PetscErrorCode TSVSHMMEvaluateLevel_Private(TS_VSHMM *vs, PetscInt level, PetscR
       }
       continue;
     }
-    if (k == 0) PetscCall(VecZeroEntries(G));
+    if (k == first) PetscCall(VecZeroEntries(G));
     PetscCall(TSComputeRHSFunction(split.subts, t, Y, split.F));
     if (counting) vs->rhs_evaluations[k]++;
     PetscCall(TSVSHMMAddSplit_Private(vs, k, t, split.F, G));
@@ -129,8 +124,22 @@ PetscErrorCode TSVSHMMEvaluateLevel_Private(TS_VSHMM *vs, PetscInt level, PetscR
   PetscFunctionReturn(0);
 }
 
-/* G = f_{level_end[level-1]}(t,Y) + ... : the level's own splits only (those new to it), for the
-   stability checks (counted as theirs or as -ts_vshmm_adapt's, never as the steps'). level >= 1. */
+/* G = f_0(t,Y) + ... + f_level(t,Y): each split function called with the full state. */
+PetscErrorCode TSVSHMMEvaluateLevel_Private(TS_VSHMM *vs, PetscInt level, PetscReal t, Vec Y, Vec G)
+{
+  PetscFunctionBegin;
+  vs->current_level = level;
+  vs->field_evaluations++; /* every rank evaluates every level field: a clock common to all ranks */
+  const PetscBool counting = vs->counting == TS_VSHMM::COUNT_STEPS ? PETSC_TRUE : PETSC_FALSE;
+  if (counting) vs->level_evaluations[level]++;
+  else if (vs->counting == TS_VSHMM::COUNT_STABILITY) vs->stability_evaluations += vs->level_end[level]; /* split calls */
+  else vs->adapt_evaluations += vs->level_end[level];
+  PetscCall(EvaluateSplits(vs, 0, vs->level_end[level], t, Y, G, counting));
+  PetscFunctionReturn(0);
+}
+
+/* G = the sum of the level's own splits only (those new to it), for the stability checks (counted
+   as theirs or as -ts_vshmm_adapt's, never as the steps'). level >= 1. */
 PetscErrorCode TSVSHMMEvaluateOwnSplits_Private(TS_VSHMM *vs, PetscInt level, PetscReal t, Vec Y, Vec G)
 {
   PetscFunctionBegin;
@@ -139,12 +148,7 @@ PetscErrorCode TSVSHMMEvaluateOwnSplits_Private(TS_VSHMM *vs, PetscInt level, Pe
   vs->field_evaluations++;
   if (vs->counting == TS_VSHMM::COUNT_STABILITY) vs->stability_evaluations += n;
   else vs->adapt_evaluations += n;
-  PetscCall(VecZeroEntries(G));
-  for (PetscInt k = first; k < vs->level_end[level]; ++k) {
-    VSHMMSplit &split = vs->splits[k];
-    PetscCall(TSComputeRHSFunction(split.subts, t, Y, split.F));
-    PetscCall(TSVSHMMAddSplit_Private(vs, k, t, split.F, G));
-  }
+  PetscCall(EvaluateSplits(vs, first, vs->level_end[level], t, Y, G, PETSC_FALSE));
   PetscFunctionReturn(0);
 }
 

@@ -185,6 +185,25 @@ static PetscErrorCode LevelRitzValues(TS ts, PetscInt level, PetscReal t, Vec X,
   PetscFunctionReturn(0);
 }
 
+/* Ritz values of the block of level l's Jacobian on the masked components at the present state
+   (own: of its own splits' field only), and the fraction of |lambda| below which their real parts
+   are noise. An oscillation whose amplitude rate forward differences cannot tell from their
+   truncation error (a damping at 1e-7 of a rotation's frequency against van der Pol's 1.8e-8 of
+   noise where its Jacobian is a rotation) has the Ritz values made again by central differences,
+   whose noise is the rounding's (5e-10 on a linear rotation). */
+static PetscErrorCode OwnBlockRitzValues(TS ts, PetscInt level, Vec mask, PetscBool own, std::vector<std::complex<double>> &ritz, PetscBool *finite, double *noise)
+{
+  PetscFunctionBegin;
+  *noise = vshmm::kAmplitudeRateNoise;
+  PetscCall(LevelRitzValues(ts, level, ts->ptime, ts->vec_sol, ritz, finite, mask, PETSC_FALSE, own));
+  if (*finite && vshmm::ambiguousAmplitudeRate(ritz)) {
+    PetscCall(LevelRitzValues(ts, level, ts->ptime, ts->vec_sol, ritz, finite, mask, PETSC_TRUE, own));
+    *noise = vshmm::kAmplitudeRateCentralNoise;
+    PetscCall(PetscInfo(ts, "Own block of level %" PetscInt_FMT " at t = %g: amplitude rates between %g and %g of the frequency, estimated again by central differences\n", level, (double)ts->ptime, vshmm::kAmplitudeRateCentralNoise, vshmm::kAmplitudeRateNoise));
+  }
+  PetscFunctionReturn(0);
+}
+
 /* Every level's Jacobian at (t, X) restricted to a Krylov space of the full field's Jacobian (the
    top level's): the Galerkin matrices V^T J_l V of the coupled stability analysis (core/coupling.hpp).
    Exact where the Krylov space is the whole space (states of up to 16 unknowns); otherwise it
@@ -326,12 +345,8 @@ static PetscErrorCode AdditiveOwnRate(TS ts, PetscInt level)
     PetscCall(VecRestoreArrayRead(own, &g));
   }
   PetscBool finite = PETSC_FALSE;
-  PetscCall(LevelRitzValues(ts, level, ts->ptime, ts->vec_sol, ritz, &finite, mask, PETSC_FALSE, PETSC_TRUE));
-  double noise = vshmm::kAmplitudeRateNoise;
-  if (finite && vshmm::ambiguousAmplitudeRate(ritz)) {
-    PetscCall(LevelRitzValues(ts, level, ts->ptime, ts->vec_sol, ritz, &finite, mask, PETSC_TRUE, PETSC_TRUE));
-    noise = vshmm::kAmplitudeRateCentralNoise;
-  }
+  double    noise;
+  PetscCall(OwnBlockRitzValues(ts, level, mask, PETSC_TRUE, ritz, &finite, &noise));
   double rate = finite ? vshmm::slowestAmplitudeRate(ritz, noise) : 0.0;
   if (rate * TSVSHMMAmplitudeSpan_Private(ts) < kAmplitudeSpanChange) rate = 0; /* changes the amplitude by less than kAmplitudeSpanChange over the run */
   if (rate > 0) vs->level_slowest[level] = rate;
@@ -507,7 +522,8 @@ PetscErrorCode TSVSHMMLevelOwnRates_Private(TS ts)
       PetscCall(TSVSHMMAddSplit_Private(vs, k, ts->ptime, vs->splits[k].F, mask));
     }
     PetscBool finite = PETSC_FALSE;
-    PetscCall(LevelRitzValues(ts, level, ts->ptime, ts->vec_sol, ritz, &finite, mask));
+    double    noise;
+    PetscCall(OwnBlockRitzValues(ts, level, mask, PETSC_FALSE, ritz, &finite, &noise));
     if (level == nscales - 1) { /* the fastest level's part of the state (its own components'), for -ts_vshmm_adapt's micro step bound */
       Vec       own;
       PetscReal n_own, n_all;
@@ -519,16 +535,6 @@ PetscErrorCode TSVSHMMLevelOwnRates_Private(TS ts)
       if (n_all > 0 && std::isfinite(n_own)) vs->fastest_share = PetscMin(1.0, n_own / n_all);
       PetscCall(PetscInfo(ts, "Level %" PetscInt_FMT " at t = %g: its own components hold %g of the state norm\n", level, (double)ts->ptime, (double)vs->fastest_share));
       if (vs->adapt && n_all > 0 && n_own > 0) PetscCall(FastestLevelDrive(ts, mask, n_all));
-    }
-    double noise = vshmm::kAmplitudeRateNoise;
-    if (finite && vshmm::ambiguousAmplitudeRate(ritz)) {
-      /* an oscillation whose amplitude rate forward differences cannot tell from their truncation
-         error (a damping at 1e-7 of a rotation's frequency against van der Pol's 1.8e-8 of noise
-         where its Jacobian is a rotation): the Ritz values again from central differences, whose
-         noise is the rounding's (5e-10 on a linear rotation) */
-      PetscCall(LevelRitzValues(ts, level, ts->ptime, ts->vec_sol, ritz, &finite, mask, PETSC_TRUE));
-      noise = vshmm::kAmplitudeRateCentralNoise;
-      PetscCall(PetscInfo(ts, "Own components of level %" PetscInt_FMT " at t = %g: amplitude rates between %g and %g of the frequency, estimated again by central differences\n", level, (double)ts->ptime, vshmm::kAmplitudeRateCentralNoise, vshmm::kAmplitudeRateNoise));
     }
     PetscCall(VecDestroy(&mask));
     if (!finite) continue;

@@ -683,7 +683,9 @@ TEST(VSHMMSeparation, AnAmplitudeRateInForwardDifferencesNoiseIsJudgedByCentralD
 // sparse-spectral advection cluster's own block: 6.4e-5, over t = 8).
 TEST(VSHMMSeparation, ASlowDampingInsideAFastAdditiveSplitIsNotSeparated)
 {
-  for (const double damping : {0.1, 0.0}) {
+  // damped at 0.1 (20% of amplitude over t = 2): found; undamped, or damped at 0.01 (2% over the
+  // run, under the 5% counted): separated
+  for (const double damping : {0.1, 0.0, 0.01}) {
     RotationParams params;
     params.eps            = 1e-2;
     params.damping        = damping;
@@ -691,20 +693,11 @@ TEST(VSHMMSeparation, ASlowDampingInsideAFastAdditiveSplitIsNotSeparated)
       AdaptRun run;
       return SolveRotation("-ts_vshmm_micro_dt 1e-4 -ts_vshmm_savings_factors 10 -ts_vshmm_check_separation error", params, 2.0, &run, 1, SplitKind::Additive);
     });
-    if (damping > 0) {
+    if (damping > 0.05) {
       EXPECT_EQ(e.code, PETSC_ERR_ARG_INCOMP);
       EXPECT_NE(e.message.find("slowest rate of level 1's own terms (an oscillation's amplitude rate) 0.1)"), std::string::npos) << e.message;
-    } else EXPECT_EQ(e.code, 0) << e.message;
+    } else EXPECT_EQ(e.code, 0) << "damping " << damping << ": " << e.message;
   }
-  // the damping at 0.01 changes the amplitude by 2% over t = 2: not counted
-  RotationParams params;
-  params.eps            = 1e-2;
-  params.damping        = 0.01;
-  const CapturedError e = CaptureError([&] {
-    AdaptRun run;
-    return SolveRotation("-ts_vshmm_micro_dt 1e-4 -ts_vshmm_savings_factors 10 -ts_vshmm_check_separation error", params, 2.0, &run, 1, SplitKind::Additive);
-  });
-  EXPECT_EQ(e.code, 0) << e.message;
 }
 
 // The slow damping in the fastest of three levels is slowed by every time ratio, r_0 too: the pair
