@@ -7,7 +7,9 @@ tolerance met), and the work (split evaluations of the accepted steps plus estim
 rejected tries).
 
     python3 tools/adapt_suite.py BUILD_DIR [--only SUBSTRING ...] [--jobs N] [--sweep] [--states]
-                                           [-- extra options]
+                                           [--tols T1,T2,...] [-- extra options]
+
+--tols replaces the three tolerances (e.g. 3e-2,5e-3,2e-3 for the ones between them).
 
 Options after `--` are passed to every run (to try a variant of the control). With --sweep, each
 problem is also run with fixed parameters over a grid (hand tuning: micro step and savings
@@ -136,7 +138,7 @@ def main():
     if '--' in argv:
         i = argv.index('--')
         argv, extra = argv[:i], argv[i + 1:]
-    build, only, jobs, sweep, states = argv[0], [], 2, False, False
+    build, only, jobs, sweep, states, tols = argv[0], [], 2, False, False, (1e-1, 1e-2, 1e-3)
     i = 1
     while i < len(argv):
         if argv[i] == '--only':
@@ -148,13 +150,16 @@ def main():
         elif argv[i] == '--sweep':
             sweep = True
             i += 1
+        elif argv[i] == '--tols':
+            tols = tuple(float(t) for t in argv[i + 1].split(','))
+            i += 2
         elif argv[i] == '--jobs':
             jobs = int(argv[i + 1])
             i += 2
         else:
             sys.exit('unknown argument ' + argv[i])
     probs = [p for p in problems(build, states) if not only or any(o in p[0] for o in only)]
-    tasks = [(p, tol) for p in probs for tol in (1e-1, 1e-2, 1e-3)]
+    tasks = [(p, tol) for p in probs for tol in tols]
     with ThreadPoolExecutor(jobs) as pool:
         results = list(pool.map(lambda a: run(build, a[0], a[1], extra), tasks))
     fixed = {}
