@@ -94,6 +94,7 @@ struct TS_VSHMM {
   PetscInt               adapt_calibrated_times  = 0;           // calibrations in this solve
   PetscBool              adapt_postponed         = PETSC_FALSE; // the due calibration waited one step (its step was far below its share)
   std::vector<PetscInt>  adapt_negligible;                      // per parameter: this macro step's calibrations in a row that measured its term as negligible
+  std::vector<double>    adapt_negligible_reach;                // per parameter: the coarsest value (dt, or r_l) at which its last calibration measured it
   PetscReal              adapt_tstart           = 0.0;          // the time the solve started (the error budget runs from it)
   PetscBool              no_separation          = PETSC_FALSE;  // no pair of levels is separated
   PetscBool              floor_warned           = PETSC_FALSE;  // told that the estimate does not fall
