@@ -956,6 +956,26 @@ TEST(VSHMMAdapt, ARetryDoesNotCoarsenARatioItsComparisonCannotMeasure)
   EXPECT_LE(std::abs(run.x[0] - kAveragedXiAt2), 0.5 * 2e-3 * (1 + kAveragedXiAt2));
 }
 
+// A decaying pair of levels less than 2 apart, among separated ones, takes no savings. The
+// dissipative example at eps = 3e-2 (xi observed, tol 3e-3, to t = 2): levels 1/2 are 1.31 apart
+// (0/1: 667). Their start ratio r_2 = 1 cannot be coarsened by a calibration (r - 1 = 0 times 4),
+// so its term read 0 and the choice took r_2 as free: it rose to 3.1 (the fast level slowed below
+// the medium one), the first macro step's estimate stayed at 8 shares over 11 tries, and the run
+// took 3.6e5 evaluations (5.0e4 at the tighter 1e-3). Now 12,476, xi(2) 0.07 tol off.
+TEST(VSHMMAdapt, ADecayingPairLessThanTwoApartTakesNoSavings)
+{
+  constexpr double kXiAt2 = 1.4815043634; // RK4 dt = 5e-5 (1e-4 agrees to 2e-9)
+  AdaptRun         run;
+  std::string      info;
+  bool             written;
+  ASSERT_EQ(DissipativeAdaptInfo(AdaptOptions(3e-3).c_str(), 3e-2, &run, &info, &written), 0);
+  if (written) EXPECT_NE(info.find("levels 1/2 are 1.31 apart: no savings between them"), std::string::npos);
+  EXPECT_LE(std::abs(run.x[0] - kXiAt2), 3e-3 * (1 + kXiAt2));
+  EXPECT_LT(run.evaluations + run.stats.adapt_evaluations, 50000);
+  ASSERT_EQ(run.savings.size(), 2u);
+  EXPECT_EQ(run.savings[1], 0.0); // alpha_2 = 0: r_2 = 1
+}
+
 // In an initial layer the comparison overstates the error 2.5-4 times (docs/accuracy.md section 3);
 // a second comparison (every term x 1.5) measures how the error grows and re-estimates the tries of
 // the first macro step whose estimate is at most 4 times its share. The dissipative example at
