@@ -110,6 +110,9 @@ vshmm_example_test(NAME oscillatory_vshmm_adapt_tol1e-3_floor EXE oscillatory NP
 # is measured again once its ratio has left the calibration's reach (r_2 = 1,002 > 797): it is then
 # the largest term (25.5 against 0.99), and the next try meets the share. I1 = 0.98791 (1.3 tol in
 # I1, 0.92 over I1, I2), 70,572 + 294,768 evaluations (389,388 + 1,233,828 with the bound alone).
-vshmm_example_test(NAME oscillatory_vshmm_adapt_tol1.5e-3_remeasured EXE oscillatory NP 1
-                   ARGS -ts_type vshmm -ts_max_time 0.8 -ts_vshmm_adapt -ts_rtol 1.5e-3 -ts_atol 1.5e-3 -ts_vshmm_warnings_viewer none -no_timing
-                   REGEX "estimation_evaluations 294768 rejections 5\n.*final t 0.8000 I1 9.87[0-9]*e-01 I2 2.19[0-9]*e-01\nrhs_evaluations 70572\n")
+# The same on 2 ranks (the state spread over them): the same run.
+foreach(np 1 2)
+  vshmm_example_test(NAME oscillatory_vshmm_adapt_tol1.5e-3_remeasured_np${np} EXE oscillatory NP ${np}
+                     ARGS -ts_type vshmm -ts_max_time 0.8 -ts_vshmm_adapt -ts_rtol 1.5e-3 -ts_atol 1.5e-3 -ts_vshmm_warnings_viewer none -no_timing
+                     REGEX "estimation_evaluations 294768 rejections 5\n.*final t 0.8000 I1 9.87[0-9]*e-01 I2 2.19[0-9]*e-01\nrhs_evaluations 70572\n")
+endforeach()
