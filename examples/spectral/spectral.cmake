@@ -423,9 +423,11 @@ spectral_auto_scene(diffusion3 diffusion 0.125,0.25 0.25 1e-5 75000
 # the scales are not separated (4.8; at 1e-3 3.89) and the run says so; tol 1e-2: 1.9e-3, 3.0e-3
 # (bound 6e-3); tol 1e-3: 6.4e-4, 7.0e-4 (bound 1.2e-3). At 1e-2 the top band 158..162 holds 2.7e-4
 # of ||u||, below -spectral_cluster_min_band_share 0.05 x 1e-2, but it oscillates (decay share 0,
-# advection only) and is kept. At 1e-2 the run takes 1,831 evaluations
+# advection only) and is kept. At 1e-2 the run takes 1,139 evaluations
 # (errors 1.9e-3, 3.0e-3; 12 of them the phase-averaged drive of the micro step's amplitude
-# weight, zero for this linear scene): the micro step is neither bound by the amplitude of the oscillating
+# weight, zero for this linear scene; 1,831 while every single-rate step at its stability limit
+# was compared with the micro step halved unless the last estimate was below 1e-3 of its share,
+# here 0.5-2%: now up to 3 steps in a row below a tenth of it are not): the micro step is neither bound by the amplitude of the oscillating
 # top wavenumbers nor started at tol^(1/4) / rho for them, as they hold about 5e-3 of ||u||, within
 # the tolerance (with that start, 7,707 for 2.2e-3, 3.5e-3; with the amplitude bound unweighted by
 # their part of the state, twice that).
@@ -447,9 +449,18 @@ spectral_auto_scene(nonlinear diffusion 0.125,0.25 0.25 2e-5 37500
                     7e-4 "K0 = {0..6}: 7 wavenumbers.*K1 = {12..21,28..36,44..52,60..68,76..84,95,110..114,125..131,142..146}: 64 wavenumbers.*detection dns_steps 80 evaluations 346\n"
                     "not separated.*levels 0/1: 1.93")
 spectral_auto_scene(advection2 advection 2,4 4 1e-3 12000
-                    6e-3 "the thin band 158..162 [(]share 0.000265[0-9]*[)] is kept with every band below it: it oscillates [(]decay share [0-9.e-]*[)].*K0 = {0..5}: 6 wavenumbers.*K1 = {36..44,76..84,117..123,158..162}: 30 wavenumbers.*detection dns_steps 256 evaluations 812\n.*output t 4 rhs_evaluations 1831 "
+                    6e-3 "the thin band 158..162 [(]share 0.000265[0-9]*[)] is kept with every band below it: it oscillates [(]decay share [0-9.e-]*[)].*K0 = {0..5}: 6 wavenumbers.*K1 = {36..44,76..84,117..123,158..162}: 30 wavenumbers.*detection dns_steps 256 evaluations 812\n.*output t 4 rhs_evaluations 1139 "
                     1.2e-3 "K0 = {0..6}: 7 wavenumbers.*K1 = {35..45,76..84,116..124,157..163,198..203}: 42 wavenumbers.*detection dns_steps 256 evaluations 810\n"
                     "not separated.*levels 0/1: 4.8")
+
+# A single-rate step at its stability limit whose last estimate was below a tenth of its share is
+# not compared, at most 3 steps in a row: advection2_auto.yaml to t = 12 (6 macro steps, estimates
+# 0.5-2% of their shares) compares the steps at t = 0 and 8 and no other: 3,223 evaluations
+# (5,991 comparing every step), the same errors against RK3 dt = 2e-4 (3.5e-3 at t = 12; largest
+# 4.2e-3 at t = 8).
+vshmm_example_test(NAME spectral_auto_advection2_uncompared_steps EXE advection
+                   ARGS -options_file_yaml ${PROJECT_SOURCE_DIR}/examples/scenes/advection2_auto.yaml -output_times 2,4,6,8,10,12 -ts_view -no_timing
+                   REGEX "4 macro steps without a comparison.*output t 12 rhs_evaluations 3223 " LABELS example spectral)
 
 # The stable step at u0 too large later (burgers_growth.yaml: viscous Burgers whose amplitude
 # grows e-fold per unit time, max|u| 0.1 -> 1.9 at t = 3): the RK3 step estimated at u0 (0.0597)

@@ -981,9 +981,14 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
     /* a single-rate step (no savings) at the largest micro step the bounds allow, whose last step
        was far below its share: nothing is left to choose and a Runge-Kutta method's error does not
        jump by orders of magnitude between steps; the model's prediction stands in for the
-       comparison (with the micro step halved, twice the step's work) */
+       comparison (with the micro step halved, twice the step's work). Below kNegligibleEstimate
+       always; below 1 / kUncomparedBelow of the share at most kMaxUncompared steps in a row (then
+       one is compared: the sparse-spectral advection scenes, not separated, single-rate at their
+       stability limit with estimates of 0.5-2% of the share, spent two thirds of their work on
+       comparisons) */
     const bool modelled = attempt == 0 && !calibrate && vs->adapt_model.total(p) > 0;
-    bool       pinned   = modelled && vs->adapt_last_ratio < kNegligibleEstimate && p.microStep >= 0.999 * bounds.maxMicroStep;
+    const bool small    = vs->adapt_last_ratio < kNegligibleEstimate || (vs->adapt_last_ratio < 1.0 / kUncomparedBelow && vs->adapt_uncompared < kMaxUncompared);
+    bool       pinned   = modelled && small && p.microStep >= 0.999 * bounds.maxMicroStep;
     for (double r : p.ratios) pinned = pinned && r == 1.0;
     const bool steady = modelled && SteadyStep(vs, p, bounds);
     if (steady && !pinned)
