@@ -101,7 +101,8 @@ vshmm_example_test(NAME stress_chain_4scales_adapt_view EXE chain LABELS stress
 # weighted tolerance at most (0.11 since a retry's calibration leaves out the terms the macro
 # step's last two calibrations measured below a tenth of the largest; 0.04 with 43,584 evaluations
 # since a decaying fastest level's micro step keeps 0.8 of its stability limit, not 0.9), 41,656
-# evaluations in all before that
+# evaluations in all before that; its steps pinned at every bound are compared with the micro step
+# at 3/4, not 1/2: 16,204 + 26,580, was + 27,380
 # (73,364 with a twentieth, 122,884 measuring every term, 121,444 before steady steps left out
 # their comparisons) (0.056 and 65,936 with the first ratio
 # capped at 1 + s_l, not 1 + s_l / 2: ten tries of the first step now; 1.3e7 before the saturation
