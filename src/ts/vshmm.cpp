@@ -553,6 +553,8 @@ static PetscErrorCode TSView_VSHMM(TS ts, PetscViewer viewer)
     PetscCall(PetscViewerASCIIPrintf(viewer, "  accuracy control (-ts_vshmm_adapt): rtol %g, atol %g on %s; savings factors %s\n", (double)ts->rtol, (double)ts->atol, vs->observables ? "the observables" : "the whole state (weighted norm)", what.c_str()));
     PetscCall(PetscViewerASCIIPrintf(viewer, "    error estimate: last macro step %g, sum over the run %g (1 = the tolerance); %" PetscInt64_FMT " calibrations, %" PetscInt64_FMT " rejected macro steps, %" PetscInt64_FMT " split RHS evaluations for estimates and rejected steps\n",
                                      (double)vs->error_estimate, (double)vs->error_estimate_total, vs->adapt_calibrations, vs->adapt_rejections, vs->adapt_evaluations));
+    for (size_t l = 0; l < vs->adapt_merged.size(); ++l)
+      if (vs->adapt_merged[l] > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "    levels %d/%d: no savings between them (they are %.3g apart, less than 2, and the faster only decays)\n", (int)l, (int)l + 1, (double)vs->adapt_merged[l]));
     if (vs->adapt_uncompared_total > 0)
       PetscCall(PetscViewerASCIIPrintf(viewer, "    %" PetscInt64_FMT " macro steps without a comparison (nothing left to coarsen and the estimates far below their shares: the model's prediction stood in)\n", vs->adapt_uncompared_total));
     if (vs->adapt_layer_fits > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "    first macro step (an initial layer): tries estimated again from a second comparison %" PetscInt64_FMT "\n", vs->adapt_layer_fits));

@@ -497,6 +497,7 @@ PetscErrorCode TSVSHMMAdaptReset_Private(TS ts)
   vs->adapt_postponed         = PETSC_FALSE;
   vs->no_separation           = PETSC_FALSE;
   vs->adapt_no_savings.clear();
+  vs->adapt_merged.clear();
   vs->adapt_signed.clear();
   vs->adapt_accepted         = 0;
   vs->adapt_last_ratio       = PETSC_MAX_REAL;
@@ -555,6 +556,7 @@ PetscErrorCode TSVSHMMAdaptSetUp_Private(TS ts)
   if (!vs->savings.empty()) p.ratios = vshmm::timeRatiosFromSavings(vs->savings);
   else {
     p.ratios = SeparatedRatios(ts);
+    vs->adapt_merged.clear();
     if (vs->no_separation) { /* not separated: no savings until a comparison with a single-rate step admits some (VerifySavings()) */
       vs->adapt_candidate = SavingsCandidate(ts, p.ratios);
       PetscCall(PetscInfo(ts, "Adapt: the scales are not separated: no savings%s\n", vs->adapt_candidate.empty() ? "" : " until a single-rate macro step admits them"));
@@ -569,6 +571,8 @@ PetscErrorCode TSVSHMMAdaptSetUp_Private(TS ts)
              first step's estimate stayed at 8 shares over 11 tries) */
           vs->adapt_no_savings.resize(K, PETSC_FALSE);
           vs->adapt_no_savings[l] = PETSC_TRUE;
+          vs->adapt_merged.resize(K, 0.0);
+          vs->adapt_merged[l] = Separation(vs, l);
           PetscCall(PetscInfo(ts, "Adapt: levels %" PetscInt_FMT "/%" PetscInt_FMT " are %.3g apart: no savings between them\n", l, l + 1, (double)Separation(vs, l)));
         }
   }

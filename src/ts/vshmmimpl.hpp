@@ -93,6 +93,7 @@ struct TS_VSHMM {
   PetscBool              adapt_calibrated        = PETSC_FALSE; // the model's split between the terms was measured
   PetscInt               adapt_calibrated_times  = 0;           // calibrations in this solve
   PetscBool              adapt_postponed         = PETSC_FALSE; // the due calibration waited one step (its step was far below its share)
+  std::vector<PetscReal> adapt_merged;                          // per level pair: its separation where adapt took no savings between a decaying pair less than kInitialDecaySeparation apart (0: not merged)
   std::vector<PetscInt>  adapt_negligible;                      // per parameter: this macro step's calibrations in a row that measured its term as negligible
   std::vector<double>    adapt_negligible_reach;                // per parameter: the coarsest value (dt, or r_l) at which its last calibration measured it
   PetscReal              adapt_tstart           = 0.0;          // the time the solve started (the error budget runs from it)
