@@ -112,46 +112,38 @@ LevelAmplification levelAmplification(const StabilityFunction &R, const Mesoscop
 }
 
 namespace {
-// The largest |lambda| of the modes (the scale below which modes count as zero modes).
-double largestModulus(const std::vector<std::complex<double>> &modes)
+// Calls f(|lambda|, |Re lambda|, oscillates) for every mode above 1e-8 of the largest |lambda| (the
+// others are zero modes and not counted).
+template <class F>
+void forEachCountedMode(const std::vector<std::complex<double>> &modes, F f)
 {
   double largest = 0;
   for (const std::complex<double> &lambda : modes) largest = std::max(largest, std::abs(lambda));
-  return largest;
+  for (const std::complex<double> &lambda : modes)
+    if (std::abs(lambda) > 1e-8 * largest) f(std::abs(lambda), std::fabs(lambda.real()), oscillates(lambda));
 }
 } // namespace
 
 double slowestAmplitudeRate(const std::vector<std::complex<double>> &modes, double noise)
 {
-  const double largest = largestModulus(modes);
-  double       slowest = std::numeric_limits<double>::infinity();
-  for (const std::complex<double> &lambda : modes) {
-    const double size = std::abs(lambda), re = std::fabs(lambda.real());
-    if (size > 1e-8 * largest && oscillates(lambda) && re > noise * size) slowest = std::min(slowest, re);
-  }
+  double slowest = std::numeric_limits<double>::infinity();
+  forEachCountedMode(modes, [&](double size, double re, bool osc) {
+    if (osc && re > noise * size) slowest = std::min(slowest, re);
+  });
   return std::isfinite(slowest) ? slowest : 0.0;
 }
 
 bool ambiguousAmplitudeRate(const std::vector<std::complex<double>> &modes)
 {
-  const double largest = largestModulus(modes);
-  for (const std::complex<double> &lambda : modes) {
-    const double size = std::abs(lambda), re = std::fabs(lambda.real());
-    if (size > 1e-8 * largest && oscillates(lambda) && re > kAmplitudeRateCentralNoise * size && re <= kAmplitudeRateNoise * size) return true;
-  }
-  return false;
+  bool ambiguous = false;
+  forEachCountedMode(modes, [&](double size, double re, bool osc) { ambiguous = ambiguous || (osc && re > kAmplitudeRateCentralNoise * size && re <= kAmplitudeRateNoise * size); });
+  return ambiguous;
 }
 
 double slowestRate(const std::vector<std::complex<double>> &modes, double noise)
 {
-  const double largest = largestModulus(modes);
-  double       slowest = std::numeric_limits<double>::infinity();
-  for (const std::complex<double> &lambda : modes) {
-    const double size = std::abs(lambda), re = std::fabs(lambda.real());
-    if (!(size > 1e-8 * largest)) continue;
-    const bool amplitude = oscillates(lambda) && re > noise * size;
-    slowest              = std::min(slowest, amplitude ? re : size);
-  }
+  double slowest = std::numeric_limits<double>::infinity();
+  forEachCountedMode(modes, [&](double size, double re, bool osc) { slowest = std::min(slowest, (osc && re > noise * size) ? re : size); });
   return std::isfinite(slowest) ? slowest : 0.0;
 }
 

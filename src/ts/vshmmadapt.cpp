@@ -562,19 +562,20 @@ PetscErrorCode TSVSHMMAdaptSetUp_Private(TS ts)
       PetscCall(PetscInfo(ts, "Adapt: the scales are not separated: no savings%s\n", vs->adapt_candidate.empty() ? "" : " until a single-rate macro step admits them"));
       p.ratios.assign(K, 1.0);
     } else
-      for (PetscInt l = 0; l < K; ++l)
-        if ((PetscInt)vs->separations.size() <= l && LevelDecays(vs, l + 1) && Separation(vs, l) <= kInitialDecaySeparation) {
-          /* a decaying pair not even kInitialDecaySeparation apart, among separated ones: no savings
-             between them (their start is r_l = 1, which a calibration cannot coarsen: its term
-             read 0, and the choice took the ratio as free; the dissipative example at eps = 3e-2,
-             pair 1/2 1.31 apart, raised r_2 to 3.1, an effective separation of 0.4, and the
-             first step's estimate stayed at 8 shares over 11 tries) */
-          vs->adapt_no_savings.resize(K, PETSC_FALSE);
-          vs->adapt_no_savings[l] = PETSC_TRUE;
-          vs->adapt_merged.resize(K, 0.0);
-          vs->adapt_merged[l] = Separation(vs, l);
-          PetscCall(PetscInfo(ts, "Adapt: levels %" PetscInt_FMT "/%" PetscInt_FMT " are %.3g apart: no savings between them\n", l, l + 1, (double)Separation(vs, l)));
-        }
+      for (PetscInt l = 0; l < K; ++l) {
+        /* a decaying pair not even kInitialDecaySeparation apart, among separated ones: no savings
+           between them (their start is r_l = 1, which a calibration cannot coarsen: its term
+           read 0, and the choice took the ratio as free; the dissipative example at eps = 3e-2,
+           pair 1/2 1.31 apart, raised r_2 to 3.1, an effective separation of 0.4, and the
+           first step's estimate stayed at 8 shares over 11 tries) */
+        const PetscReal S = Separation(vs, l);
+        if ((PetscInt)vs->separations.size() > l || !LevelDecays(vs, l + 1) || S > kInitialDecaySeparation) continue;
+        vs->adapt_no_savings.resize(K, PETSC_FALSE);
+        vs->adapt_no_savings[l] = PETSC_TRUE;
+        vs->adapt_merged.resize(K, 0.0);
+        vs->adapt_merged[l] = S;
+        PetscCall(PetscInfo(ts, "Adapt: levels %" PetscInt_FMT "/%" PetscInt_FMT " are %.3g apart: no savings between them\n", l, l + 1, (double)S));
+      }
   }
   LimitToStableSteps(ts, p);
   const vshmm::AdaptBounds b = Bounds(ts, DeltaT);
