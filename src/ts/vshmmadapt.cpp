@@ -395,8 +395,8 @@ static bool SteadyStep(TS_VSHMM *vs, const vshmm::AdaptParameters &p, const vshm
 
   if (!vs->adapt_calibrated || !FasterLevelsDecay(vs) || vs->adapt_uncompared >= kMaxUncompared) return false;
   if (!(b.maxCycle > 0) || vshmm::cycleLength(p) < 0.999 * b.maxCycle || (!b.fixedMicroStep && p.microStep < 0.999 * b.maxMicroStep)) return false; /* something left to coarsen */
-  const bool agree = last < kMissFactor * prev && prev < kMissFactor * last;
-  return last < 1.0 / kUncomparedBelow && prev < 1.0 / kUncomparedBelow && agree;
+  const bool steady = last < kMissFactor * prev;                                                                                                    /* not rising: a fall only makes the model's prediction (the last estimate) an overestimate */
+  return last < 1.0 / kUncomparedBelow && prev < 1.0 / kUncomparedBelow && steady;
 }
 
 /* The first time ratios of -ts_vshmm_adapt as if every pair were separated. */
