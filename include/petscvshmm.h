@@ -136,6 +136,8 @@ PETSC_EXTERN PetscErrorCode TSVSHMMSetStabilityCheck(TS, PetscBool, PetscInt);
 PETSC_EXTERN PetscErrorCode TSVSHMMGetStabilityCheck(TS, PetscBool *, PetscInt *);
 PETSC_EXTERN PetscErrorCode TSVSHMMSetAdapt(TS, PetscBool);
 PETSC_EXTERN PetscErrorCode TSVSHMMGetAdapt(TS, PetscBool *);
+PETSC_EXTERN PetscErrorCode TSVSHMMSetAdaptSlowComponents(TS, PetscBool);
+PETSC_EXTERN PetscErrorCode TSVSHMMGetAdaptSlowComponents(TS, PetscBool *);
 PETSC_EXTERN PetscErrorCode TSVSHMMSetObservables(TS, PetscInt, PetscErrorCode (*)(TS, PetscReal, Vec, PetscReal[], void *), void *);
 PETSC_EXTERN PetscErrorCode TSVSHMMSetScaleSeparations(TS, PetscInt, const PetscReal[]);
 PETSC_EXTERN PetscErrorCode TSVSHMMGetScaleSeparations(TS, PetscInt *, const PetscReal *[]);

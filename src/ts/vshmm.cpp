@@ -467,6 +467,9 @@ static PetscErrorCode TSSetFromOptions_VSHMM(TS ts, PetscOptionItems *PetscOptio
     PetscBool adapt = vs->adapt;
     PetscCall(VSHMMOptionsBool(PetscOptionsObject, obj, "-ts_vshmm_adapt", "Choose the micro step and savings factors not set from the TS tolerances -ts_rtol, -ts_atol", "TSVSHMMSetAdapt", &adapt, &set));
     if (set) PetscCall(TSVSHMMSetAdapt(ts, adapt));
+    PetscBool slow = vs->adapt_slow_components;
+    PetscCall(VSHMMOptionsBool(PetscOptionsObject, obj, "-ts_vshmm_adapt_slow_components", "With observables, control the error of the slow components (written by the slowest splits only) too", "TSVSHMMSetAdaptSlowComponents", &slow, &set));
+    if (set) PetscCall(TSVSHMMSetAdaptSlowComponents(ts, slow));
 
     TSVSHMMSeparationCheck sep = vs->check_separation;
     PetscCall(VSHMMOptionsEnum(PetscOptionsObject, obj, "-ts_vshmm_check_separation", "What to do where the scales are not separated", "TSVSHMMSetSeparationCheck", TSVSHMMSeparationChecks, &sep, &set));
@@ -553,6 +556,9 @@ static PetscErrorCode TSView_VSHMM(TS ts, PetscViewer viewer)
     PetscCall(PetscViewerASCIIPrintf(viewer, "  accuracy control (-ts_vshmm_adapt): rtol %g, atol %g on %s; savings factors %s\n", (double)ts->rtol, (double)ts->atol, vs->observables ? "the observables" : "the whole state (weighted norm)", what.c_str()));
     PetscCall(PetscViewerASCIIPrintf(viewer, "    error estimate: last macro step %g, sum over the run %g (1 = the tolerance); %" PetscInt64_FMT " calibrations, %" PetscInt64_FMT " rejected macro steps, %" PetscInt64_FMT " split RHS evaluations for estimates and rejected steps\n",
                                      (double)vs->error_estimate, (double)vs->error_estimate_total, vs->adapt_calibrations, vs->adapt_rejections, vs->adapt_evaluations));
+    if (vs->observables && vs->slow_count > 0)
+      PetscCall(PetscViewerASCIIPrintf(viewer, "    with the observables, the %" PetscInt_FMT " slow component%s (written by the slowest splits only, -ts_vshmm_adapt_slow_components): %" PetscInt64_FMT " of the differences led by %s\n", vs->slow_count, vs->slow_count == 1 ? "" : "s", vs->slow_led, vs->slow_count == 1 ? "it" : "them"));
+    else if (vs->observables && !vs->adapt_slow_components) PetscCall(PetscViewerASCIIPrintf(viewer, "    the observables only (-ts_vshmm_adapt_slow_components false)\n"));
     for (size_t l = 0; l < vs->adapt_merged.size(); ++l)
       if (vs->adapt_merged[l] > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "    levels %d/%d: no savings between them (they are %.3g apart, less than 2, and the faster only decays)\n", (int)l, (int)l + 1, (double)vs->adapt_merged[l]));
     if (vs->adapt_uncompared_total > 0)
@@ -807,6 +813,21 @@ static PetscErrorCode TSVSHMMSetObservables_VSHMM(TS ts, PetscInt n, PetscErrorC
   PetscFunctionReturn(0);
 }
 
+static PetscErrorCode TSVSHMMSetAdaptSlowComponents_VSHMM(TS ts, PetscBool flg)
+{
+  PetscFunctionBegin;
+  ((TS_VSHMM *)ts->data)->adapt_slow_components = flg;
+  PetscCall(TSVSHMMInvalidateSetUp_Private(ts));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode TSVSHMMGetAdaptSlowComponents_VSHMM(TS ts, PetscBool *flg)
+{
+  PetscFunctionBegin;
+  *flg = ((TS_VSHMM *)ts->data)->adapt_slow_components;
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode TSVSHMMSetSeparationCheck_VSHMM(TS ts, TSVSHMMSeparationCheck check)
 {
   PetscFunctionBegin;
@@ -877,6 +898,7 @@ static PetscErrorCode TSVSHMMResetStatistics_VSHMM(TS ts)
   vs->adapt_calibrations     = 0;
   vs->adapt_uncompared_total = 0;
   vs->adapt_layer_fits       = 0;
+  vs->slow_led               = 0;
   vs->warned_ratio.assign(nscales, 0.0);
   vs->fast_energy_min    = 0;
   vs->fast_energy_warned = 0;
@@ -906,6 +928,8 @@ static PetscErrorCode TSVSHMMResetStatistics_VSHMM(TS ts)
   X(TSVSHMMSetAdapt) \
   X(TSVSHMMGetAdapt) \
   X(TSVSHMMSetObservables) \
+  X(TSVSHMMSetAdaptSlowComponents) \
+  X(TSVSHMMGetAdaptSlowComponents) \
   X(TSVSHMMSetScaleSeparations) \
   X(TSVSHMMGetScaleSeparations) \
   X(TSVSHMMSetSeparationCheck) \

@@ -115,6 +115,70 @@ static PetscErrorCode ObservableDifference(TS ts, PetscReal t, Vec Xa, Vec Xb, P
     sum += std::isfinite(e) ? e * e : kBlownUp;
   }
   *norm = std::sqrt(sum / vs->nobservables);
+  if (vs->slow_mask) {
+    /* the slow components, weighed as the observables: an error there that the observables do not
+       show yet becomes theirs at later sampled times (a slow oscillator's velocity) */
+    const PetscScalar *a, *b, *m;
+    PetscInt           n;
+    PetscReal          ssum = 0;
+    PetscCall(VecGetLocalSize(Xa, &n));
+    PetscCall(VecGetArrayRead(Xa, &a));
+    PetscCall(VecGetArrayRead(Xb, &b));
+    PetscCall(VecGetArrayRead(vs->slow_mask, &m));
+    for (PetscInt i = 0; i < n; ++i) {
+      if (PetscRealPart(m[i]) == 0) continue;
+      const PetscReal w = ts->atol + ts->rtol * PetscMax(PetscAbsScalar(a[i]), PetscAbsScalar(b[i]));
+      const PetscReal e = PetscAbsScalar(b[i] - a[i]) / w;
+      ssum += std::isfinite(e) ? e * e : kBlownUp;
+    }
+    PetscCall(VecRestoreArrayRead(vs->slow_mask, &m));
+    PetscCall(VecRestoreArrayRead(Xb, &b));
+    PetscCall(VecRestoreArrayRead(Xa, &a));
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &ssum, 1, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)ts)));
+    const PetscReal slow = std::sqrt(ssum / vs->slow_count);
+    vs->slow_last        = slow > *norm ? PETSC_TRUE : PETSC_FALSE;
+    if (slow > *norm) {
+      *norm = slow;
+      vs->slow_led++;
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The slow components controlled with the observables (TSVSHMMSetAdaptSlowComponents()): those
+   the slowest level's splits write and no faster split does. None where every split is additive. */
+static PetscErrorCode SlowComponentsSetUp(TS ts)
+{
+  TS_VSHMM *vs = (TS_VSHMM *)ts->data;
+  Vec       faster;
+
+  PetscFunctionBegin;
+  PetscCall(VecDestroy(&vs->slow_mask));
+  vs->slow_count = 0;
+  if (!vs->observables || !vs->adapt_slow_components || vs->level_end.size() < 2) PetscFunctionReturn(0);
+  PetscCall(VecDuplicate(ts->vec_sol, &vs->slow_mask));
+  PetscCall(VecDuplicate(ts->vec_sol, &faster));
+  PetscCall(VecSet(vs->slow_mask, 0.0));
+  PetscCall(VecSet(faster, 0.0));
+  for (PetscInt k = 0; k < (PetscInt)vs->splits.size(); ++k) { /* 1 on the components each split writes */
+    PetscCall(VecSet(vs->splits[k].F, 1.0));
+    PetscCall(TSVSHMMAddSplit_Private(vs, k, ts->ptime, vs->splits[k].F, k < vs->level_end[0] ? vs->slow_mask : faster));
+  }
+  PetscScalar       *m;
+  const PetscScalar *f;
+  PetscInt           n, count = 0;
+  PetscCall(VecGetLocalSize(faster, &n));
+  PetscCall(VecGetArray(vs->slow_mask, &m));
+  PetscCall(VecGetArrayRead(faster, &f));
+  for (PetscInt i = 0; i < n; ++i) {
+    m[i] = (PetscRealPart(m[i]) != 0 && PetscRealPart(f[i]) == 0) ? 1.0 : 0.0;
+    count += PetscRealPart(m[i]) != 0 ? 1 : 0;
+  }
+  PetscCall(VecRestoreArrayRead(faster, &f));
+  PetscCall(VecRestoreArray(vs->slow_mask, &m));
+  PetscCall(VecDestroy(&faster));
+  PetscCall(MPIU_Allreduce(&count, &vs->slow_count, 1, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)ts)));
+  if (vs->slow_count == 0) PetscCall(VecDestroy(&vs->slow_mask));
   PetscFunctionReturn(0);
 }
 
@@ -490,6 +554,9 @@ PetscErrorCode TSVSHMMAdaptReset_Private(TS ts)
   PetscFunctionBegin;
   PetscCall(VecDestroy(&vs->Xtrial));
   PetscCall(VecDestroy(&vs->Xbase));
+  PetscCall(VecDestroy(&vs->slow_mask));
+  vs->slow_count              = 0;
+  vs->slow_steps              = 0;
   vs->adapt_ready             = PETSC_FALSE;
   vs->adapt_since_calibration = 0;
   vs->adapt_calibrated        = PETSC_FALSE;
@@ -531,6 +598,7 @@ PetscErrorCode TSVSHMMAdaptSetUp_Private(TS ts)
   }
   PetscCall(VecDuplicate(ts->vec_sol, &vs->Xtrial));
   PetscCall(VecDuplicate(ts->vec_sol, &vs->Xbase));
+  PetscCall(SlowComponentsSetUp(ts));
   if (vs->spectra_time != ts->ptime || (PetscInt)vs->level_radius.size() != nscales) PetscCall(TSVSHMMLevelSpectra_Private(ts));
   const PetscReal DeltaT = ts->time_step, tol = PetscMax(PetscMax(ts->rtol, ts->atol), 1e-12);
   const PetscReal rho = vs->level_radius[K];
@@ -613,6 +681,7 @@ static PetscReal StepBudget(TS ts, PetscReal DeltaT)
 
   if (!(span > 0)) return 1.0;
   PetscReal gamma = 0.5;
+  if (vs->slow_steps > 0) return PetscMin(1.0, DeltaT / span);
   if (vs->adapt_accepted >= kCoherenceSteps && !vs->adapt_signed.empty() && vs->error_estimate_total > 0) {
     PetscReal S = 0;
     for (PetscReal x : vs->adapt_signed) S += x * x;
@@ -1150,6 +1219,7 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
     vs->error_estimate = E;
     vs->error_estimate_total += E;
     vs->adapt_accepted++;
+    if (vs->slow_mask && vs->slow_last && d > 0) vs->slow_steps++;
     if (vs->observables && std::isfinite(E) && d > 0 && vs->step_signed.size() == (size_t)vs->nobservables) { /* the signed error, for the budget's gamma */
       vs->adapt_signed.resize(vs->nobservables, 0.0);
       for (PetscInt i = 0; i < vs->nobservables; ++i) vs->adapt_signed[i] += vs->step_signed[i] * E / d;

@@ -594,11 +594,12 @@ PetscErrorCode TSVSHMMGetAdapt(TS ts, PetscBool *flg)
    (dissipative scales). Where they oscillate, the state at a sampled time carries the fast phases,
    which VSHMM does not compute accurately: name the slow quantities (for two oscillators, their
    energies or amplitudes). Each quantity q_i is weighed by atol + rtol |q_i|. Pass f = NULL to go
-   back to the whole state.
+   back to the whole state. The components that only the slowest scale's splits write are
+   controlled together with the observables (`TSVSHMMSetAdaptSlowComponents()`).
 
    Level: intermediate
 
-.seealso: `TSVSHMM`, `TSVSHMMSetAdapt()`, `TSSetTolerances()`
+.seealso: `TSVSHMM`, `TSVSHMMSetAdapt()`, `TSSetTolerances()`, `TSVSHMMSetAdaptSlowComponents()`
 @*/
 PetscErrorCode TSVSHMMSetObservables(TS ts, PetscInt n, PetscErrorCode (*f)(TS, PetscReal, Vec, PetscReal[], void *), void *ctx)
 {
@@ -606,6 +607,66 @@ PetscErrorCode TSVSHMMSetObservables(TS ts, PetscInt n, PetscErrorCode (*f)(TS, 
   PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
   PetscCheck(!f || n >= 1, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "TSVSHMMSetObservables(): the number of observables is %" PetscInt_FMT ": it must be at least 1", n);
   PetscTryMethod(ts, "TSVSHMMSetObservables_C", (TS, PetscInt, PetscErrorCode(*)(TS, PetscReal, Vec, PetscReal[], void *), void *), (ts, n, f, ctx));
+  PetscFunctionReturn(0);
+}
+
+/*@
+   TSVSHMMSetAdaptSlowComponents - Sets whether `TSVSHMMSetAdapt()` controls the error of the slow components together with the observables
+
+   Logically Collective
+
+   Input Parameters:
++  ts  - the `TS` of type `TSVSHMM`
+-  flg - `PETSC_TRUE` (the default) to control them too, `PETSC_FALSE` to control the observables only
+
+   Options Database Key:
+.  -ts_vshmm_adapt_slow_components <true,false> - control the slow components too
+
+   Notes:
+   The slow components are those that only the slowest scale's splits write (component splits,
+   `TSRHSSplitSetIS()`: none where every split is additive). With observables
+   (`TSVSHMMSetObservables()`) the error estimate of a macro step is the larger of the observables'
+   difference and the slow components' difference, in the weighted norm of the TS tolerances:
+   an error in a slow component that the observables do not show at the end of one macro step
+   (the velocity of a slow oscillator whose position is observed) becomes their error at later
+   sampled times, and an estimate of the observables alone misses it (such a run ended 12 times
+   its tolerance off). Set `PETSC_FALSE` where slow components do not feed the observables (they
+   are then left uncontrolled). Without observables the whole state is controlled anyway.
+
+   Level: intermediate
+
+.seealso: `TSVSHMM`, `TSVSHMMSetAdapt()`, `TSVSHMMSetObservables()`, `TSVSHMMGetAdaptSlowComponents()`
+@*/
+PetscErrorCode TSVSHMMSetAdaptSlowComponents(TS ts, PetscBool flg)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  PetscValidLogicalCollectiveBool(ts, flg, 2);
+  PetscTryMethod(ts, "TSVSHMMSetAdaptSlowComponents_C", (TS, PetscBool), (ts, flg));
+  PetscFunctionReturn(0);
+}
+
+/*@
+   TSVSHMMGetAdaptSlowComponents - Tells whether `TSVSHMMSetAdapt()` controls the slow components together with the observables
+
+   Not Collective
+
+   Input Parameter:
+.  ts - the `TS` of type `TSVSHMM`
+
+   Output Parameter:
+.  flg - `PETSC_TRUE` if it does
+
+   Level: intermediate
+
+.seealso: `TSVSHMM`, `TSVSHMMSetAdaptSlowComponents()`
+@*/
+PetscErrorCode TSVSHMMGetAdaptSlowComponents(TS ts, PetscBool *flg)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  PetscValidBoolPointer(flg, 2);
+  PetscUseMethod(ts, "TSVSHMMGetAdaptSlowComponents_C", (TS, PetscBool *), (ts, flg));
   PetscFunctionReturn(0);
 }
 

@@ -51,6 +51,7 @@ struct TS_VSHMM {
   PetscInt                  nobservables                                 = 0; // 0: the whole state in the TS's weighted norm
   PetscErrorCode (*observables)(TS, PetscReal, Vec, PetscReal[], void *) = nullptr;
   void       *observables_ctx                                            = nullptr;
+  PetscBool   adapt_slow_components                                      = PETSC_TRUE;  // with observables, the components only the slowest level's splits write are controlled too
   PetscViewer warnings                                                   = nullptr;     // where the warnings go (NULL: PETSC_STDERR)
   PetscBool   warnings_none                                              = PETSC_FALSE; // no warnings at all (TSVSHMMSetWarningsViewer(ts, NULL))
 
@@ -101,6 +102,11 @@ struct TS_VSHMM {
   PetscBool              floor_warned           = PETSC_FALSE;  // told that the estimate does not fall
   PetscReal              adapt_single_rate_from = -1;           // the start of the macro step from which the tolerance left no savings (-1: none)
   Vec                    Xtrial = nullptr, Xbase = nullptr;
+  Vec                    slow_mask  = nullptr;     // 1 on the slow components (written by the slowest level's splits only) where they are controlled with the observables
+  PetscInt               slow_count = 0;           // their number (global)
+  PetscInt64             slow_led   = 0;           // differences in which they led (statistics)
+  PetscBool              slow_last  = PETSC_FALSE; // they led the last difference
+  PetscInt               slow_steps = 0;           // accepted steps whose estimate they led
   std::vector<PetscReal> obs_a, obs_b;
   std::vector<PetscReal> obs_diff;           // the last ObservableDifference, signed and weighted, per observable
   std::vector<PetscReal> step_signed;        // that of the last comparison of the step being taken
