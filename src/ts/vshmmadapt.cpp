@@ -681,7 +681,7 @@ static PetscReal StepBudget(TS ts, PetscReal DeltaT)
 
   if (!(span > 0)) return 1.0;
   PetscReal gamma = 0.5;
-  if (vs->slow_steps > 0) return PetscMin(1.0, DeltaT / span);
+  if (vs->slow_steps > 0 && !LevelDecays(vs, 0)) return PetscMin(1.0, DeltaT / span);
   if (vs->adapt_accepted >= kCoherenceSteps && !vs->adapt_signed.empty() && vs->error_estimate_total > 0) {
     PetscReal S = 0;
     for (PetscReal x : vs->adapt_signed) S += x * x;
