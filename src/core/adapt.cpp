@@ -147,7 +147,8 @@ ErrorModel ErrorModel::fromDifferences(const AdaptParameters &p, const std::vect
   m.saturation = saturation;
   // a parameter coarsened by less than 10% is taken as not measurable (its coefficient 0)
   const double u = microUnit(coarse[0], order) - microUnit(p, order);
-  m.cMicro       = coarse[0].microStep > 1.1 * p.microStep ? d[0] / u : 0.0;
+  // a finer micro step (the coarser one unstable) measures the term from the other side
+  m.cMicro = coarse[0].microStep > 1.1 * p.microStep ? d[0] / u : coarse[0].microStep < p.microStep / 1.1 ? d[0] / -u : 0.0;
   m.c.resize(p.ratios.size());
   for (size_t l = 0; l < p.ratios.size(); ++l) {
     const double x = coarse[1 + l].ratios[l] - p.ratios[l], v = m.unit(coarse[1 + l], (int)l) - m.unit(p, (int)l);

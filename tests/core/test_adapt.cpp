@@ -27,6 +27,24 @@ TEST(Adapt, TimeRatiosAndSavingsFactorsAreInverse)
   EXPECT_EQ(savingsFromTimeRatios({1.0, 1.0}), (std::vector<double>{0.0, 0.0}));
 }
 
+// The micro step's term measured from the finer side (its coarser run unstable): a run at 3/4 of
+// the micro step differs by the term times 1 - 0.75^4, and the model reads the term itself.
+TEST(Adapt, TheMicroStepsTermFromTheFinerSide)
+{
+  const AdaptParameters        now{1e-6, {50, 20}};
+  const double                 cdt   = 1e23;
+  auto                         error = [&](const AdaptParameters &p) { return cdt * std::pow(p.microStep, 4) / (p.ratios[0] * p.ratios[1]); };
+  std::vector<AdaptParameters> coarse{coarsened(now, 0, 0.75), now, now};
+  std::vector<double>          d{error(now) - error(coarse[0]), 0.0, 0.0};
+  EXPECT_DOUBLE_EQ(coarse[0].microStep, 0.75e-6);
+  const ErrorModel model = ErrorModel::fromDifferences(now, coarse, d, 4);
+  EXPECT_NEAR(model.cMicro, cdt, 1e-9 * cdt);
+  EXPECT_NEAR(model.term(now, 0), d[0] / (1 - std::pow(0.75, 4)), 1e-12 * error(now));
+  // a micro step changed by less than 10% either way measures nothing
+  coarse[0] = coarsened(now, 0, 0.95);
+  EXPECT_EQ(ErrorModel::fromDifferences(now, coarse, d, 4).cMicro, 0.0);
+}
+
 // A synthetic macro step whose error is exactly the model's: the choice meets the target with
 // the shares the least-work rule gives, and refines the term that dominates.
 TEST(Adapt, ChoiceMeetsTheTargetWithEqualShares)
