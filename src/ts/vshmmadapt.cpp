@@ -159,12 +159,8 @@ static PetscErrorCode SlowComponentsSetUp(TS ts)
   if (!vs->observables || !vs->adapt_slow_components || vs->level_end.size() < 2) PetscFunctionReturn(0);
   PetscCall(VecDuplicate(ts->vec_sol, &vs->slow_mask));
   PetscCall(VecDuplicate(ts->vec_sol, &faster));
-  PetscCall(VecSet(vs->slow_mask, 0.0));
-  PetscCall(VecSet(faster, 0.0));
-  for (PetscInt k = 0; k < (PetscInt)vs->splits.size(); ++k) { /* 1 on the components each split writes */
-    PetscCall(VecSet(vs->splits[k].F, 1.0));
-    PetscCall(TSVSHMMAddSplit_Private(vs, k, ts->ptime, vs->splits[k].F, k < vs->level_end[0] ? vs->slow_mask : faster));
-  }
+  PetscCall(TSVSHMMWrittenComponents_Private(vs, 0, vs->level_end[0], ts->ptime, vs->slow_mask));
+  PetscCall(TSVSHMMWrittenComponents_Private(vs, vs->level_end[0], (PetscInt)vs->splits.size(), ts->ptime, faster));
   PetscScalar       *m;
   const PetscScalar *f;
   PetscInt           n, count = 0;

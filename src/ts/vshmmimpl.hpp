@@ -159,7 +159,8 @@ PETSC_INTERN PetscErrorCode TSVSHMMWarn_Private(TS, const char[], ...) PETSC_ATT
 /* vshmmlevel.cpp: the levels' fields and steps, their log events */
 PETSC_INTERN PetscErrorCode TSVSHMMEvaluateLevel_Private(TS_VSHMM *, PetscInt, PetscReal, Vec, Vec);
 PETSC_INTERN PetscErrorCode TSVSHMMEvaluateOwnSplits_Private(TS_VSHMM *, PetscInt, PetscReal, Vec, Vec);
-PETSC_INTERN PetscErrorCode TSVSHMMAddSplit_Private(TS_VSHMM *, PetscInt, PetscReal, Vec, Vec); /* G += output F of split k, in place or by its scatter */
+PETSC_INTERN PetscErrorCode TSVSHMMAddSplit_Private(TS_VSHMM *, PetscInt, PetscReal, Vec, Vec);               /* G += output F of split k, in place or by its scatter */
+PETSC_INTERN PetscErrorCode TSVSHMMWrittenComponents_Private(TS_VSHMM *, PetscInt, PetscInt, PetscReal, Vec); /* mask = 0, then += 1 on every component splits [first, end) write */
 PETSC_INTERN PetscErrorCode TSVSHMMCreateSchedule_Private(TS, PetscReal, std::unique_ptr<vshmm::MesoscopicSchedule> &);
 PETSC_INTERN PetscErrorCode TSVSHMMRunMacroStep_Private(TS, const vshmm::MesoscopicSchedule &, PetscReal, PetscReal, Vec, vshmm::MacroStepCounts *);
 PETSC_INTERN PetscErrorCode TSVSHMMGetLevelEvent_Private(PetscInt, PetscLogEvent *);

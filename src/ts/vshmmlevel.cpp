@@ -94,6 +94,19 @@ PetscErrorCode TSVSHMMAddSplit_Private(TS_VSHMM *vs, PetscInt k, PetscReal t, Ve
   PetscFunctionReturn(0);
 }
 
+/* mask = the number of splits among [first, end) that write each component (0 where none does):
+   each split's output of ones added as its values are. */
+PetscErrorCode TSVSHMMWrittenComponents_Private(TS_VSHMM *vs, PetscInt first, PetscInt end, PetscReal t, Vec mask)
+{
+  PetscFunctionBegin;
+  PetscCall(VecSet(mask, 0.0));
+  for (PetscInt k = first; k < end; ++k) {
+    PetscCall(VecSet(vs->splits[k].F, 1.0));
+    PetscCall(TSVSHMMAddSplit_Private(vs, k, t, vs->splits[k].F, mask));
+  }
+  PetscFunctionReturn(0);
+}
+
 /* G = f_first(t,Y) + ... + f_{end-1}(t,Y): each split function called with the full state
    (counting: the calls count as the steps', per split). */
 static PetscErrorCode EvaluateSplits(TS_VSHMM *vs, PetscInt first, PetscInt end, PetscReal t, Vec Y, Vec G, PetscBool counting)

@@ -516,11 +516,7 @@ PetscErrorCode TSVSHMMLevelOwnRates_Private(TS ts)
     }
     Vec mask; /* 1 on the components the level's new splits write, added as their outputs are */
     PetscCall(VecDuplicate(ts->vec_sol, &mask));
-    PetscCall(VecSet(mask, 0.0));
-    for (PetscInt k = vs->level_end[level - 1]; k < vs->level_end[level]; ++k) {
-      PetscCall(VecSet(vs->splits[k].F, 1.0));
-      PetscCall(TSVSHMMAddSplit_Private(vs, k, ts->ptime, vs->splits[k].F, mask));
-    }
+    PetscCall(TSVSHMMWrittenComponents_Private(vs, vs->level_end[level - 1], vs->level_end[level], ts->ptime, mask));
     PetscBool finite = PETSC_FALSE;
     double    noise;
     PetscCall(OwnBlockRitzValues(ts, level, mask, PETSC_FALSE, ritz, &finite, &noise));
