@@ -771,11 +771,13 @@ static PetscErrorCode Compare(TS ts, const vshmm::AdaptParameters &p, PetscReal 
     *d = kBlownUp;
     vs->obs_diff.clear();
     vs->step_signed.clear();
+    vs->step_slow = PETSC_FALSE;
     PetscFunctionReturn(0);
   }
   PetscCall(ObservableDifference(ts, t0 + DeltaT, vs->Xbase, vs->Xtrial, d));
   PetscCall(PetscInfo(ts, "Adapt: comparison dt %g, cycle %g: difference %g\n", (double)q->microStep, (double)vshmm::cycleLength(*q), (double)*d));
   vs->step_signed = vs->obs_diff;
+  vs->step_slow   = vs->slow_last; /* the calibrations and the layer's second comparison that may follow do not change it */
   PetscFunctionReturn(0);
 }
 
@@ -1234,7 +1236,7 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
     vs->error_estimate = E;
     vs->error_estimate_total += E;
     vs->adapt_accepted++;
-    if (vs->slow_mask && vs->slow_last && d > 0) vs->slow_steps++;
+    if (vs->slow_mask && vs->step_slow && d > 0) vs->slow_steps++;
     if (vs->observables && std::isfinite(E) && d > 0 && vs->step_signed.size() == (size_t)vs->nobservables) { /* the signed error, for the budget's gamma */
       vs->adapt_signed.resize(vs->nobservables, 0.0);
       for (PetscInt i = 0; i < vs->nobservables; ++i) vs->adapt_signed[i] += vs->step_signed[i] * E / d;

@@ -106,6 +106,7 @@ struct TS_VSHMM {
   PetscInt               slow_count = 0;           // their number (global)
   PetscInt64             slow_led   = 0;           // differences in which they led (statistics)
   PetscBool              slow_last  = PETSC_FALSE; // they led the last difference
+  PetscBool              step_slow  = PETSC_FALSE; // they led the last comparison of the step being taken
   PetscInt               slow_steps = 0;           // accepted steps whose estimate they led
   std::vector<PetscReal> obs_a, obs_b;
   std::vector<PetscReal> obs_diff;           // the last ObservableDifference, signed and weighted, per observable
