@@ -664,21 +664,22 @@ PetscErrorCode TSVSHMMAdaptSetUp_Private(TS ts)
   PetscFunctionReturn(0);
 }
 
-/* The share of the tolerance of a macro step of length DeltaT (the weighted norm's 1 over the run). */
-/* Each macro step's share of the tolerance, (DeltaT / span)^gamma: gamma = 1/2 where the steps'
+/* Each macro step's share of the tolerance (the weighted norm's 1 over the run), (DeltaT / span)^gamma: gamma = 1/2 where the steps'
    errors add like a random walk (the sum of N of them grows like sqrt(N)), gamma = 1 where they add
    coherently (like N: a drift, the stiff-spring chain's I, the dissipative example's xi at eps =
    1e-4). With observables gamma is measured from the signed estimates of the accepted steps: their
    sum S against their mean size e over k >= 4 steps, S ~ e k^gamma; without observables, and
-   before, 1/2. */
+   before, 1/2. Where the slow components (SlowComponentsSetUp()) have led an accepted step's
+   estimate and the slowest level oscillates, 1: their signed sums cannot show a velocity error
+   rotated into the position. */
 static PetscReal StepBudget(TS ts, PetscReal DeltaT)
 {
   TS_VSHMM       *vs   = (TS_VSHMM *)ts->data;
   const PetscReal span = RunSpan(ts);
 
   if (!(span > 0)) return 1.0;
-  PetscReal gamma = 0.5;
   if (vs->slow_steps > 0 && !LevelDecays(vs, 0)) return PetscMin(1.0, DeltaT / span);
+  PetscReal gamma = 0.5;
   if (vs->adapt_accepted >= kCoherenceSteps && !vs->adapt_signed.empty() && vs->error_estimate_total > 0) {
     PetscReal S = 0;
     for (PetscReal x : vs->adapt_signed) S += x * x;
