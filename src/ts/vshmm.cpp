@@ -45,6 +45,7 @@ static PetscErrorCode TSVSHMMTearDown_Private(TS ts)
   vs->level_end.clear();
   PetscCall(VecDestroy(&vs->Y));
   PetscCall(VecDestroy(&vs->X0));
+  PetscCall(VecDestroy(&vs->radius_vec));
   for (Vec &k : vs->K) PetscCall(VecDestroy(&k));
   vs->K.clear();
   vs->schedule.reset();
@@ -338,7 +339,7 @@ static PetscErrorCode TSStep_VSHMM(TS ts)
   PetscCheck(dt > kMinMicroStepFraction * DeltaT || last, comm, PETSC_ERR_ARG_OUTOFRANGE, "-ts_vshmm_micro_dt %g is below the time resolution of the macro step DeltaT = %g: the micro step must exceed %g DeltaT", (double)dt, (double)DeltaT, (double)kMinMicroStepFraction);
   if (vs->stability_interval > 0 && ts->steps > 0 && ts->steps % vs->stability_interval == 0) {
     PetscCall(TSVSHMMCheckStability_Private(ts));
-    if (vs->adapt) PetscCall(TSVSHMMCheckSeparation_Private(ts));
+    if (vs->adapt) PetscCall(TSVSHMMAdaptCheckSeparation_Private(ts));
   }
   if (!vs->adapt && (!vs->schedule || vs->schedule->microStep() != dt)) PetscCall(TSVSHMMCreateSchedule_Private(ts, dt, vs->schedule));
   PetscCall(VecCopy(ts->vec_sol, vs->X0));
@@ -546,9 +547,12 @@ static PetscErrorCode TSView_VSHMM(TS ts, PetscViewer viewer)
     for (PetscReal r : vs->adapt_verified) admitted += (admitted.empty() ? "" : ", ") + std::to_string(r).substr(0, 6);
     const bool any = TSVSHMMSavingsAdmitted_Private(vs);
     char       from[32];
+    char       separated[32];
     PetscCall(PetscSNPrintf(from, sizeof from, "%g", (double)vs->adapt_single_rate_from));
+    PetscCall(PetscSNPrintf(separated, sizeof separated, "%g", (double)vs->separated_from));
     const std::string what = !vs->savings.empty()                                          ? "set"
                              : !vs->no_separation && vs->adapt_single_rate_from >= 0       ? "none from t = " + std::string(from) + " on (the tolerance is out of reach with savings: single-rate Runge-Kutta steps)"
+                             : !vs->no_separation && vs->separated_from >= 0               ? "chosen from t = " + std::string(separated) + " on (the scales were not separated before)"
                              : !vs->no_separation                                          ? "chosen"
                              : any                                                         ? "chosen up to the time ratios " + admitted + " (scales not separated; admitted by a comparison with a single-rate macro step)"
                              : !vs->adapt_candidate.empty() && !vs->adapt_verified.empty() ? "none (scales not separated; a comparison with a single-rate macro step admitted none)"

@@ -54,6 +54,7 @@ static constexpr PetscReal kFloorFactor            = 0.7;  /* a refinement that 
 static constexpr PetscReal kMinShare               = 1e-3; /* no error term is taken as less than this share of the estimate */
 static constexpr PetscReal kRatioCoarsening        = 4;    /* a calibration's coarser r_l - 1 */
 static constexpr PetscReal kFinerComparison        = 0.75; /* the micro step of a comparison where nothing can be coarsened */
+static constexpr PetscReal kRadiusGrowth           = 1.1;  /* the fastest level's radius grown this much since the spectra were estimated: estimated again */
 static constexpr PetscReal kFinerTermShare         = 1.0;  /* a micro step term measured from the finer side below this share of the step's is not counted */
 static constexpr PetscReal kComparableCoarsening   = 1.5;  /* a retry's r_l - 1 whose comparison cannot reach this factor of it is not coarsened */
 static constexpr PetscReal kMaxCheaper             = 8;    /* after an accepted step the work may fall by this factor at most */
@@ -362,6 +363,21 @@ static void LimitToStableSteps(TS ts, vshmm::AdaptParameters &p)
   if (!vs->savings.empty()) p.ratios = vshmm::timeRatiosFromSavings(vs->savings);
 }
 
+/* The fastest level's radius the stable steps were made for, as FollowFastestRate() compares it:
+   the larger of the levels' spectra's (Arnoldi) and the power method's at the same state (its
+   vector is carried from step to step and converges from below; on a non-normal field its
+   estimate can exceed the spectral radius). */
+static PetscErrorCode RadiusBaseline(TS ts)
+{
+  TS_VSHMM *vs = (TS_VSHMM *)ts->data;
+  PetscReal rho;
+
+  PetscFunctionBegin;
+  PetscCall(TSVSHMMFastestRadius_Private(ts, &rho));
+  vs->radius_baseline = PetscMax(rho, vs->level_radius.empty() ? 0.0 : vs->level_radius.back());
+  PetscFunctionReturn(0);
+}
+
 /* Each level's spectrum and stable step estimated again at the present state (ts->vec_sol at
    ts->ptime), and the parameters the library chooses brought inside the new stable steps. */
 static PetscErrorCode UpdateStableSteps(TS ts)
@@ -372,7 +388,46 @@ static PetscErrorCode UpdateStableSteps(TS ts)
   if (vs->spectra_time == ts->ptime) PetscFunctionReturn(0);
   PetscCall(TSVSHMMLevelSpectra_Private(ts));
   PetscCall(TSVSHMMLevelOwnRates_Private(ts));
+  PetscCall(RadiusBaseline(ts));
   LimitToStableSteps(ts, vs->adapt_params);
+  PetscFunctionReturn(0);
+}
+
+/* Between the levels' full spectra (calibrations) the fastest level's radius is followed at every
+   macro step by a few power steps (TSVSHMMFastestRadius_Private()); where it has grown by more than
+   kRadiusGrowth since the last full estimate, the spectra are estimated again and the parameters
+   brought inside the new stable steps. A fast rate that grows with the solution (z' = 1000 x (x - z)
+   as x goes from 0.2 to 1: the rate 5x) otherwise took the micro step past its stability limit
+   between calibrations, with savings: the few fast steps of each macro step do not blow up, the
+   comparison at the same micro step sees nothing, and x ended 5-6 tol off at 1e-2, silently. */
+static PetscErrorCode FollowFastestRate(TS ts)
+{
+  TS_VSHMM *vs = (TS_VSHMM *)ts->data;
+  PetscReal rho;
+
+  PetscFunctionBegin;
+  if (vs->spectra_time == ts->ptime) PetscFunctionReturn(0);
+  PetscCall(TSVSHMMFastestRadius_Private(ts, &rho));
+  if (!(rho > kRadiusGrowth * vs->radius_baseline)) PetscFunctionReturn(0);
+  PetscCall(PetscInfo(ts, "Adapt: the fastest level's radius grew %g times since the spectra were estimated (t = %g): estimated again at t = %g\n", (double)(vs->radius_baseline > 0 ? rho / vs->radius_baseline : PETSC_INFINITY), (double)vs->spectra_time,
+                      (double)ts->ptime));
+  PetscCall(UpdateStableSteps(ts));
+  PetscFunctionReturn(0);
+}
+
+/* A micro step found at the edge of stability by tries that blew up (TSVSHMMAdaptStep_Private()):
+   the fastest level's largest stable step taken as this micro step, so that the steps keep their
+   stable fraction of it (StableFraction()), and the parameters brought inside. */
+static PetscErrorCode EdgeMargin(TS ts, PetscReal t0, PetscReal t1)
+{
+  TS_VSHMM       *vs = (TS_VSHMM *)ts->data;
+  const PetscReal dt = vs->adapt_params.microStep;
+
+  PetscFunctionBegin;
+  if (!vs->level_max_step.empty()) vs->level_max_step.back() = PetscMin(vs->level_max_step.back(), dt);
+  LimitToStableSteps(ts, vs->adapt_params);
+  PetscCall(
+    PetscInfo(ts, "Adapt: macro step [%g, %g]: the micro step %g is at the edge of stability (a coarser one blew up within the stable steps of t = %g): redone with %g\n", (double)t0, (double)t1, (double)dt, (double)t0, (double)vs->adapt_params.microStep));
   PetscFunctionReturn(0);
 }
 
@@ -503,6 +558,32 @@ static std::vector<double> SavingsCandidate(TS ts, const std::vector<double> &ra
   return worth ? ratios : std::vector<double>();
 }
 
+/* The separation of every consecutive pair of levels at the present spectra, as the check prints
+   it: the largest (*best), the figures, and whether any is a slow rate inside a faster level. */
+static PetscErrorCode SeparationFigures(TS ts, PetscReal *best, std::string &figures, bool *own)
+{
+  TS_VSHMM      *vs      = (TS_VSHMM *)ts->data;
+  const PetscInt nscales = (PetscInt)vs->level_end.size();
+
+  PetscFunctionBegin;
+  *best = 0;
+  *own  = false;
+  figures.clear();
+  for (PetscInt l = 0; l + 1 < nscales; ++l) {
+    const PetscReal S = Separation(vs, l);
+    char            text[256];
+    if ((PetscInt)vs->separations.size() > l) PetscCall(PetscSNPrintf(text, sizeof(text), "%slevels %" PetscInt_FMT "/%" PetscInt_FMT ": %.3g (set with -ts_vshmm_scale_separations)", l ? "; " : "", l, l + 1, (double)S));
+    else if (OwnRatio(vs, l) > 0 && OwnRatio(vs, l) < RadiusRatio(vs, l))
+      PetscCall(PetscSNPrintf(text, sizeof(text), "%slevels %" PetscInt_FMT "/%" PetscInt_FMT ": %.3g (spectral radius %.3g, slowest rate of level %" PetscInt_FMT "'s own %s %.3g)", l ? "; " : "", l, l + 1, (double)S, (double)vs->level_radius[l], SlowestFasterLevel(vs, l),
+                              vs->splits[vs->level_end[SlowestFasterLevel(vs, l)] - 1].additive ? "terms (an oscillation's amplitude rate)" : "components", (double)vs->level_slowest[SlowestFasterLevel(vs, l)]));
+    else PetscCall(PetscSNPrintf(text, sizeof(text), "%slevels %" PetscInt_FMT "/%" PetscInt_FMT ": %.3g (spectral radii %.3g, %.3g)", l ? "; " : "", l, l + 1, (double)S, (double)vs->level_radius[l], (double)vs->level_radius[l + 1]));
+    figures += text;
+    *best = PetscMax(*best, S);
+    *own  = *own || (OwnRatio(vs, l) > 0 && OwnRatio(vs, l) < RadiusRatio(vs, l));
+  }
+  PetscFunctionReturn(0);
+}
+
 /* The separation check: spectral radii of consecutive levels (or the separations set). */
 PetscErrorCode TSVSHMMCheckSeparation_Private(TS ts)
 {
@@ -514,24 +595,14 @@ PetscErrorCode TSVSHMMCheckSeparation_Private(TS ts)
   if (vs->check_separation == TSVSHMM_SEPARATION_OFF && !vs->adapt) PetscFunctionReturn(0);
   if (vs->spectra_time != ts->ptime || (PetscInt)vs->level_radius.size() != nscales) PetscCall(TSVSHMMLevelSpectra_Private(ts));
   PetscCall(TSVSHMMLevelOwnRates_Private(ts));
-  PetscReal   best = 0;
+  PetscReal   best;
   std::string figures;
-  for (PetscInt l = 0; l + 1 < nscales; ++l) {
-    const PetscReal S = Separation(vs, l);
-    char            text[256];
-    if ((PetscInt)vs->separations.size() > l) PetscCall(PetscSNPrintf(text, sizeof(text), "%slevels %" PetscInt_FMT "/%" PetscInt_FMT ": %.3g (set with -ts_vshmm_scale_separations)", l ? "; " : "", l, l + 1, (double)S));
-    else if (OwnRatio(vs, l) > 0 && OwnRatio(vs, l) < RadiusRatio(vs, l))
-      PetscCall(PetscSNPrintf(text, sizeof(text), "%slevels %" PetscInt_FMT "/%" PetscInt_FMT ": %.3g (spectral radius %.3g, slowest rate of level %" PetscInt_FMT "'s own %s %.3g)", l ? "; " : "", l, l + 1, (double)S, (double)vs->level_radius[l], SlowestFasterLevel(vs, l),
-                              vs->splits[vs->level_end[SlowestFasterLevel(vs, l)] - 1].additive ? "terms (an oscillation's amplitude rate)" : "components", (double)vs->level_slowest[SlowestFasterLevel(vs, l)]));
-    else PetscCall(PetscSNPrintf(text, sizeof(text), "%slevels %" PetscInt_FMT "/%" PetscInt_FMT ": %.3g (spectral radii %.3g, %.3g)", l ? "; " : "", l, l + 1, (double)S, (double)vs->level_radius[l], (double)vs->level_radius[l + 1]));
-    figures += text;
-    best = PetscMax(best, S);
-  }
-  vs->no_separation = best < kMinSeparation ? PETSC_TRUE : PETSC_FALSE;
+  bool        own;
+  PetscCall(SeparationFigures(ts, &best, figures, &own));
+  vs->no_separation   = best < kMinSeparation ? PETSC_TRUE : PETSC_FALSE;
+  vs->separation_time = ts->ptime;
   PetscCall(PetscInfo(ts, "Separation check at t = %g: %s\n", (double)ts->ptime, figures.c_str()));
   if (!vs->no_separation || vs->check_separation == TSVSHMM_SEPARATION_OFF) PetscFunctionReturn(0);
-  bool own = false;
-  for (PetscInt l = 0; l + 1 < nscales; ++l) own = own || (OwnRatio(vs, l) > 0 && OwnRatio(vs, l) < RadiusRatio(vs, l));
   const char *what = (vs->separations.empty() && !own) ? "ratio of the spectral radii of consecutive levels" : "separation of consecutive levels";
   PetscCheck(vs->check_separation != TSVSHMM_SEPARATION_ERROR, comm, PETSC_ERR_ARG_INCOMP, "TSVSHMM separation check at t = %g: the time scales of the RHS splits are not separated (%s, at least %g needed: %s). VSHMM samples the faster scales statistically and would change the answer here; use a single-rate TS type (-ts_type rk) or a multirate one (-ts_type mprk), or -ts_vshmm_check_separation warn to run anyway",
              (double)ts->ptime, what, (double)kMinSeparation, figures.c_str());
@@ -540,7 +611,7 @@ PetscErrorCode TSVSHMMCheckSeparation_Private(TS ts)
                                 (double)ts->ptime, what, (double)kMinSeparation, figures.c_str(),
                                 !(vs->adapt && vs->savings.empty()) ? "its answer will be wrong by an amount it cannot estimate"
                                 : tested                            ? "-ts_vshmm_adapt therefore takes savings only where a comparison with a single-rate macro step admits them (every faster level decays)"
-                                                                    : "-ts_vshmm_adapt therefore takes no savings (every level steps with the micro step)"));
+                                                                    : "-ts_vshmm_adapt therefore takes no savings (every level steps with the micro step) unless the levels' spectra, estimated again with its calibrations, show them separated later"));
   PetscFunctionReturn(0);
 }
 
@@ -560,15 +631,73 @@ PetscErrorCode TSVSHMMAdaptReset_Private(TS ts)
   vs->adapt_calibrated_times  = 0;
   vs->adapt_postponed         = PETSC_FALSE;
   vs->no_separation           = PETSC_FALSE;
+  vs->separated_from          = -1;
   vs->adapt_no_savings.clear();
   vs->adapt_merged.clear();
   vs->adapt_signed.clear();
   vs->adapt_accepted         = 0;
+  vs->adapt_start_accepted   = 0;
   vs->adapt_last_ratio       = PETSC_MAX_REAL;
   vs->adapt_prev_ratio       = PETSC_MAX_REAL;
   vs->adapt_uncompared       = 0;
   vs->floor_warned           = PETSC_FALSE;
   vs->adapt_single_rate_from = -1;
+  PetscFunctionReturn(0);
+}
+
+/* The micro step adapt starts from at the present spectra: the user's, or (an oscillating fastest
+   mode must be followed accurately: dt |lambda| <= tol^(1/p); one that only decays need not (its
+   error decays with it), nor one whose whole part of the state is within the tolerance (the
+   amplitude bound's reasoning, AccurateMicroStep())) at the stability limit, also where that is
+   longer than DeltaT / 100 (a fast level 9 times the slow rate with DeltaT = 1 took 2,500
+   evaluations from DeltaT / 100, 320 from its stability limit). */
+static PetscReal FirstMicroStep(TS ts)
+{
+  TS_VSHMM       *vs     = (TS_VSHMM *)ts->data;
+  const PetscInt  K      = (PetscInt)vs->level_end.size() - 1;
+  const PetscReal DeltaT = ts->time_step, tol = PetscMax(PetscMax(ts->rtol, ts->atol), 1e-12), rho = vs->level_radius[K];
+
+  if (vs->micro_dt > 0) return vs->micro_dt;
+  const PetscBool oscillating = LevelDecays(vs, K) ? PETSC_FALSE : PETSC_TRUE;
+  PetscReal       dt          = DeltaT / kDefaultMicroStepsPerMacroStep;
+  if (!oscillating && vs->level_max_step[K] < PETSC_INFINITY) dt = PetscMax(dt, PetscMin(StableMicroStep(vs), DeltaT / kMinCycles));
+  if (rho > 0 && oscillating && AllowedAmplitudeLoss(ts) < 1) dt = PetscMin(dt, std::pow(tol, 1.0 / vs->tableau->order) / rho);
+  return PetscMin(dt, StableMicroStep(vs));
+}
+
+/* The time ratios adapt starts from, by the separation check's verdict (vs->no_separation). */
+static PetscErrorCode FirstRatios(TS ts, vshmm::AdaptParameters &p)
+{
+  TS_VSHMM      *vs = (TS_VSHMM *)ts->data;
+  const PetscInt K  = (PetscInt)vs->level_end.size() - 1;
+
+  PetscFunctionBegin;
+  vs->adapt_candidate.clear();
+  vs->adapt_verified.clear();
+  if (!vs->savings.empty()) p.ratios = vshmm::timeRatiosFromSavings(vs->savings);
+  else {
+    p.ratios = SeparatedRatios(ts);
+    vs->adapt_merged.clear();
+    if (vs->no_separation) { /* not separated: no savings until a comparison with a single-rate step admits some (VerifySavings()) */
+      vs->adapt_candidate = SavingsCandidate(ts, p.ratios);
+      PetscCall(PetscInfo(ts, "Adapt: the scales are not separated: no savings%s\n", vs->adapt_candidate.empty() ? "" : " until a single-rate macro step admits them"));
+      p.ratios.assign(K, 1.0);
+    } else
+      for (PetscInt l = 0; l < K; ++l) {
+        /* a decaying pair not even kInitialDecaySeparation apart, among separated ones: no savings
+           between them (their start is r_l = 1, which a calibration cannot coarsen: its term
+           read 0, and the choice took the ratio as free; the dissipative example at eps = 3e-2,
+           pair 1/2 1.31 apart, raised r_2 to 3.1, an effective separation of 0.4, and the
+           first step's estimate stayed at 8 shares over 11 tries) */
+        const PetscReal S = Separation(vs, l);
+        if ((PetscInt)vs->separations.size() > l || !LevelDecays(vs, l + 1) || S > kInitialDecaySeparation) continue;
+        vs->adapt_no_savings.resize(K, PETSC_FALSE);
+        vs->adapt_no_savings[l] = PETSC_TRUE;
+        vs->adapt_merged.resize(K, 0.0);
+        vs->adapt_merged[l] = S;
+        PetscCall(PetscInfo(ts, "Adapt: levels %" PetscInt_FMT "/%" PetscInt_FMT " are %.3g apart: no savings between them\n", l, l + 1, (double)S));
+      }
+  }
   PetscFunctionReturn(0);
 }
 
@@ -597,51 +726,13 @@ PetscErrorCode TSVSHMMAdaptSetUp_Private(TS ts)
   PetscCall(VecDuplicate(ts->vec_sol, &vs->Xbase));
   PetscCall(SlowComponentsSetUp(ts));
   if (vs->spectra_time != ts->ptime || (PetscInt)vs->level_radius.size() != nscales) PetscCall(TSVSHMMLevelSpectra_Private(ts));
+  PetscCall(RadiusBaseline(ts));
   const PetscReal DeltaT = ts->time_step, tol = PetscMax(PetscMax(ts->rtol, ts->atol), 1e-12);
-  const PetscReal rho = vs->level_radius[K];
-  vs->adapt_tstart    = ts->ptime; /* the error budget and the micro step's amplitude bound run from here */
+  vs->adapt_tstart = ts->ptime; /* the error budget and the micro step's amplitude bound run from here */
 
   vshmm::AdaptParameters &p = vs->adapt_params;
-  if (vs->micro_dt > 0) p.microStep = vs->micro_dt;
-  else {
-    /* an oscillating fastest mode must be followed accurately: dt |lambda| <= tol^(1/p); one that
-       only decays need not (its error decays with it), nor one whose whole part of the state is
-       within the tolerance (the amplitude bound's reasoning, AccurateMicroStep()), and the micro
-       step starts at the stability limit, also where that is longer than DeltaT / 100 (a fast
-       level 9 times the slow rate with DeltaT = 1 took 2,500 evaluations from DeltaT / 100, 320
-       from its stability limit) */
-    const PetscBool oscillating = LevelDecays(vs, K) ? PETSC_FALSE : PETSC_TRUE;
-    p.microStep                 = DeltaT / kDefaultMicroStepsPerMacroStep;
-    if (!oscillating && vs->level_max_step[K] < PETSC_INFINITY) p.microStep = PetscMax(p.microStep, PetscMin(StableMicroStep(vs), DeltaT / kMinCycles));
-    if (rho > 0 && oscillating && AllowedAmplitudeLoss(ts) < 1) p.microStep = PetscMin(p.microStep, std::pow(tol, 1.0 / vs->tableau->order) / rho);
-    p.microStep = PetscMin(p.microStep, StableMicroStep(vs));
-  }
-  vs->adapt_candidate.clear();
-  vs->adapt_verified.clear();
-  if (!vs->savings.empty()) p.ratios = vshmm::timeRatiosFromSavings(vs->savings);
-  else {
-    p.ratios = SeparatedRatios(ts);
-    vs->adapt_merged.clear();
-    if (vs->no_separation) { /* not separated: no savings until a comparison with a single-rate step admits some (VerifySavings()) */
-      vs->adapt_candidate = SavingsCandidate(ts, p.ratios);
-      PetscCall(PetscInfo(ts, "Adapt: the scales are not separated: no savings%s\n", vs->adapt_candidate.empty() ? "" : " until a single-rate macro step admits them"));
-      p.ratios.assign(K, 1.0);
-    } else
-      for (PetscInt l = 0; l < K; ++l) {
-        /* a decaying pair not even kInitialDecaySeparation apart, among separated ones: no savings
-           between them (their start is r_l = 1, which a calibration cannot coarsen: its term
-           read 0, and the choice took the ratio as free; the dissipative example at eps = 3e-2,
-           pair 1/2 1.31 apart, raised r_2 to 3.1, an effective separation of 0.4, and the
-           first step's estimate stayed at 8 shares over 11 tries) */
-        const PetscReal S = Separation(vs, l);
-        if ((PetscInt)vs->separations.size() > l || !LevelDecays(vs, l + 1) || S > kInitialDecaySeparation) continue;
-        vs->adapt_no_savings.resize(K, PETSC_FALSE);
-        vs->adapt_no_savings[l] = PETSC_TRUE;
-        vs->adapt_merged.resize(K, 0.0);
-        vs->adapt_merged[l] = S;
-        PetscCall(PetscInfo(ts, "Adapt: levels %" PetscInt_FMT "/%" PetscInt_FMT " are %.3g apart: no savings between them\n", l, l + 1, (double)S));
-      }
-  }
+  p.microStep               = FirstMicroStep(ts);
+  PetscCall(FirstRatios(ts, p));
   LimitToStableSteps(ts, p);
   const vshmm::AdaptBounds b = Bounds(ts, DeltaT);
   vshmm::fitCycle(p, b.maxCycle, b.fixedRatios, true); /* enough cycles per macro step */
@@ -656,10 +747,11 @@ PetscErrorCode TSVSHMMAdaptSetUp_Private(TS ts)
   vs->adapt_ready    = PETSC_TRUE;
   vs->error_estimate = vs->error_estimate_total = 0;
   vs->adapt_signed.clear();
-  vs->adapt_accepted   = 0;
-  vs->adapt_last_ratio = PETSC_MAX_REAL;
-  vs->adapt_prev_ratio = PETSC_MAX_REAL;
-  vs->adapt_uncompared = 0;
+  vs->adapt_accepted       = 0;
+  vs->adapt_start_accepted = 0;
+  vs->adapt_last_ratio     = PETSC_MAX_REAL;
+  vs->adapt_prev_ratio     = PETSC_MAX_REAL;
+  vs->adapt_uncompared     = 0;
   PetscCall(PetscInfo(ts, "Adapt: first parameters dt = %g, cycle %g (DeltaT %g), tolerance %g\n", (double)p.microStep, (double)vshmm::cycleLength(p), (double)DeltaT, (double)tol));
   PetscFunctionReturn(0);
 }
@@ -759,8 +851,13 @@ static PetscErrorCode Compare(TS ts, const vshmm::AdaptParameters &p, PetscReal 
   PetscCall(TrialStep(ts, *q, t0, DeltaT, vs->Xtrial));
   PetscCall(ComparisonBlewUp(ts, &blown));
   if (blown && q->microStep > p.microStep) {
-    PetscCall(PetscInfo(ts, "Adapt: the comparison with dt %g blew up; comparing with dt %g\n", (double)q->microStep, (double)p.microStep));
+    /* the coarser micro step is unstable: the comparison takes p's micro step with the other
+       terms doubled, or, where none is left to double (the same run again, which would differ by
+       exactly 0: Robertson's kinetics accepted such a step at ten times its share), the micro step
+       at kFinerComparison */
     q->microStep = p.microStep;
+    if (!(vshmm::cycleLength(*q) > vshmm::cycleLength(p) * 1.01)) *q = vshmm::coarsened(p, 0, kFinerComparison);
+    PetscCall(PetscInfo(ts, "Adapt: the comparison with a coarser micro step blew up; comparing with dt %g, cycle %g\n", (double)q->microStep, (double)vshmm::cycleLength(*q)));
     PetscCall(TrialStep(ts, *q, t0, DeltaT, vs->Xtrial));
     PetscCall(ComparisonBlewUp(ts, &blown));
   }
@@ -849,6 +946,7 @@ static PetscErrorCode Calibrate(TS ts, const vshmm::AdaptParameters &p, PetscRea
   bool                                finerInShare = false; /* the micro step's term, measured from the finer side, was not counted */
 
   PetscFunctionBegin;
+  vs->finer_term = 0;
   if (!retry || vs->adapt_negligible.size() != (size_t)K + 1) {
     vs->adapt_negligible.assign(K + 1, 0);
     vs->adapt_negligible_reach.assign(K + 1, 0.0);
@@ -869,11 +967,14 @@ static PetscErrorCode Calibrate(TS ts, const vshmm::AdaptParameters &p, PetscRea
     if (i > 0) coarse[i].microStep = p.microStep;
     for (PetscInt l = 0; l < K; ++l)
       if (l != i - 1) coarse[i].ratios[l] = p.ratios[l];
-    if (i == 0 && vs->adapt_accepted == 0 && !bounds.fixedMicroStep && !(coarse[0].microStep > 1.01 * p.microStep)) {
+    if (i == 0 && vs->adapt_accepted == vs->adapt_start_accepted && !bounds.fixedMicroStep && !(coarse[0].microStep > 1.01 * p.microStep)) {
       /* the micro step at its stability bound: measured by a finer run (kFinerComparison), not left
          at 0. In an initial layer the fast transient, taken at h |lambda| near the stability limit,
          can be most of the error (the 2-scale chain with DeltaT = 0.5 at 1e-3: x0(0.5) 3.85 tol
-         off, 0.34 tol with it measured; docs/accuracy.md section 12) */
+         off, 0.34 tol with it measured; docs/accuracy.md section 12). So also in the first step
+         with savings after scales found separated later (SeparationChanged()): its fast rates
+         may grow within the step past the stable step estimated at its start (z' = 1000 x (x - z)
+         from x = 0: 1.66 tol in that step, with the micro step's term unmeasured) */
       coarse[0] = vshmm::coarsened(p, 0, kFinerComparison);
     }
     PetscReal di = 0;
@@ -899,6 +1000,7 @@ static PetscErrorCode Calibrate(TS ts, const vshmm::AdaptParameters &p, PetscRea
       coarse[0]    = p;
       finerInShare = true;
     }
+    if (i == 0 && coarse[0].microStep < p.microStep / 1.01) vs->finer_term = di / (1.0 - PetscPowRealInt(kFinerComparison, vs->tableau->order));
     d[i]                          = di;
     vs->adapt_negligible_reach[i] = i ? coarse[i].ratios[i - 1] : coarse[i].microStep;
     PetscCall(PetscInfo(ts, "Adapt: calibration of parameter %" PetscInt_FMT ": dt %g, cycle %g, difference %g\n", i, (double)coarse[i].microStep, (double)vshmm::cycleLength(coarse[i]), (double)di));
@@ -1004,6 +1106,81 @@ static PetscErrorCode LayerEstimate(TS ts, const vshmm::AdaptParameters &p, cons
   PetscFunctionReturn(0);
 }
 
+/* The separation check's verdict changed (vs->no_separation against `before`): adapt starts again
+   from the parameters the new verdict gives at the present spectra (FirstMicroStep(),
+   FirstRatios()), with the split between the terms measured again. Scales found not separated
+   are checked again at every estimate of the levels' spectra (the calibrations; a periodic check
+   with -ts_vshmm_check_stability_interval checks both ways): a state can show the faster levels
+   far slower than the dynamics make them a moment later (chemical kinetics whose intermediate
+   species start at 0: a rate proportional to the species' concentration is 0 there), and the
+   check at set-up would then leave the whole solve without savings. Said where the verdict is
+   lifted (the warning of the check before told the user that VSHMM was the wrong tool). */
+static PetscErrorCode SeparationChanged(TS ts, PetscBool before, PetscReal tbefore)
+{
+  TS_VSHMM               *vs = (TS_VSHMM *)ts->data;
+  vshmm::AdaptParameters &p  = vs->adapt_params;
+
+  PetscFunctionBegin;
+  if (vs->no_separation == before || !vs->savings.empty() || !vs->adapt_ready) PetscFunctionReturn(0);
+  if (vs->adapt_single_rate_from < 0) vs->adapt_no_savings.clear();
+  p.microStep = FirstMicroStep(ts);
+  PetscCall(FirstRatios(ts, p));
+  if (vs->adapt_single_rate_from >= 0)
+    for (double &r : p.ratios) r = 1.0;
+  LimitToStableSteps(ts, p);
+  const vshmm::AdaptBounds b = Bounds(ts, ts->time_step);
+  vshmm::fitCycle(p, b.maxCycle, b.fixedRatios, true);
+  vs->adapt_model          = vshmm::ErrorModel();
+  vs->adapt_calibrated     = PETSC_FALSE;
+  vs->adapt_start_accepted = vs->adapt_accepted;
+  if (!vs->no_separation) {
+    PetscReal   best;
+    std::string figures;
+    bool        own;
+    PetscCall(SeparationFigures(ts, &best, figures, &own));
+    vs->separated_from = ts->ptime;
+    PetscCall(PetscInfo(ts, "Adapt: the scales are separated at t = %g: savings from here on (micro step %g, cycle %g)\n", (double)ts->ptime, (double)p.microStep, (double)vshmm::cycleLength(p)));
+    if (vs->check_separation != TSVSHMM_SEPARATION_OFF)
+      PetscCall(TSVSHMMWarn_Private(ts, "TSVSHMM: separation check at t = %g: the time scales of the RHS splits are separated now (%s). The check at t = %g found them not separated at a state where the faster levels were slower (an initial state whose fast modes are not yet excited, typically); -ts_vshmm_adapt takes savings from t = %g on.\n",
+                                    (double)ts->ptime, figures.c_str(), (double)tbefore, (double)ts->ptime));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* Scales not separated at the last check: checked again at the spectra just estimated. */
+static PetscErrorCode RecheckSeparation(TS ts)
+{
+  TS_VSHMM *vs = (TS_VSHMM *)ts->data;
+
+  PetscFunctionBegin;
+  if (!vs->no_separation || !vs->savings.empty() || vs->spectra_time != ts->ptime) PetscFunctionReturn(0);
+  const PetscReal tbefore = vs->separation_time;
+  PetscReal       best;
+  std::string     figures;
+  bool            own;
+  PetscCall(SeparationFigures(ts, &best, figures, &own));
+  PetscCall(PetscInfo(ts, "Adapt: separation at t = %g: %s\n", (double)ts->ptime, figures.c_str()));
+  if (best < kMinSeparation) PetscFunctionReturn(0);
+  vs->no_separation   = PETSC_FALSE;
+  vs->separation_time = ts->ptime;
+  PetscCall(SeparationChanged(ts, PETSC_TRUE, tbefore));
+  PetscFunctionReturn(0);
+}
+
+/* The periodic separation check of TSStep_VSHMM() with -ts_vshmm_adapt: the check, and adapt's
+   parameters where its verdict changed. */
+PetscErrorCode TSVSHMMAdaptCheckSeparation_Private(TS ts)
+{
+  TS_VSHMM       *vs      = (TS_VSHMM *)ts->data;
+  const PetscBool before  = vs->no_separation;
+  const PetscReal tbefore = vs->separation_time;
+
+  PetscFunctionBegin;
+  PetscCall(TSVSHMMCheckSeparation_Private(ts));
+  PetscCall(SeparationChanged(ts, before, tbefore));
+  PetscFunctionReturn(0);
+}
+
 /* One macro step with accuracy control; the accepted result is left in ts->vec_sol. */
 PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
 {
@@ -1028,6 +1205,11 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
      A first step accepted as it was tried is no layer, and the estimate (an Arnoldi run per
      level, 12% of the sparse-spectral diffusion scenes' work at 1e-2) is not made again. */
   if (calibrate || (vs->adapt_accepted == 1 && vs->adapt_rejections > 0)) PetscCall(UpdateStableSteps(ts));
+  else PetscCall(FollowFastestRate(ts));
+  if (vs->spectra_time == ts->ptime) {
+    PetscCall(RecheckSeparation(ts));
+    if (!vs->adapt_calibrated) calibrate = later;
+  }
   vshmm::AdaptBounds     bounds     = Bounds(ts, DeltaT);
   PetscReal              Emin       = PETSC_MAX_REAL; /* the lowest estimate of this macro step's tries */
   PetscInt               stalled    = 0;
@@ -1035,6 +1217,8 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
   PetscReal              predicted  = PETSC_MAX_REAL; /* the model's error of the try after a rejection */
   PetscBool              singleRate = PETSC_FALSE;    /* the tries are the savings' limit: none (a floor above the share, below) */
   vshmm::AdaptParameters beforeSingleRate;            /* the try that found that floor */
+  PetscBool              edgeFound     = PETSC_FALSE; /* a try blew up within the stable steps of this state */
+  PetscBool              edgeMargin    = PETSC_FALSE; /* the micro step was bounded by a blow-up's edge (EdgeMargin()) */
   PetscReal              floorEstimate = 0;           /* and its estimate */
   for (PetscInt attempt = 0;; ++attempt) {
     vshmm::AdaptParameters &p = vs->adapt_params;
@@ -1062,9 +1246,26 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
         }
       }
       PetscCall(PetscInfo(ts, "Adapt: macro step [%g, %g] try %" PetscInt_FMT " is not finite: every parameter finer\n", (double)t0, (double)t1, attempt));
+      edgeFound = PETSC_TRUE;
       if (!bounds.fixedMicroStep) p.microStep *= 0.5;
       if (!bounds.fixedRatios)
         for (double &r : p.ratios) r = 1.0 + (r - 1.0) / 4;
+      continue;
+    }
+
+    if (edgeFound && !edgeMargin && !bounds.fixedMicroStep && attempt + 1 < kMaxAttempts) {
+      /* the first try to stay finite after tries that blew up within the stable steps of this
+         state (estimated here already: the fast rates grow within the step, as in Robertson's
+         kinetics, whose intermediate species has rate 0 at the initial state and 1,750 two time
+         units later): its micro step lies between half the stability limit of somewhere in the
+         step and that limit, where a decaying fast mode is hardly damped (|R| near 1) and its
+         error goes unmeasured (no comparison can coarsen it; Robertson's first step took 0.48 tol
+         against an estimate of 0.08, its fast species negative at the end). The step is redone
+         with the stable fraction of that micro step as the bound (StableFraction()). */
+      edgeMargin = PETSC_TRUE;
+      PetscCall(EdgeMargin(ts, t0, t1));
+      DiscardTry(vs, rhs0, lev0);
+      bounds = Bounds(ts, DeltaT);
       continue;
     }
 
@@ -1119,6 +1320,12 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
       PetscCall(Calibrate(ts, p, t0, DeltaT, bounds, (!calibrate && attempt > 0) ? PETSC_TRUE : PETSC_FALSE));
       calibrate = PETSC_FALSE;
       E         = Estimate(vs->adapt_model, p, q, d);
+      /* a micro step term the calibration measured from the finer side (at its stability bound) and
+         counted: measured directly at this step, where the comparison could not change it; its
+         effect on the comparison, read through the model (whose micro step term falls with the
+         savings), can be far smaller (z' = 1000 x (x - z) after its scales separated: 0.009 against
+         a term of 1.5 shares measured, and 1.66 tol taken in the step) */
+      if (vs->finer_term > 0 && std::isfinite(E)) E = PetscMax(E, vs->finer_term);
     }
     PetscReal Elayer = -1; /* the layer's estimate from two comparisons (LayerEstimate()), where made */
     if (vs->adapt_accepted == 0 && FasterLevelsDecay(vs) && d > 0 && std::isfinite(d) && E > budget && E <= kLayerFitWindow * budget) PetscCall(LayerEstimate(ts, p, q, d, t0, DeltaT, &Elayer));

@@ -99,20 +99,26 @@ struct TS_VSHMM {
   std::vector<double>    adapt_negligible_reach;                // per parameter: the coarsest value (dt, or r_l) at which its last calibration measured it
   PetscReal              adapt_tstart           = 0.0;          // the time the solve started (the error budget runs from it)
   PetscBool              no_separation          = PETSC_FALSE;  // no pair of levels is separated
+  PetscReal              separation_time        = 0.0;          // the time of the check that gave that verdict
+  PetscReal              separated_from         = -1;           // adapt: the time a later check found the scales separated (-1: not so)
   PetscBool              floor_warned           = PETSC_FALSE;  // told that the estimate does not fall
   PetscReal              adapt_single_rate_from = -1;           // the start of the macro step from which the tolerance left no savings (-1: none)
   Vec                    Xtrial = nullptr, Xbase = nullptr;
-  Vec                    slow_mask  = nullptr;     // 1 on the slow components (written by the slowest level's splits only) where they are controlled with the observables
-  PetscInt               slow_count = 0;           // their number (global)
-  PetscInt64             slow_led   = 0;           // differences in which they led (statistics)
-  PetscBool              slow_last  = PETSC_FALSE; // they led the last difference
-  PetscBool              step_slow  = PETSC_FALSE; // they led the last comparison of the step being taken
-  PetscInt               slow_steps = 0;           // accepted steps whose estimate they led
+  Vec                    slow_mask       = nullptr;     // 1 on the slow components (written by the slowest level's splits only) where they are controlled with the observables
+  PetscInt               slow_count      = 0;           // their number (global)
+  PetscInt64             slow_led        = 0;           // differences in which they led (statistics)
+  PetscBool              slow_last       = PETSC_FALSE; // they led the last difference
+  PetscBool              step_slow       = PETSC_FALSE; // they led the last comparison of the step being taken
+  PetscReal              finer_term      = 0;           // the last calibration's micro step term measured from the finer side and counted (0: none)
+  Vec                    radius_vec      = nullptr;     // the power method's vector of TSVSHMMFastestRadius_Private()
+  PetscReal              radius_baseline = 0;           // its radius at the levels' last full spectra (adapt)
+  PetscInt               slow_steps      = 0;           // accepted steps whose estimate they led
   std::vector<PetscReal> obs_a, obs_b;
-  std::vector<PetscReal> obs_diff;           // the last ObservableDifference, signed and weighted, per observable
-  std::vector<PetscReal> step_signed;        // that of the last comparison of the step being taken
-  std::vector<PetscReal> adapt_signed;       // the accepted steps' estimated errors, signed, summed (tolerance units)
-  PetscInt               adapt_accepted = 0; // accepted macro steps of this solve
+  std::vector<PetscReal> obs_diff;                 // the last ObservableDifference, signed and weighted, per observable
+  std::vector<PetscReal> step_signed;              // that of the last comparison of the step being taken
+  std::vector<PetscReal> adapt_signed;             // the accepted steps' estimated errors, signed, summed (tolerance units)
+  PetscInt               adapt_accepted       = 0; // accepted macro steps of this solve
+  PetscInt               adapt_start_accepted = 0; // those accepted before adapt started again (SeparationChanged())
   PetscReal              error_estimate = 0, error_estimate_total = 0;
   PetscInt64             adapt_evaluations = 0, adapt_rejections = 0, adapt_calibrations = 0;
   PetscInt64             adapt_uncompared_total = 0; // accepted steps whose comparison was left out (statistics)
@@ -172,6 +178,8 @@ PETSC_INTERN PetscErrorCode TSVSHMMLevelSpectra_Private(TS);
 PETSC_INTERN PetscErrorCode TSVSHMMLevelOwnRates_Private(TS);
 /* vshmmadapt.cpp: the separation check, accuracy control */
 PETSC_INTERN PetscErrorCode TSVSHMMCheckSeparation_Private(TS);
+PETSC_INTERN PetscErrorCode TSVSHMMFastestRadius_Private(TS, PetscReal *);
+PETSC_INTERN PetscErrorCode TSVSHMMAdaptCheckSeparation_Private(TS);
 PETSC_INTERN PetscErrorCode TSVSHMMAdaptStep_Private(TS, PetscReal, PetscReal);
 PETSC_INTERN PetscErrorCode TSVSHMMAdaptSetUp_Private(TS);
 PETSC_INTERN PetscErrorCode TSVSHMMAdaptReset_Private(TS);

@@ -27,6 +27,7 @@
 #include <string>
 
 static constexpr PetscInt  kArnoldiSteps        = 16;
+static constexpr PetscInt  kRadiusIterations    = 2;    /* power steps of TSVSHMMFastestRadius_Private() per call */
 static constexpr PetscReal kAmplitudeSpanChange = 0.05; /* an additive level's own amplitude rate counts where it changes the amplitude by this much over the run */
 static constexpr PetscReal kDampingTarget       = 0.5;  /* what a suggested savings factor achieves over a macro step */
 static constexpr PetscReal kGrowingMode         = 0.1;  /* Re lambda > this |lambda|: a growing mode, not checked */
@@ -303,6 +304,59 @@ PetscErrorCode TSVSHMMLevelSpectra_Private(TS ts)
   }
   vs->spectra_time   = ts->ptime;
   vs->own_rates_time = PETSC_MIN_REAL; /* made again with these spectra where it is used */
+  PetscFunctionReturn(0);
+}
+
+/* The fastest level's spectral radius at the present state by kRadiusIterations steps of the
+   power method on its field's Jacobian (forward differences), started from the vector the last
+   call ended with: a cheap follower of a radius that moves with the solution between the levels'
+   full spectra (TSVSHMMLevelSpectra_Private(), at -ts_vshmm_adapt's calibrations). 0 where the
+   field is not finite near the state. Counted as the stability check's evaluations. */
+PetscErrorCode TSVSHMMFastestRadius_Private(TS ts, PetscReal *rho)
+{
+  TS_VSHMM       *vs = (TS_VSHMM *)ts->data;
+  const PetscInt  K  = (PetscInt)vs->level_end.size() - 1;
+  Vec             X  = ts->vec_sol, G0, Xp, W;
+  PetscReal       xnorm, vnorm;
+  const PetscReal t = ts->ptime;
+
+  PetscFunctionBegin;
+  *rho = 0;
+  const StabilityCounting counting(vs);
+  if (!vs->radius_vec) {
+    PetscInt     rstart, rend;
+    PetscScalar *v;
+    PetscCall(VecDuplicate(X, &vs->radius_vec));
+    PetscCall(VecGetOwnershipRange(vs->radius_vec, &rstart, &rend));
+    PetscCall(VecGetArray(vs->radius_vec, &v));
+    for (PetscInt i = rstart; i < rend; ++i) v[i - rstart] = 1.0 + 0.5 * std::sin(1.7 * (double)i + 0.3);
+    PetscCall(VecRestoreArray(vs->radius_vec, &v));
+  }
+  PetscCall(VecDuplicate(X, &G0));
+  PetscCall(VecDuplicate(X, &Xp));
+  PetscCall(VecDuplicate(X, &W));
+  PetscCall(VecNorm(X, NORM_2, &xnorm));
+  const PetscReal delta = std::sqrt(PETSC_MACHINE_EPSILON) * (1.0 + xnorm);
+  PetscCall(TSVSHMMEvaluateLevel_Private(vs, K, t, X, G0));
+  for (PetscInt it = 0; it < kRadiusIterations; ++it) {
+    PetscCall(VecNormalize(vs->radius_vec, &vnorm));
+    if (!(vnorm > 0) || !std::isfinite(vnorm)) break;
+    PetscCall(VecWAXPY(Xp, delta, vs->radius_vec, X));
+    PetscCall(TSVSHMMEvaluateLevel_Private(vs, K, t, Xp, W));
+    PetscCall(VecAXPY(W, -1.0, G0));
+    PetscCall(VecScale(W, 1.0 / delta));
+    PetscCall(VecNorm(W, NORM_2, rho));
+    if (!std::isfinite(*rho)) {
+      *rho = 0;
+      break;
+    }
+    PetscCall(VecCopy(W, vs->radius_vec));
+  }
+  PetscCall(VecNorm(vs->radius_vec, NORM_2, &vnorm));
+  if (!(vnorm > 0) || !std::isfinite(vnorm)) PetscCall(VecDestroy(&vs->radius_vec)); /* started again next time */
+  PetscCall(VecDestroy(&G0));
+  PetscCall(VecDestroy(&Xp));
+  PetscCall(VecDestroy(&W));
   PetscFunctionReturn(0);
 }
 
