@@ -1147,13 +1147,52 @@ static PetscErrorCode SeparationChanged(TS ts, PetscBool before, PetscReal tbefo
   PetscFunctionReturn(0);
 }
 
-/* Scales not separated at the last check: checked again at the spectra just estimated. */
+/* Decaying level pairs merged at set-up (FirstRatios(): less than kInitialDecaySeparation apart)
+   checked again at the spectra just estimated: where a pair is now kMinSeparation apart, it takes
+   savings from its separated start on, with the error model measured again. Three levels whose
+   medium rate is proportional to the slow variable, which starts at 0 (x' = 1 - x + (y - x)/5 +
+   (z - x)/10, y' = 1000 x (x - y), z' = 1e5 (y - z)), had levels 0/1 1 apart at the initial
+   state and 500 apart a step later, and took no savings between them for the whole solve. */
+static PetscErrorCode RecheckMergedPairs(TS ts)
+{
+  TS_VSHMM                 *vs    = (TS_VSHMM *)ts->data;
+  vshmm::AdaptParameters   &p     = vs->adapt_params;
+  const std::vector<double> start = SeparatedRatios(ts);
+  bool                      any   = false;
+
+  PetscFunctionBegin;
+  for (size_t l = 0; l < vs->adapt_merged.size() && l < p.ratios.size(); ++l) {
+    if (!(vs->adapt_merged[l] > 0)) continue;
+    const PetscReal S = Separation(vs, (PetscInt)l);
+    if (!(S >= kMinSeparation) || !LevelDecays(vs, (PetscInt)l + 1)) continue;
+    PetscCall(PetscInfo(ts, "Adapt: levels %d/%d are %g apart at t = %g (%g at set-up): savings between them from here on\n", (int)l, (int)l + 1, (double)S, (double)ts->ptime, (double)vs->adapt_merged[l]));
+    vs->adapt_merged[l] = 0;
+    if (l < vs->adapt_no_savings.size()) vs->adapt_no_savings[l] = PETSC_FALSE;
+    p.ratios[l] = start[l];
+    any         = true;
+  }
+  if (!any) PetscFunctionReturn(0);
+  LimitToStableSteps(ts, p);
+  const vshmm::AdaptBounds b = Bounds(ts, ts->time_step);
+  vshmm::fitCycle(p, b.maxCycle, b.fixedRatios, true);
+  vs->adapt_model          = vshmm::ErrorModel();
+  vs->adapt_calibrated     = PETSC_FALSE;
+  vs->adapt_start_accepted = vs->adapt_accepted;
+  PetscFunctionReturn(0);
+}
+
+/* Scales not separated at the last check: checked again at the spectra just estimated (and merged
+   pairs among separated scales, RecheckMergedPairs()). */
 static PetscErrorCode RecheckSeparation(TS ts)
 {
   TS_VSHMM *vs = (TS_VSHMM *)ts->data;
 
   PetscFunctionBegin;
-  if (!vs->no_separation || !vs->savings.empty() || vs->spectra_time != ts->ptime) PetscFunctionReturn(0);
+  if (!vs->savings.empty() || vs->spectra_time != ts->ptime) PetscFunctionReturn(0);
+  if (!vs->no_separation) {
+    PetscCall(RecheckMergedPairs(ts));
+    PetscFunctionReturn(0);
+  }
   const PetscReal tbefore = vs->separation_time;
   PetscReal       best;
   std::string     figures;

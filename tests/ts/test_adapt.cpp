@@ -635,6 +635,46 @@ TEST(VSHMMAdapt, AFastRateThatGrowsKeepsTheMicroStepStable)
   }
 }
 
+// Three levels whose medium rate is proportional to the slow variable, which starts at 0:
+// x' = 1 - x + (y - x)/5 + (z - x)/10, y' = 1000 x (x - y), z' = 1e5 (y - z) from 0, DeltaT = 0.5
+// to t = 4. At the initial state levels 0/1 are 1 apart (the medium rate is 0) and adapt takes no
+// savings between them; a step later they are about 500 apart. Checked again with the spectra adapt
+// estimates later, the pair takes savings from then on (before: none for the whole solve, 248,000
+// evaluations at 1e-2 for 0.02 tol).
+void MergedSlow(const void *, PetscReal, const PetscScalar *x, PetscScalar *f)
+{
+  f[0] = 1 - x[0] + 0.2 * (x[1] - x[0]) + 0.1 * (x[2] - x[0]);
+  f[1] = f[2] = 0;
+}
+void MergedMedium(const void *, PetscReal, const PetscScalar *x, PetscScalar *f)
+{
+  f[0] = f[2] = 0;
+  f[1]        = 1000 * x[0] * (x[0] - x[1]);
+}
+void MergedFast(const void *, PetscReal, const PetscScalar *x, PetscScalar *f)
+{
+  f[0] = f[1] = 0;
+  f[2]        = 1e5 * (x[1] - x[2]);
+}
+
+TEST(VSHMMAdapt, APairMergedAtTheInitialStateTakesSavingsOnceSeparated)
+{
+  SplitProblem p;
+  p.terms                = {MergedSlow, MergedMedium, MergedFast};
+  const double T         = 4;
+  const auto   Reference = [&](double h) { return Rk4Reference({MergedSlow, MergedMedium, MergedFast}, nullptr, {0.0, 0.0, 0.0}, T, h); };
+  const double ref       = Reference(1e-5);
+  EXPECT_NEAR(ref, Reference(5e-6), 1e-10);
+  for (const double tol : {1e-1, 1e-2}) {
+    const std::string options = "-ts_vshmm_adapt -ts_vshmm_warnings_viewer none -ts_rtol " + std::to_string(tol) + " -ts_atol " + std::to_string(tol);
+    AdaptRun          run;
+    ASSERT_EQ(SolveObservingX0(options.c_str(), p, {0.0, 0.0, 0.0}, {"slow", "medium", "fast"}, 0.5, T, &run), 0);
+    EXPECT_LE(std::abs(run.x[0] - ref), tol * (1 + std::abs(ref))) << options << ": x(4) = " << run.x[0] << ", reference " << ref;
+    ASSERT_EQ(run.savings.size(), 2u);
+    EXPECT_GT(run.savings[0], 10.0) << options << ": no savings between levels 0 and 1 after they separated";
+  }
+}
+
 // A separated relaxation pair whose target starts to move half-way: y' = -y + z (slow {y}),
 // z' = -1000 (z - g(t, y)), g from 1/2 to cos(3 y) around t = 2 (tanh, width 0.1), DeltaT = 0.1 to
 // t = 4. Once a step can coarsen nothing (micro step and cycle at their bounds) and its last two
