@@ -36,6 +36,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <limits>
 #include <string>
 
@@ -393,25 +394,57 @@ static PetscErrorCode UpdateStableSteps(TS ts)
   PetscFunctionReturn(0);
 }
 
-/* Between the levels' full spectra (calibrations) the fastest level's radius is followed at every
-   macro step by a few power steps (TSVSHMMFastestRadius_Private()); where it has grown by more than
-   kRadiusGrowth since the last full estimate, the spectra are estimated again and the parameters
-   brought inside the new stable steps. A fast rate that grows with the solution (z' = 1000 x (x - z)
-   as x goes from 0.2 to 1: the rate 5x) otherwise took the micro step past its stability limit
-   between calibrations, with savings: the few fast steps of each macro step do not blow up, the
-   comparison at the same micro step sees nothing, and x ended 5-6 tol off at 1e-2, silently. */
-static PetscErrorCode FollowFastestRate(TS ts)
+/* The fastest level's radius at the end of the try just taken (vs->Xbase at t1), by a few power
+   steps (TSVSHMMFastestRadius_Private(), at every macro step). Where it has grown by kRadiusGrowth
+   past the radius the steps were made for, the levels' spectra are estimated at that state too,
+   each level's largest stable step and radius taken as the tighter of the two states', and the
+   parameters brought inside them (*redo: the micro step or the cycle shrank, the try is taken
+   again). A fast rate that grows with the solution (z' = 1000 x (x - z) as x goes from 0.2 to 1:
+   the rate 5x) otherwise took the micro step past its stability limit between calibrations: the
+   few fast steps of a macro step with savings do not blow up, the comparison at the same micro
+   step sees nothing, and x ended 7.9 tol off at 1e-2, silently; a fast rotation whose frequency
+   grows from 0 within the first step (1000 x with x from 0) lost its amplitude there at the micro
+   step chosen for frequency 0, which the slow variable driven by its energy showed only later
+   (3 tol at 1e-2). */
+static PetscErrorCode RateGrewInStep(TS ts, PetscReal t1, PetscBool *redo)
 {
-  TS_VSHMM *vs = (TS_VSHMM *)ts->data;
-  PetscReal rho;
+  TS_VSHMM                                            *vs = (TS_VSHMM *)ts->data;
+  const PetscReal                                      t0 = ts->ptime, cycle = vshmm::cycleLength(vs->adapt_params), dt = vs->adapt_params.microStep;
+  Vec                                                  X0 = ts->vec_sol;
+  PetscReal                                            rho;
+  const std::vector<PetscReal>                         hmax = vs->level_max_step, radius = vs->level_radius;
+  const std::vector<std::complex<double>>              worst    = vs->level_worst;
+  const std::vector<std::vector<std::complex<double>>> limiting = vs->level_limiting;
+  PetscErrorCode                                       ierr;
 
   PetscFunctionBegin;
-  if (vs->spectra_time == ts->ptime) PetscFunctionReturn(0);
-  PetscCall(TSVSHMMFastestRadius_Private(ts, &rho));
-  if (!(rho > kRadiusGrowth * vs->radius_baseline)) PetscFunctionReturn(0);
-  PetscCall(PetscInfo(ts, "Adapt: the fastest level's radius grew %g times since the spectra were estimated (t = %g): estimated again at t = %g\n", (double)(vs->radius_baseline > 0 ? rho / vs->radius_baseline : PETSC_INFINITY), (double)vs->spectra_time,
-                      (double)ts->ptime));
-  PetscCall(UpdateStableSteps(ts));
+  *redo       = PETSC_FALSE;
+  ts->vec_sol = vs->Xbase;
+  ts->ptime   = t1;
+  ierr        = TSVSHMMFastestRadius_Private(ts, &rho);
+  /* a millionfold growth of the fastest rate within one macro step is a blow-up (the try's state
+     grew without bound, finite yet: three levels started from a zero state had a medium
+     rate of 6e18 at the end of their first try), not a rate to take the micro step from */
+  const PetscBool grew = (!ierr && rho > kRadiusGrowth * vs->radius_baseline && !(rho > kBlowUpGrowth * vs->radius_baseline)) ? PETSC_TRUE : PETSC_FALSE;
+  if (grew) ierr = TSVSHMMLevelSpectra_Private(ts);
+  ts->vec_sol = X0;
+  ts->ptime   = t0;
+  PetscCall(ierr);
+  if (!grew) PetscFunctionReturn(0);
+  for (size_t l = 0; l < hmax.size() && l < vs->level_max_step.size(); ++l) {
+    if (hmax[l] < vs->level_max_step[l]) { /* the start's limit is the tighter */
+      vs->level_max_step[l] = hmax[l];
+      vs->level_worst[l]    = worst[l];
+      vs->level_limiting[l] = limiting[l];
+    }
+    vs->level_radius[l] = PetscMax(vs->level_radius[l], radius[l]);
+  }
+  vs->spectra_time    = t0; /* the spectra of the step [t0, t1] */
+  vs->radius_baseline = PetscMax(rho, vs->level_radius.back());
+  LimitToStableSteps(ts, vs->adapt_params);
+  *redo = (vs->adapt_params.microStep < 0.999 * dt || vshmm::cycleLength(vs->adapt_params) < 0.999 * cycle) ? PETSC_TRUE : PETSC_FALSE;
+  PetscCall(PetscInfo(ts, "Adapt: the fastest level's radius grew %g times within the macro step [%g, %g]: spectra of its end state too; micro step %g (was %g)%s\n", (double)(vs->radius_baseline > 0 ? rho / PetscMax(radius.back(), PETSC_SMALL) : 0), (double)t0, (double)t1,
+                      (double)vs->adapt_params.microStep, (double)dt, *redo ? ", the try taken again" : ""));
   PetscFunctionReturn(0);
 }
 
@@ -1244,7 +1277,6 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
      A first step accepted as it was tried is no layer, and the estimate (an Arnoldi run per
      level, 12% of the sparse-spectral diffusion scenes' work at 1e-2) is not made again. */
   if (calibrate || (vs->adapt_accepted == 1 && vs->adapt_rejections > 0)) PetscCall(UpdateStableSteps(ts));
-  else PetscCall(FollowFastestRate(ts));
   if (vs->spectra_time == ts->ptime) {
     PetscCall(RecheckSeparation(ts));
     if (!vs->adapt_calibrated) calibrate = later;
@@ -1258,6 +1290,7 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
   vshmm::AdaptParameters beforeSingleRate;            /* the try that found that floor */
   PetscBool              edgeFound     = PETSC_FALSE; /* a try blew up within the stable steps of this state */
   PetscBool              edgeMargin    = PETSC_FALSE; /* the micro step was bounded by a blow-up's edge (EdgeMargin()) */
+  PetscBool              radiusChecked = PETSC_FALSE; /* the fastest radius at the end of a try was checked (RateGrewInStep()) */
   PetscReal              floorEstimate = 0;           /* and its estimate */
   for (PetscInt attempt = 0;; ++attempt) {
     vshmm::AdaptParameters &p = vs->adapt_params;
@@ -1292,6 +1325,16 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
       continue;
     }
 
+    if (!radiusChecked && attempt + 1 < kMaxAttempts) { /* once per macro step: a fast rate that grew within it */
+      PetscBool redo;
+      radiusChecked = PETSC_TRUE;
+      PetscCall(RateGrewInStep(ts, t1, &redo));
+      if (redo) {
+        DiscardTry(vs, rhs0, lev0);
+        bounds = Bounds(ts, DeltaT);
+        continue;
+      }
+    }
     if (edgeFound && !edgeMargin && !bounds.fixedMicroStep && attempt + 1 < kMaxAttempts) {
       /* the first try to stay finite after tries that blew up within the stable steps of this
          state (estimated here already: the fast rates grow within the step, as in Robertson's
