@@ -408,25 +408,32 @@ static PetscErrorCode UpdateStableSteps(TS ts)
    (3 tol at 1e-2). */
 static PetscErrorCode RateGrewInStep(TS ts, PetscReal t1, PetscBool *redo)
 {
-  TS_VSHMM                                            *vs = (TS_VSHMM *)ts->data;
-  const PetscReal                                      t0 = ts->ptime, cycle = vshmm::cycleLength(vs->adapt_params), dt = vs->adapt_params.microStep;
-  Vec                                                  X0 = ts->vec_sol;
-  PetscReal                                            rho;
-  const std::vector<PetscReal>                         hmax = vs->level_max_step, radius = vs->level_radius;
-  const std::vector<std::complex<double>>              worst    = vs->level_worst;
-  const std::vector<std::vector<std::complex<double>>> limiting = vs->level_limiting;
-  PetscErrorCode                                       ierr;
+  TS_VSHMM                                      *vs = (TS_VSHMM *)ts->data;
+  const PetscReal                                t0 = ts->ptime, cycle = vshmm::cycleLength(vs->adapt_params), dt = vs->adapt_params.microStep;
+  Vec                                            X0 = ts->vec_sol;
+  PetscReal                                      rho;
+  std::vector<PetscReal>                         hmax, radius;
+  std::vector<std::complex<double>>              worst;
+  std::vector<std::vector<std::complex<double>>> limiting;
+  PetscErrorCode                                 ierr;
 
   PetscFunctionBegin;
-  *redo       = PETSC_FALSE;
-  ts->vec_sol = vs->Xbase;
-  ts->ptime   = t1;
-  ierr        = TSVSHMMFastestRadius_Private(ts, &rho);
+  const PetscReal base = vs->radius_baseline;
+  *redo                = PETSC_FALSE;
+  ts->vec_sol          = vs->Xbase;
+  ts->ptime            = t1;
+  ierr                 = TSVSHMMFastestRadius_Private(ts, &rho);
   /* a millionfold growth of the fastest rate within one macro step is a blow-up (the try's state
      grew without bound, finite yet: three levels started from a zero state had a medium
      rate of 6e18 at the end of their first try), not a rate to take the micro step from */
-  const PetscBool grew = (!ierr && rho > kRadiusGrowth * vs->radius_baseline && !(rho > kBlowUpGrowth * vs->radius_baseline)) ? PETSC_TRUE : PETSC_FALSE;
-  if (grew) ierr = TSVSHMMLevelSpectra_Private(ts);
+  const PetscBool grew = (!ierr && rho > kRadiusGrowth * base && !(rho > kBlowUpGrowth * base)) ? PETSC_TRUE : PETSC_FALSE;
+  if (grew) { /* the start's spectra, kept where they are the tighter */
+    hmax     = vs->level_max_step;
+    radius   = vs->level_radius;
+    worst    = vs->level_worst;
+    limiting = vs->level_limiting;
+    ierr     = TSVSHMMLevelSpectra_Private(ts);
+  }
   ts->vec_sol = X0;
   ts->ptime   = t0;
   PetscCall(ierr);
@@ -443,7 +450,7 @@ static PetscErrorCode RateGrewInStep(TS ts, PetscReal t1, PetscBool *redo)
   vs->radius_baseline = PetscMax(rho, vs->level_radius.back());
   LimitToStableSteps(ts, vs->adapt_params);
   *redo = (vs->adapt_params.microStep < 0.999 * dt || vshmm::cycleLength(vs->adapt_params) < 0.999 * cycle) ? PETSC_TRUE : PETSC_FALSE;
-  PetscCall(PetscInfo(ts, "Adapt: the fastest level's radius grew %g times within the macro step [%g, %g]: spectra of its end state too; micro step %g (was %g)%s\n", (double)(vs->radius_baseline > 0 ? rho / PetscMax(radius.back(), PETSC_SMALL) : 0), (double)t0, (double)t1,
+  PetscCall(PetscInfo(ts, "Adapt: the fastest level's radius grew %g times within the macro step [%g, %g]: spectra of its end state too; micro step %g (was %g)%s\n", (double)(base > 0 ? rho / base : PETSC_INFINITY), (double)t0, (double)t1,
                       (double)vs->adapt_params.microStep, (double)dt, *redo ? ", the try taken again" : ""));
   PetscFunctionReturn(0);
 }
@@ -1139,6 +1146,23 @@ static PetscErrorCode LayerEstimate(TS ts, const vshmm::AdaptParameters &p, cons
   PetscFunctionReturn(0);
 }
 
+/* Adapt starts again from the parameters just set in vs->adapt_params (a separation verdict that
+   changed, a merged pair now separated): brought inside the stable steps and the cycle bound, the
+   error model measured again, the next step treated as a first (its micro step's term measured
+   from the finer side, Calibrate()). */
+static void StartAgain(TS ts)
+{
+  TS_VSHMM               *vs = (TS_VSHMM *)ts->data;
+  vshmm::AdaptParameters &p  = vs->adapt_params;
+
+  LimitToStableSteps(ts, p);
+  const vshmm::AdaptBounds b = Bounds(ts, ts->time_step);
+  vshmm::fitCycle(p, b.maxCycle, b.fixedRatios, true);
+  vs->adapt_model          = vshmm::ErrorModel();
+  vs->adapt_calibrated     = PETSC_FALSE;
+  vs->adapt_start_accepted = vs->adapt_accepted;
+}
+
 /* The separation check's verdict changed (vs->no_separation against `before`): adapt starts again
    from the parameters the new verdict gives at the present spectra (FirstMicroStep(),
    FirstRatios()), with the split between the terms measured again. Scales found not separated
@@ -1160,12 +1184,7 @@ static PetscErrorCode SeparationChanged(TS ts, PetscBool before, PetscReal tbefo
   PetscCall(FirstRatios(ts, p));
   if (vs->adapt_single_rate_from >= 0)
     for (double &r : p.ratios) r = 1.0;
-  LimitToStableSteps(ts, p);
-  const vshmm::AdaptBounds b = Bounds(ts, ts->time_step);
-  vshmm::fitCycle(p, b.maxCycle, b.fixedRatios, true);
-  vs->adapt_model          = vshmm::ErrorModel();
-  vs->adapt_calibrated     = PETSC_FALSE;
-  vs->adapt_start_accepted = vs->adapt_accepted;
+  StartAgain(ts);
   if (!vs->no_separation) {
     PetscReal   best;
     std::string figures;
@@ -1205,12 +1224,7 @@ static PetscErrorCode RecheckMergedPairs(TS ts)
     any         = true;
   }
   if (!any) PetscFunctionReturn(0);
-  LimitToStableSteps(ts, p);
-  const vshmm::AdaptBounds b = Bounds(ts, ts->time_step);
-  vshmm::fitCycle(p, b.maxCycle, b.fixedRatios, true);
-  vs->adapt_model          = vshmm::ErrorModel();
-  vs->adapt_calibrated     = PETSC_FALSE;
-  vs->adapt_start_accepted = vs->adapt_accepted;
+  StartAgain(ts);
   PetscFunctionReturn(0);
 }
 

@@ -37,17 +37,31 @@ static constexpr PetscReal kFastEnergyGrowth    = 4;    /* growth of the fastest
 static constexpr PetscReal kCouplingTarget      = 1.01; /* what suggested savings factors achieve */
 static constexpr PetscReal kNegligibleDrive     = 1e-3; /* of the fastest level's part of the state: a drive of the slower levels whose response is not estimated */
 
+/* A deterministic start vector for the Arnoldi and power iterations, the same on any number of
+   ranks: 1 + sin(1.7 i + 0.3) / 2 at global index i. */
+static PetscErrorCode DeterministicStart(Vec v)
+{
+  PetscInt     rstart, rend;
+  PetscScalar *a;
+
+  PetscFunctionBegin;
+  PetscCall(VecGetOwnershipRange(v, &rstart, &rend));
+  PetscCall(VecGetArray(v, &a));
+  for (PetscInt i = rstart; i < rend; ++i) a[i - rstart] = 1.0 + 0.5 * std::sin(1.7 * (double)i + 0.3);
+  PetscCall(VecRestoreArray(v, &a));
+  PetscFunctionReturn(0);
+}
+
 /* Arnoldi on the Jacobian of level l's field at (t, X), applied by finite differences of the level's
    field: an orthonormal basis V[0..k-1] of a Krylov space (V has m + 1 vectors, m = min(16, N),
    destroyed by the caller with VecDestroyVecs(m + 1, &V)) and the k x k Hessenberg matrix
    V^T J V (column-major, leading dimension m + 1, in H). k = 0 where the field is not finite near X. */
 static PetscErrorCode LevelArnoldi(TS ts, PetscInt level, PetscReal t, Vec X, Vec **Vout, PetscInt *mout, std::vector<PetscScalar> &H, PetscInt *kout, PetscReal *delta_out, Vec mask = nullptr, Vec start = nullptr, PetscBool central = PETSC_FALSE, PetscBool own = PETSC_FALSE)
 {
-  TS_VSHMM    *vs = (TS_VSHMM *)ts->data;
-  PetscInt     N, rstart, rend;
-  Vec         *V, G0, Xp, W;
-  PetscReal    xnorm;
-  PetscScalar *v;
+  TS_VSHMM *vs = (TS_VSHMM *)ts->data;
+  PetscInt  N;
+  Vec      *V, G0, Xp, W;
+  PetscReal xnorm;
 
   PetscFunctionBegin;
   PetscCall(VecGetSize(X, &N));
@@ -66,12 +80,7 @@ static PetscErrorCode LevelArnoldi(TS ts, PetscInt level, PetscReal t, Vec X, Ve
 
   /* The start vector given, or a deterministic one that does not depend on the number of ranks */
   if (start) PetscCall(VecCopy(start, V[0]));
-  else {
-    PetscCall(VecGetOwnershipRange(V[0], &rstart, &rend));
-    PetscCall(VecGetArray(V[0], &v));
-    for (PetscInt i = rstart; i < rend; ++i) v[i - rstart] = 1.0 + 0.5 * std::sin(1.7 * (double)i + 0.3);
-    PetscCall(VecRestoreArray(V[0], &v));
-  }
+  else PetscCall(DeterministicStart(V[0]));
   if (mask) PetscCall(VecPointwiseMult(V[0], V[0], mask));
   PetscReal beta;
   PetscCall(VecNormalize(V[0], &beta));
@@ -310,8 +319,8 @@ PetscErrorCode TSVSHMMLevelSpectra_Private(TS ts)
 /* The fastest level's spectral radius at the present state by kRadiusIterations steps of the
    power method on its field's Jacobian (forward differences), started from the vector the last
    call ended with: a cheap follower of a radius that moves with the solution between the levels'
-   full spectra (TSVSHMMLevelSpectra_Private(), at -ts_vshmm_adapt's calibrations). 0 where the
-   field is not finite near the state. Counted as the stability check's evaluations. */
+   full spectra (TSVSHMMLevelSpectra_Private()), at the end of each of -ts_vshmm_adapt's macro
+   steps. 0 where the field is not finite near the state. Counted as the stability check's evaluations. */
 PetscErrorCode TSVSHMMFastestRadius_Private(TS ts, PetscReal *rho)
 {
   TS_VSHMM       *vs = (TS_VSHMM *)ts->data;
@@ -324,13 +333,8 @@ PetscErrorCode TSVSHMMFastestRadius_Private(TS ts, PetscReal *rho)
   *rho = 0;
   const StabilityCounting counting(vs);
   if (!vs->radius_vec) {
-    PetscInt     rstart, rend;
-    PetscScalar *v;
     PetscCall(VecDuplicate(X, &vs->radius_vec));
-    PetscCall(VecGetOwnershipRange(vs->radius_vec, &rstart, &rend));
-    PetscCall(VecGetArray(vs->radius_vec, &v));
-    for (PetscInt i = rstart; i < rend; ++i) v[i - rstart] = 1.0 + 0.5 * std::sin(1.7 * (double)i + 0.3);
-    PetscCall(VecRestoreArray(vs->radius_vec, &v));
+    PetscCall(DeterministicStart(vs->radius_vec));
   }
   PetscCall(VecDuplicate(X, &G0));
   PetscCall(VecDuplicate(X, &Xp));
