@@ -46,6 +46,8 @@ static PetscErrorCode TSVSHMMTearDown_Private(TS ts)
   PetscCall(VecDestroy(&vs->Y));
   PetscCall(VecDestroy(&vs->X0));
   PetscCall(VecDestroy(&vs->radius_vec));
+  for (Vec &v : vs->fastest_phase) PetscCall(VecDestroy(&v));
+  vs->fastest_phase.clear();
   for (Vec &k : vs->K) PetscCall(VecDestroy(&k));
   vs->K.clear();
   vs->schedule.reset();

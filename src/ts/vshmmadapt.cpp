@@ -79,7 +79,8 @@ static constexpr PetscReal kMaxDearer              = 4;    /* and rise by this f
 static constexpr PetscReal kNegligibleEstimate     = 1e-3; /* a single-rate step pinned at its bounds after a step this far below its share is not compared */
 static constexpr PetscReal kSecondScaling          = 1.5;  /* the initial layer's second comparison scales every term by this */
 static constexpr PetscReal kLayerFitWindow         = 4;    /* and is made for estimates above the share by at most this factor */
-static constexpr PetscReal kBlowUpGrowth           = 1e6;  /* a comparison this many times larger than its step and their start blew up */
+static constexpr PetscReal kUnaveragedShare        = 0.5; /* of the tolerance: where a macro step that leaves the fastest oscillation unaveraged errs by more, it turns at least once per macro step (half: for a band of fast modes the measure, at one set of their relative phases, was 2-3x below the error) */
+static constexpr PetscReal kBlowUpGrowth           = 1e6; /* a comparison this many times larger than its step and their start blew up */
 /* The difference to a run that blew up: IEEE infinity, which std::isfinite() rejects (PETSC_INFINITY
    is PETSC_MAX_REAL / 4, a finite number, and was once read as an estimate of 4.5e307 tolerances) */
 static constexpr PetscReal kBlownUp = std::numeric_limits<PetscReal>::infinity();
@@ -258,6 +259,59 @@ static PetscReal AllowedAmplitudeLoss(TS ts)
   return kOscillationShare * tol / PetscMax(AmplitudeWeight(ts), 1e-12);
 }
 
+/* How far a macro step moves the observables where it leaves the fastest level's oscillation
+   unaveraged: the slower levels' field at eight phases of the oscillation less its phase average
+   (FastestLevelDrive()), each over DeltaT, in the weighted measure (1 = the tolerance; the largest
+   of the eight). Where the time ratios slow the fastest level so far that it turns less than once
+   within a macro step of micro time, the slow steps see one phase of it, and the sampled slow
+   variables carry that phase's part of the field over the step: the error saturates at about this
+   size, and coarser comparisons, which see the same phase, do not show it (Bounds()). Also the
+   slowest frequency of the fastest level's limiting oscillations. */
+PetscErrorCode TSVSHMMAdaptUnaveraged_Private(TS ts)
+{
+  TS_VSHMM *vs    = (TS_VSHMM *)ts->data;
+  PetscReal omega = 0, worst = 0;
+  Vec       Xs;
+
+  PetscFunctionBegin;
+  vs->unaveraged         = 0;
+  vs->unaveraged_omega   = 0;
+  vs->unaveraged_unknown = PETSC_FALSE;
+  if (!vs->adapt || vs->level_limiting.empty()) PetscFunctionReturn(0);
+  const size_t K = vs->level_limiting.size() - 1;
+  /* the fastest level's own oscillations within kInitialSeparation of its radius: not a slower
+     level's mode it also holds, nor a Ritz value of a band's inside that the Arnoldi space has not
+     converged to (12.6 against a band of 1,000-1,875 took every saving) */
+  const PetscReal slow = (K > 0 && vs->level_radius.size() > K) ? PetscMax(kMinSeparation * vs->level_radius[K - 1], vs->level_radius[K] / kInitialSeparation) : 0;
+  for (const std::complex<double> &lambda : vs->level_limiting.back())
+    if (vshmm::oscillates(lambda) && std::abs(lambda) > slow) omega = omega > 0 ? PetscMin(omega, PetscAbsReal(lambda.imag())) : PetscAbsReal(lambda.imag());
+  if (!(K > 0 && omega > 0 && std::isfinite(omega))) PetscFunctionReturn(0);
+  vs->unaveraged_omega = omega;
+  if (!vs->fastest_phase_now) { /* no amplitude of the oscillation at this state to turn (FastestLevelDrive() did not run) */
+    vs->unaveraged_unknown = PETSC_TRUE;
+    PetscCall(PetscInfo(ts, "Adapt: the fastest level oscillates (slowest frequency %g) but holds no part of the state to measure its unaveraged field with: it turns at least once per macro step\n", (double)omega));
+    PetscFunctionReturn(0);
+  }
+  const std::vector<PetscReal> diff = vs->obs_diff; /* ObservableDifference() records the comparisons' signs and which part led */
+  const PetscBool              last = vs->slow_last;
+  const PetscInt64             led  = vs->slow_led;
+  PetscCall(VecDuplicate(ts->vec_sol, &Xs));
+  for (Vec phase : vs->fastest_phase) {
+    PetscReal d;
+    PetscCall(VecWAXPY(Xs, ts->time_step, phase, ts->vec_sol));
+    PetscCall(ObservableDifference(ts, ts->ptime, ts->vec_sol, Xs, &d));
+    if (std::isfinite(d)) worst = PetscMax(worst, d);
+  }
+  PetscCall(VecDestroy(&Xs));
+  vs->obs_diff       = diff;
+  vs->slow_last      = last;
+  vs->slow_led       = led;
+  vs->unaveraged     = worst;
+  vs->unaveraged_max = PetscMax(vs->unaveraged_max, worst);
+  PetscCall(PetscInfo(ts, "Adapt: a macro step that leaves the fastest level's oscillation (slowest frequency %g) unaveraged moves the observables by %g of the tolerance\n", (double)omega, (double)worst));
+  PetscFunctionReturn(0);
+}
+
 static PetscReal AccurateMicroStep(TS ts, const vshmm::AdaptParameters &p, PetscReal dtMax)
 {
   TS_VSHMM                         *vs = (TS_VSHMM *)ts->data;
@@ -328,6 +382,14 @@ static vshmm::AdaptBounds Bounds(TS ts, PetscReal DeltaT)
       b.maxRatio.resize(vs->level_radius.size() - 1, PETSC_INFINITY);
       b.maxRatio[l] = PetscMin(b.maxRatio[l], S);
     }
+  }
+  if ((vs->unaveraged_unknown || vs->unaveraged_max > kUnaveragedShare) && vs->unaveraged_omega > 0 && !vs->level_radius.empty()) {
+    /* the fastest level turns at least once per macro step in micro time, DeltaT / (r_0 ... r_{K-1}) */
+    const size_t K      = vs->level_radius.size() - 1;
+    PetscReal    slower = 1;
+    for (size_t l = 0; l + 1 < K && l < vs->adapt_params.ratios.size(); ++l) slower *= vs->adapt_params.ratios[l];
+    b.maxRatio.resize(K, PETSC_INFINITY);
+    b.maxRatio[K - 1] = PetscMin(b.maxRatio[K - 1], PetscMax(1.0, vs->unaveraged_omega * DeltaT / (2 * PETSC_PI * slower)));
   }
   if (vs->no_separation && vs->savings.empty() && !vs->adapt_verified.empty()) { /* savings up to those a single-rate step confirmed */
     bool any = false;
@@ -737,6 +799,8 @@ static PetscErrorCode FirstRatios(TS ts, vshmm::AdaptParameters &p)
         vs->adapt_merged[l] = S;
         PetscCall(PetscInfo(ts, "Adapt: levels %" PetscInt_FMT "/%" PetscInt_FMT " are %.3g apart: no savings between them\n", l, l + 1, (double)S));
       }
+    const vshmm::AdaptBounds b = Bounds(ts, ts->time_step); /* inside the bounds every later choice keeps */
+    for (size_t l = 0; l < b.maxRatio.size() && l < p.ratios.size(); ++l) p.ratios[l] = PetscMin(p.ratios[l], PetscMax(1.0, b.maxRatio[l]));
   }
   PetscFunctionReturn(0);
 }
@@ -786,6 +850,7 @@ PetscErrorCode TSVSHMMAdaptSetUp_Private(TS ts)
   vs->adapt_model    = vshmm::ErrorModel();
   vs->adapt_ready    = PETSC_TRUE;
   vs->error_estimate = vs->error_estimate_total = 0;
+  vs->unaveraged_max                            = vs->unaveraged;
   vs->adapt_signed.clear();
   vs->adapt_accepted       = 0;
   vs->adapt_start_accepted = 0;

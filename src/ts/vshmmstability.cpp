@@ -501,6 +501,10 @@ static PetscErrorCode FastestLevelDrive(TS ts, Vec mask, PetscReal n_all)
     PetscCall(VecScale(Q, 1.0 / rho));
   }
   PetscCall(VecSet(D, 0.0));
+  if (vs->fastest_phase.empty()) {
+    vs->fastest_phase.resize(8, nullptr);
+    for (Vec &v : vs->fastest_phase) PetscCall(VecDuplicate(ts->vec_sol, &v));
+  }
   for (int quarter = 0; quarter < 4; ++quarter) {
     const PetscReal c = quarter == 0 ? 1 : quarter == 2 ? -1 : 0, q = quarter == 1 ? 1 : quarter == 3 ? -1 : 0;
     PetscCall(VecAXPBYPCZ(Y, c, q, 0.0, P, Q));       /* the oscillation's part at this phase */
@@ -510,7 +514,17 @@ static PetscErrorCode FastestLevelDrive(TS ts, Vec mask, PetscReal n_all)
     PetscCall(VecAXPY(Xs, -2.0 * s, Y)); /* X - P + (1 - s) that part */
     PetscCall(TSVSHMMEvaluateLevel_Private(vs, K - 1, ts->ptime, Xs, Gm));
     PetscCall(VecAXPBYPCZ(D, 1.0 / (8 * s), -1.0 / (8 * s), 1.0, Gp, Gm));
+    PetscCall(VecAXPBYPCZ(vs->fastest_phase[2 * quarter], 0.5, 0.5, 0.0, Gp, Gm)); /* the field at this phase (to O(s^2)) */
+    /* and half-way to the next quarter: eight phases show a part of the field that oscillates at
+       twice the frequency (a squared fast variable) at every phase of it */
+    PetscCall(VecAXPBYPCZ(Y, (c - q) * PETSC_SQRT2 / 2, (c + q) * PETSC_SQRT2 / 2, 0.0, P, Q));
+    PetscCall(VecWAXPY(Xs, -1.0, P, ts->vec_sol));
+    PetscCall(VecAXPY(Xs, 1.0, Y));
+    PetscCall(TSVSHMMEvaluateLevel_Private(vs, K - 1, ts->ptime, Xs, vs->fastest_phase[2 * quarter + 1]));
   }
+  PetscCall(VecSet(G, 0.0)); /* the phase average */
+  for (Vec v : vs->fastest_phase) PetscCall(VecAXPY(G, 0.125, v));
+  for (Vec v : vs->fastest_phase) PetscCall(VecAXPY(v, -1.0, G));
   PetscCall(VecNorm(D, NORM_2, &n_d));
   const PetscReal tau      = 0.5 * TSVSHMMAmplitudeSpan_Private(ts);
   PetscReal       response = tau;                                                                  /* what the slower levels make of the drive over half the run, per unit drive */
@@ -527,6 +541,7 @@ static PetscErrorCode FastestLevelDrive(TS ts, Vec mask, PetscReal n_all)
   }
   vs->fastest_drive = std::isfinite(n_d * response) ? n_d * response / n_all : 0.0; /* not finite near X: no information (the level's own part weighs alone) */
   PetscCall(PetscInfo(ts, "The slower levels' fields move the state by %g of its norm per unit time and relative amplitude of the fastest level's oscillation (phase average), %g over half the run\n", (double)(n_d / n_all), (double)vs->fastest_drive));
+  vs->fastest_phase_now = PETSC_TRUE;
   PetscCall(VecDestroy(&P));
   PetscCall(VecDestroy(&Q));
   PetscCall(VecDestroy(&G));
@@ -548,8 +563,9 @@ PetscErrorCode TSVSHMMLevelOwnRates_Private(TS ts)
   if (vs->own_rates_time == vs->spectra_time && (PetscInt)vs->level_slowest.size() == nscales) PetscFunctionReturn(0);
   const StabilityCounting counting(vs);
   vs->level_slowest.assign(nscales, 0.0);
-  vs->fastest_share = 1.0;
-  vs->fastest_drive = 0.0;
+  vs->fastest_share     = 1.0;
+  vs->fastest_drive     = 0.0;
+  vs->fastest_phase_now = PETSC_FALSE;
   for (PetscInt level = 1; level < nscales; ++level) {
     PetscBool component = PETSC_TRUE;
     for (PetscInt k = vs->level_end[level - 1]; k < vs->level_end[level]; ++k) component = vs->splits[k].additive ? PETSC_FALSE : component;
@@ -597,6 +613,7 @@ PetscErrorCode TSVSHMMLevelOwnRates_Private(TS ts)
     PetscCall(PetscInfo(ts, "Own components of level %" PetscInt_FMT " at t = %g: slowest rate %g%s\n", level, (double)ts->ptime, (double)vs->level_slowest[level], level == nscales - 1 ? " (its part of the state: the line above)" : ""));
   }
   vs->own_rates_time = vs->spectra_time;
+  if (vs->adapt) PetscCall(TSVSHMMAdaptUnaveraged_Private(ts));
   PetscFunctionReturn(0);
 }
 
