@@ -391,6 +391,17 @@ static vshmm::AdaptBounds Bounds(TS ts, PetscReal DeltaT)
     b.maxRatio.resize(K, PETSC_INFINITY);
     b.maxRatio[K - 1] = PetscMin(b.maxRatio[K - 1], PetscMax(1.0, vs->unaveraged_omega * DeltaT / (2 * PETSC_PI * slower)));
   }
+  for (size_t l = 1; l < vs->level_time_rate_max.size() && l < vs->level_radius.size(); ++l) {
+    /* a level whose splits depend on time explicitly sees that dependence r_0 ... r_{l-1} times
+       faster than it is (one clock for every level): it stays kMinSeparation below the level's
+       radius (LevelTimeRates() in vshmmstability.cpp; a fast forcing sin(t / eps) allows no savings) */
+    const PetscReal nu = vs->level_time_rate_max[l];
+    if (!(nu > 0) || !(vs->level_radius[l] > 0)) continue;
+    PetscReal slower = 1;
+    for (size_t j = 0; j + 1 < l && j < vs->adapt_params.ratios.size(); ++j) slower *= vs->adapt_params.ratios[j];
+    b.maxRatio.resize(vs->level_radius.size() - 1, PETSC_INFINITY);
+    b.maxRatio[l - 1] = PetscMin(b.maxRatio[l - 1], PetscMax(1.0, vs->level_radius[l] / (kMinSeparation * nu * slower)));
+  }
   if (vs->no_separation && vs->savings.empty() && !vs->adapt_verified.empty()) { /* savings up to those a single-rate step confirmed */
     bool any = false;
     b.maxRatio.resize(vs->adapt_verified.size(), PETSC_INFINITY);
@@ -686,6 +697,34 @@ static PetscErrorCode SeparationFigures(TS ts, PetscReal *best, std::string &fig
   PetscFunctionReturn(0);
 }
 
+/* The savings factors the run steps with (the user's, or the defaults) against the explicit time
+   dependence of the faster levels' splits (LevelTimeRates() in vshmmstability.cpp): level l sees it
+   r_0 ... r_{l-1} times faster than it is, and where that comes within kMinSeparation of the
+   level's spectral radius the level follows a forcing that is not there (a fast forcing sin(t /
+   eps) is aliased by any savings). Said at set-up (an error with -ts_vshmm_check_separation
+   error); -ts_vshmm_adapt with savings of its own bounds its time ratios instead (Bounds()). */
+static PetscErrorCode CheckTimeRates(TS ts)
+{
+  TS_VSHMM *vs = (TS_VSHMM *)ts->data;
+
+  PetscFunctionBegin;
+  if (vs->check_separation == TSVSHMM_SEPARATION_OFF || (vs->adapt && vs->savings.empty()) || ts->steps > 0) PetscFunctionReturn(0); /* at set-up */
+  const std::vector<double> r       = vshmm::timeRatiosFromSavings(vs->savings_used);
+  PetscReal                 speedup = 1;
+  for (size_t l = 1; l < vs->level_time_rate.size() && l < vs->level_radius.size() && l - 1 < r.size(); ++l) {
+    speedup *= r[l - 1];
+    const PetscReal nu = vs->level_time_rate[l], rho = vs->level_radius[l];
+    if (!(nu > 0) || !(rho > 0) || !(nu * speedup > rho / kMinSeparation)) continue;
+    std::string names;
+    for (PetscInt k = vs->level_end[l - 1]; k < vs->level_end[l]; ++k) names += std::string(names.empty() ? "'" : ", '") + vs->splits[k].name + "'";
+    PetscCheck(vs->check_separation != TSVSHMM_SEPARATION_ERROR, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_INCOMP, "TSVSHMM separation check at t = %g: the RHS split(s) %s of level %d depend explicitly on time at rate %g (||dF/dt|| / (rho ||X||)), and the savings factors make the level see that dependence %g times faster, %g against its spectral radius %g: VSHMM advances one clock for every level, so the level follows a forcing that is not there. Make the fast time dependence a variable of the state (an oscillator in the fast split, (c, s)' = omega (-s, c)), use -ts_vshmm_adapt (it takes no savings that would), or a single-rate TS type (-ts_type rk); -ts_vshmm_check_separation warn runs anyway",
+               (double)ts->ptime, names.c_str(), (int)l, (double)nu, (double)speedup, (double)(nu * speedup), (double)rho);
+    PetscCall(TSVSHMMWarn_Private(ts, "TSVSHMM warning: separation check at t = %g: the RHS split(s) %s of level %d depend explicitly on time at rate %g (||dF/dt|| / (rho ||X||)), and the savings factors make the level see that dependence %g times faster, %g against its spectral radius %g: VSHMM advances one clock for every level, so the level follows a forcing that is not there and its answer will be wrong by an amount it cannot estimate. Make the fast time dependence a variable of the state (an oscillator in the fast split, (c, s)' = omega (-s, c)), use -ts_vshmm_adapt (it takes no savings that would), or a single-rate TS type (-ts_type rk). (-ts_vshmm_check_separation error makes this an error, off silences it.)\n",
+                                  (double)ts->ptime, names.c_str(), (int)l, (double)nu, (double)speedup, (double)(nu * speedup), (double)rho));
+  }
+  PetscFunctionReturn(0);
+}
+
 /* The separation check: spectral radii of consecutive levels (or the separations set). */
 PetscErrorCode TSVSHMMCheckSeparation_Private(TS ts)
 {
@@ -703,6 +742,7 @@ PetscErrorCode TSVSHMMCheckSeparation_Private(TS ts)
   PetscCall(SeparationFigures(ts, &best, figures, &own));
   vs->no_separation   = best < kMinSeparation ? PETSC_TRUE : PETSC_FALSE;
   vs->separation_time = ts->ptime;
+  PetscCall(CheckTimeRates(ts));
   PetscCall(PetscInfo(ts, "Separation check at t = %g: %s\n", (double)ts->ptime, figures.c_str()));
   if (!vs->no_separation || vs->check_separation == TSVSHMM_SEPARATION_OFF) PetscFunctionReturn(0);
   const char *what = (vs->separations.empty() && !own) ? "ratio of the spectral radii of consecutive levels" : "separation of consecutive levels";
@@ -851,6 +891,7 @@ PetscErrorCode TSVSHMMAdaptSetUp_Private(TS ts)
   vs->adapt_ready    = PETSC_TRUE;
   vs->error_estimate = vs->error_estimate_total = 0;
   vs->unaveraged_max                            = vs->unaveraged;
+  vs->level_time_rate_max                       = vs->level_time_rate;
   vs->adapt_signed.clear();
   vs->adapt_accepted       = 0;
   vs->adapt_start_accepted = 0;

@@ -553,6 +553,62 @@ static PetscErrorCode FastestLevelDrive(TS ts, Vec mask, PetscReal n_all)
   PetscFunctionReturn(0);
 }
 
+/* How fast the explicit time dependence of each faster level's own splits moves it: ||dF_l/dt|| /
+   (rho_l ||X||) by a forward difference in t, for l >= 1 (vs->level_time_rate). VSHMM advances one
+   clock for every level, by the mesoscopic steps as well, so level l sees the time dependence of
+   its splits r_0 ... r_{l-1} times faster than it is: a forcing sin(t / eps) in a fast split,
+   which no time ratio may slow, is aliased by any savings (x' = 1 - x + 2 z^2, z' = -(z - x sin(t /
+   1e-3)) / 1e-3: 3.8e-3 off with savings factor 0.01, 0.157 from 1 on). A slow forcing in a fast
+   split (cos t) moves at rate 1 and is slowed like the level's own slow process. */
+static PetscErrorCode LevelTimeRates(TS ts)
+{
+  TS_VSHMM      *vs      = (TS_VSHMM *)ts->data;
+  const PetscInt nscales = (PetscInt)vs->level_end.size();
+  Vec            F0, F1, Xa;
+
+  PetscFunctionBegin;
+  /* measured at set-up, and again later only where the splits depend on time at all (an autonomous
+     split differs by exactly 0): a forcing's amplitude changes with the state */
+  if (ts->steps > 0 && !vs->time_dependent) PetscFunctionReturn(0);
+  vs->level_time_rate.assign(nscales, 0.0);
+  if (nscales < 2) PetscFunctionReturn(0);
+  const PetscReal t = ts->ptime, delta = std::sqrt(PETSC_MACHINE_EPSILON) * PetscMax(PetscAbsReal(t), PetscAbsReal(ts->time_step));
+  PetscCall(VecDuplicate(ts->vec_sol, &F0));
+  PetscCall(VecDuplicate(ts->vec_sol, &F1));
+  PetscCall(VecDuplicate(ts->vec_sol, &Xa));
+  /* at the state, and where the slowest level's field takes it within a macro step: a forcing whose
+     amplitude is a slow variable at 0 (x sin(t / eps) from x = 0) shows there */
+  PetscCall(TSVSHMMEvaluateLevel_Private(vs, 0, t, ts->vec_sol, F0));
+  PetscCall(VecAYPX(F0, ts->time_step, ts->vec_sol));
+  PetscCall(VecCopy(F0, Xa));
+  for (int at = 0; at < 2; ++at) {
+    Vec       X = at == 0 ? ts->vec_sol : Xa;
+    PetscReal xnorm;
+    PetscCall(VecNorm(X, NORM_2, &xnorm));
+    if (!(xnorm > 0) || !std::isfinite(xnorm)) continue;
+    for (PetscInt level = 1; level < nscales; ++level) {
+      if (!((PetscInt)vs->level_radius.size() > level && vs->level_radius[level] > 0)) continue;
+      PetscReal d;
+      PetscCall(TSVSHMMEvaluateOwnSplits_Private(vs, level, t, X, F0));
+      PetscCall(TSVSHMMEvaluateOwnSplits_Private(vs, level, t + delta, X, F1));
+      PetscCall(VecAXPY(F1, -1.0, F0));
+      PetscCall(VecNorm(F1, NORM_2, &d));
+      if (std::isfinite(d)) vs->level_time_rate[level] = PetscMax(vs->level_time_rate[level], d / (delta * vs->level_radius[level] * xnorm));
+      if (d > 0) vs->time_dependent = PETSC_TRUE;
+    }
+  }
+  if ((PetscInt)vs->level_time_rate_max.size() < nscales) vs->level_time_rate_max.resize(nscales, 0.0);
+  for (PetscInt level = 1; level < nscales; ++level) {
+    vs->level_time_rate_max[level] = PetscMax(vs->level_time_rate_max[level], vs->level_time_rate[level]);
+    if (vs->level_time_rate[level] > 0)
+      PetscCall(PetscInfo(ts, "Level %" PetscInt_FMT " at t = %g: its splits' explicit time dependence moves at rate %g (spectral radius %g)\n", level, (double)t, (double)vs->level_time_rate[level], (double)vs->level_radius[level]));
+  }
+  PetscCall(VecDestroy(&F0));
+  PetscCall(VecDestroy(&F1));
+  PetscCall(VecDestroy(&Xa));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode TSVSHMMLevelOwnRates_Private(TS ts)
 {
   TS_VSHMM                         *vs      = (TS_VSHMM *)ts->data;
@@ -612,6 +668,7 @@ PetscErrorCode TSVSHMMLevelOwnRates_Private(TS ts)
     if (slowest > 0) vs->level_slowest[level] = slowest;
     PetscCall(PetscInfo(ts, "Own components of level %" PetscInt_FMT " at t = %g: slowest rate %g%s\n", level, (double)ts->ptime, (double)vs->level_slowest[level], level == nscales - 1 ? " (its part of the state: the line above)" : ""));
   }
+  PetscCall(LevelTimeRates(ts));
   vs->own_rates_time = vs->spectra_time;
   if (vs->adapt) PetscCall(TSVSHMMAdaptUnaveraged_Private(ts));
   PetscFunctionReturn(0);

@@ -744,6 +744,94 @@ TEST(VSHMMAdapt, ABandOfFastRotationsTurnsAtItsSlowestFrequency)
   EXPECT_LT(run.evaluations + run.stats.adapt_evaluations, 60000);
 }
 
+// A fast level forced at a fast rate in time: x' = 1 - x + 2 z^2, z' = -(z - (1 + x) sin(t / eps) /
+// 2) / eps (eps = 1e-3) from (0.2, 0), DeltaT = 0.1. VSHMM advances one clock for every level, so
+// with savings the fast level sees the forcing r times faster than it is: any savings alias it
+// (x(1) 1.4 tol off at 1e-2 before, 2.8 at t = 0.4). -ts_vshmm_adapt now takes none there (the
+// level's explicit time dependence, ||dF/dt|| / (rho ||X||) = 1,000-3,000, against its radius
+// 1,000); with savings set the separation check says so at set-up (an error with
+// -ts_vshmm_check_separation error). A slow forcing in time in the fast split (cos t) is no such
+// dependence (rate about 1) and keeps its savings.
+void ForcedSlow(const void *, PetscReal, const PetscScalar *x, PetscScalar *f)
+{
+  f[0] = 1 - x[0] + 2 * x[1] * x[1];
+  f[1] = 0;
+}
+void FastForcedFast(const void *, PetscReal t, const PetscScalar *x, PetscScalar *f)
+{
+  f[0] = 0;
+  f[1] = -(x[1] - 0.5 * (1 + x[0]) * PetscSinReal(t / 1e-3)) / 1e-3;
+}
+void SlowForcedFast(const void *, PetscReal t, const PetscScalar *x, PetscScalar *f)
+{
+  f[0] = 0;
+  f[1] = -(x[1] - 0.5 * (1 + x[0]) * PetscCosReal(t)) / 1e-3;
+}
+
+TEST(VSHMMAdapt, AFastForcingInTimeTakesNoSavings)
+{
+  SplitProblem p;
+  p.terms                = {ForcedSlow, FastForcedFast};
+  const double T         = 1;
+  const auto   Reference = [&](double h) { return Rk4Reference({ForcedSlow, FastForcedFast}, nullptr, {0.2, 0.0}, T, h); };
+  const double ref       = Reference(1e-6);
+  EXPECT_NEAR(ref, Reference(2e-6), 1e-10);
+  AdaptRun run;
+  ASSERT_EQ(SolveObservingX0("-ts_vshmm_adapt -ts_vshmm_warnings_viewer none -ts_rtol 1e-2 -ts_atol 1e-2", p, {0.2, 0.0}, {"slow", "fast"}, 0.1, T, &run), 0);
+  EXPECT_LE(std::abs(run.x[0] - ref), 1e-2 * (1 + std::abs(ref))) << "x(1) = " << run.x[0] << ", reference " << ref;
+  ASSERT_EQ(run.savings.size(), 1u);
+  EXPECT_EQ(run.savings[0], 0.0);
+}
+
+// The forcing's amplitude a slow variable at 0: z' = -(z - x sin(t / eps)) / eps from (0, 0). At the
+// initial state the fast split does not depend on time; the rate is also measured where the
+// slowest level's field takes the state within a macro step (x = DeltaT there), and the first
+// step takes no savings (to t = 0.3 at 1e-3: 3.1 tol when found only after the first step).
+void ZeroForcedFast(const void *, PetscReal t, const PetscScalar *x, PetscScalar *f)
+{
+  f[0] = 0;
+  f[1] = -(x[1] - x[0] * PetscSinReal(t / 1e-3)) / 1e-3;
+}
+
+TEST(VSHMMAdapt, AFastForcingWhoseAmplitudeStartsAtZeroIsFoundAtSetUp)
+{
+  SplitProblem p;
+  p.terms                = {ForcedSlow, ZeroForcedFast};
+  const double T         = 0.3;
+  const auto   Reference = [&](double h) { return Rk4Reference({ForcedSlow, ZeroForcedFast}, nullptr, {0.0, 0.0}, T, h); };
+  const double ref       = Reference(1e-6);
+  EXPECT_NEAR(ref, Reference(2e-6), 1e-10);
+  AdaptRun run;
+  ASSERT_EQ(SolveObservingX0("-ts_vshmm_adapt -ts_vshmm_warnings_viewer none -ts_rtol 1e-3 -ts_atol 1e-3", p, {0.0, 0.0}, {"slow", "fast"}, 0.1, T, &run), 0);
+  EXPECT_LE(std::abs(run.x[0] - ref), 1.5e-3 * (1 + std::abs(ref))) << "x(0.3) = " << run.x[0] << ", reference " << ref;
+}
+
+TEST(VSHMMAdapt, AFastForcingInTimeIsReportedAtSetUp)
+{
+  PetscMPIInt rank;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  for (const bool fast : {true, false}) {
+    SplitProblem p;
+    p.terms = {ForcedSlow, fast ? FastForcedFast : SlowForcedFast};
+    AdaptRun run;
+    testing::internal::CaptureStderr();
+    const PetscErrorCode ierr = SolveObservingX0("-ts_vshmm_savings_factors 10 -ts_vshmm_micro_dt 1e-4", p, {0.2, 0.0}, {"slow", "fast"}, 0.1, 0.2, &run);
+    const std::string    err  = testing::internal::GetCapturedStderr();
+    ASSERT_EQ(ierr, 0);
+    if (rank != 0) continue;
+    if (fast) EXPECT_NE(err.find("'fast' of level 1 depend explicitly on time"), std::string::npos) << err;
+    else EXPECT_EQ(err.find("depend explicitly on time"), std::string::npos) << err;
+  }
+  SplitProblem        p;
+  const CapturedError e = CaptureError([&] {
+    p.terms = {ForcedSlow, FastForcedFast};
+    AdaptRun run;
+    return SolveObservingX0("-ts_vshmm_savings_factors 10 -ts_vshmm_micro_dt 1e-4 -ts_vshmm_check_separation error", p, {0.2, 0.0}, {"slow", "fast"}, 0.1, 0.2, &run);
+  });
+  EXPECT_EQ(e.code, PETSC_ERR_ARG_INCOMP);
+  EXPECT_NE(e.message.find("'fast' of level 1 depend explicitly on time"), std::string::npos) << e.message;
+}
+
 // A damped fast spiral from rest: x' = 1 - x y, y' = w, w' = -1e6 (y - cos x) - 100 w from
 // (0.5, 0, 0), DeltaT = 0.1, to t = 0.5. The fast components are 0 at the initial state: there is
 // no oscillation to measure the slower field at its phases with, and the first ratios (20) slowed
