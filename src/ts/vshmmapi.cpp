@@ -764,6 +764,12 @@ PetscErrorCode TSVSHMMGetScaleSeparations(TS ts, PetscInt *n, const PetscReal *S
    stderr by default: `TSVSHMMSetWarningsViewer()`) or stops with an
    error, and `TSVSHMMSetAdapt()` takes no savings.
 
+   The check also measures how fast each faster level's own splits depend on time explicitly
+   (||dF/dt|| / (rho ||X||)): VSHMM advances one clock for every level, so the savings factors make
+   a level see that dependence r_0 ... r_{l-1} times faster than it is, and where that comes within
+   a tenth of the level's spectral radius (a fast forcing sin(t / eps) in a fast split) the check
+   warns or stops in the same way; `TSVSHMMSetAdapt()` keeps its time ratios below that bound.
+
    Level: intermediate
 
 .seealso: `TSVSHMM`, `TSVSHMMSetAdapt()`, `TSVSHMMSetStabilityCheck()`
