@@ -783,6 +783,7 @@ PetscErrorCode TSVSHMMAdaptReset_Private(TS ts)
   vs->adapt_prev_ratio       = PETSC_MAX_REAL;
   vs->adapt_uncompared       = 0;
   vs->floor_warned           = PETSC_FALSE;
+  vs->adapt_floor_dt         = 0;
   vs->adapt_single_rate_from = -1;
   PetscFunctionReturn(0);
 }
@@ -1618,7 +1619,13 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
         continue;
       }
     }
-    if (E > budget && refinable && !floor && attempt + 1 < kMaxAttempts) { /* redo with finer parameters */
+    /* below the micro step at which an earlier step found a floor without savings left, finer micro
+       steps are not tried again: the estimate is noise there (a chaotic fast level: two runs that
+       differ in the micro step diverge within the step, and a slow variable driven by a Lorenz
+       system at eps = 1e-3, tol 1e-3, refined the micro step from 1.4e-4 to 3e-8 over 20 steps,
+       549 million evaluations, each step's estimate going up and down by 10x) */
+    const PetscBool pastFloor = (!savings && vs->adapt_floor_dt > 0 && next.microStep < kFloorFactor * vs->adapt_floor_dt) ? PETSC_TRUE : PETSC_FALSE;
+    if (E > budget && refinable && !floor && !pastFloor && attempt + 1 < kMaxAttempts) { /* redo with finer parameters */
       DiscardTry(vs, rhs0, lev0);
       if (vs->adapt_accepted > 0) PetscCall(KeepComparableRatios(ts, p, next));
       predicted = vs->adapt_model.total(next);
@@ -1630,10 +1637,12 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
          not meet the share is not carried on: past an initial layer the estimate falls again) */
       next                  = p;
       const PetscBool noise = (floor && savings) ? PETSC_TRUE : PETSC_FALSE;
-      const char     *why   = noise        ? "finer parameters do not lower the estimate"
-                              : floor      ? "finer micro steps do not lower the estimate, and the savings factors are set or none are left"
-                              : !refinable ? "no finer parameters allowed (user-set parameters or stability bounds)"
-                                           : "too many tries";
+      if (floor && !savings) vs->adapt_floor_dt = p.microStep;
+      const char *why = noise        ? "finer parameters do not lower the estimate"
+                        : floor      ? "finer micro steps do not lower the estimate, and the savings factors are set or none are left"
+                        : pastFloor  ? "finer micro steps did not lower the estimate of an earlier step (a floor), and none are tried below it"
+                        : !refinable ? "no finer parameters allowed (user-set parameters or stability bounds)"
+                                     : "too many tries";
       PetscCall(PetscInfo(ts, "Adapt: macro step [%g, %g] accepted with estimate %g above its share %g: %s\n", (double)t0, (double)t1, (double)E, (double)budget, why));
       if (!vs->floor_warned && E > kWarn * budget) {
         vs->floor_warned = PETSC_TRUE;

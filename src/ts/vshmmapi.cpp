@@ -537,7 +537,10 @@ PetscErrorCode TSVSHMMResetStatistics(TS ts)
    finer parameters, and the parameters of the next step are the cheapest the measured error
    model allows. Parameters set with `TSVSHMMSetMicroStep()` or `TSVSHMMSetSavingsFactors()` stay
    fixed. Every step is kept stable using each level's estimated eigenvalues, and where the scales
-   are not separated (see `TSVSHMMSetSeparationCheck()`) no savings are taken. The estimate and
+   are not separated (see `TSVSHMMSetSeparationCheck()`) no savings are taken. The time ratios also
+   keep the fastest level's oscillation turning at least once per macro step where leaving it
+   unaveraged would cost more than half the tolerance, and keep a faster level's explicit time
+   dependence (a forcing in time in its splits) a tenth of its rate as the level sees it. The estimate and
    the work spent on it are in `TSVSHMMGetStatistics()` and -ts_view; -info shows every choice.
 
    Level: beginner

@@ -111,6 +111,7 @@ struct TS_VSHMM {
   PetscReal              separation_time        = 0.0;          // the time of the check that gave that verdict
   PetscReal              separated_from         = -1;           // adapt: the time a later check found the scales separated (-1: not so)
   PetscBool              floor_warned           = PETSC_FALSE;  // told that the estimate does not fall
+  PetscReal              adapt_floor_dt         = 0;            // the micro step of the last step accepted at a floor without savings left: later steps do not refine below it (0: none)
   PetscReal              adapt_single_rate_from = -1;           // the start of the macro step from which the tolerance left no savings (-1: none)
   Vec                    Xtrial = nullptr, Xbase = nullptr;
   Vec                    slow_mask       = nullptr;     // 1 on the slow components (written by the slowest level's splits only) where they are controlled with the observables
