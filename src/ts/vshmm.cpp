@@ -268,8 +268,9 @@ static PetscErrorCode TSSetUp_VSHMM(TS ts)
   vs->level_events.resize(nscales);
   for (PetscInt l = 0; l < nscales; ++l) PetscCall(TSVSHMMGetLevelEvent_Private(l, &vs->level_events[l]));
   PetscCall(TSVSHMMResetStatistics(ts));
-  vs->spectra_time   = PETSC_MIN_REAL;
-  vs->time_dependent = PETSC_FALSE;
+  vs->spectra_time       = PETSC_MIN_REAL;
+  vs->time_dependent     = PETSC_FALSE;
+  vs->time_rates_checked = PETSC_FALSE;
   vs->level_time_rate_max.clear();
   if (vs->check_stability) PetscCall(TSVSHMMCheckStability_Private(ts));
   PetscCall(TSVSHMMCheckSeparation_Private(ts));

@@ -708,7 +708,8 @@ static PetscErrorCode CheckTimeRates(TS ts)
   TS_VSHMM *vs = (TS_VSHMM *)ts->data;
 
   PetscFunctionBegin;
-  if (vs->check_separation == TSVSHMM_SEPARATION_OFF || (vs->adapt && vs->savings.empty()) || ts->steps > 0) PetscFunctionReturn(0); /* at set-up */
+  if (vs->check_separation == TSVSHMM_SEPARATION_OFF || (vs->adapt && vs->savings.empty()) || vs->time_rates_checked) PetscFunctionReturn(0); /* once, at set-up */
+  vs->time_rates_checked            = PETSC_TRUE;
   const std::vector<double> r       = vshmm::timeRatiosFromSavings(vs->savings_used);
   PetscReal                 speedup = 1;
   for (size_t l = 1; l < vs->level_time_rate.size() && l < vs->level_radius.size() && l - 1 < r.size(); ++l) {
