@@ -562,7 +562,15 @@ static PetscErrorCode TSView_VSHMM(TS ts, PetscViewer viewer)
                              : any                                                         ? "chosen up to the time ratios " + admitted + " (scales not separated; admitted by a comparison with a single-rate macro step)"
                              : !vs->adapt_candidate.empty() && !vs->adapt_verified.empty() ? "none (scales not separated; a comparison with a single-rate macro step admitted none)"
                                                                                            : "none (scales not separated)";
-    PetscCall(PetscViewerASCIIPrintf(viewer, "  accuracy control (-ts_vshmm_adapt): rtol %g, atol %g on %s; savings factors %s\n", (double)ts->rtol, (double)ts->atol, vs->observables ? "the observables" : "the whole state (weighted norm)", what.c_str()));
+    char              rtol[64], atol[64], tols[320]; /* the vectors of TSSetTolerances() weigh the state's components (the slow components beside the observables too); the observables take the scalars */
+    if (ts->vrtol) PetscCall(PetscSNPrintf(rtol, sizeof rtol, "rtol per component (a vector)"));
+    else PetscCall(PetscSNPrintf(rtol, sizeof rtol, "rtol %g", (double)ts->rtol));
+    if (ts->vatol) PetscCall(PetscSNPrintf(atol, sizeof atol, "atol per component (a vector)"));
+    else PetscCall(PetscSNPrintf(atol, sizeof atol, "atol %g", (double)ts->atol));
+    if (!vs->observables) PetscCall(PetscSNPrintf(tols, sizeof tols, "%s, %s on the whole state (weighted norm)", rtol, atol));
+    else if (ts->vatol || ts->vrtol) PetscCall(PetscSNPrintf(tols, sizeof tols, "rtol %g, atol %g on the observables; %s, %s on the slow components", (double)ts->rtol, (double)ts->atol, rtol, atol));
+    else PetscCall(PetscSNPrintf(tols, sizeof tols, "rtol %g, atol %g on the observables", (double)ts->rtol, (double)ts->atol));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  accuracy control (-ts_vshmm_adapt): %s; savings factors %s\n", tols, what.c_str()));
     PetscCall(PetscViewerASCIIPrintf(viewer, "    error estimate: last macro step %g, sum over the run %g (1 = the tolerance); %" PetscInt64_FMT " calibrations, %" PetscInt64_FMT " rejected macro steps, %" PetscInt64_FMT " split RHS evaluations for estimates and rejected steps\n",
                                      (double)vs->error_estimate, (double)vs->error_estimate_total, vs->adapt_calibrations, vs->adapt_rejections, vs->adapt_evaluations));
     if (vs->observables && vs->slow_count > 0)

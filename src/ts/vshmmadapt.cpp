@@ -122,19 +122,23 @@ static PetscErrorCode ObservableDifference(TS ts, PetscReal t, Vec Xa, Vec Xb, P
   if (vs->slow_mask) {
     /* the slow components, weighed as the observables: an error there that the observables do not
        show yet becomes theirs at later sampled times (a slow oscillator's velocity) */
-    const PetscScalar *a, *b, *m;
+    const PetscScalar *a, *b, *m, *va = nullptr, *vr = nullptr; /* the tolerances per component where TSSetTolerances() gave vectors */
     PetscInt           n;
     PetscReal          ssum = 0;
     PetscCall(VecGetLocalSize(Xa, &n));
     PetscCall(VecGetArrayRead(Xa, &a));
     PetscCall(VecGetArrayRead(Xb, &b));
     PetscCall(VecGetArrayRead(vs->slow_mask, &m));
+    if (ts->vatol) PetscCall(VecGetArrayRead(ts->vatol, &va));
+    if (ts->vrtol) PetscCall(VecGetArrayRead(ts->vrtol, &vr));
     for (PetscInt i = 0; i < n; ++i) {
       if (PetscRealPart(m[i]) == 0) continue;
-      const PetscReal w = ts->atol + ts->rtol * PetscMax(PetscAbsScalar(a[i]), PetscAbsScalar(b[i]));
+      const PetscReal w = (va ? PetscRealPart(va[i]) : ts->atol) + (vr ? PetscRealPart(vr[i]) : ts->rtol) * PetscMax(PetscAbsScalar(a[i]), PetscAbsScalar(b[i]));
       const PetscReal e = PetscAbsScalar(b[i] - a[i]) / w;
       ssum += std::isfinite(e) ? e * e : kBlownUp;
     }
+    if (ts->vatol) PetscCall(VecRestoreArrayRead(ts->vatol, &va));
+    if (ts->vrtol) PetscCall(VecRestoreArrayRead(ts->vrtol, &vr));
     PetscCall(VecRestoreArrayRead(vs->slow_mask, &m));
     PetscCall(VecRestoreArrayRead(Xb, &b));
     PetscCall(VecRestoreArrayRead(Xa, &a));

@@ -1508,6 +1508,8 @@ PetscErrorCode FirstComponent(TS, PetscReal, Vec X, PetscReal q[], void *)
   PetscFunctionReturn(0);
 }
 
+double gSlowVectorAtol = 0; // > 0: TSSetTolerances() with a vector atol, this on the slow components (1 on the fast one)
+
 PetscErrorCode SolveSlowOscillator(const char *options, PetscReal *x0, PetscBool *slow, std::string *view, PetscInt64 *evaluations = nullptr)
 {
   Guard          guard(options);
@@ -1541,6 +1543,16 @@ PetscErrorCode SolveSlowOscillator(const char *options, PetscReal *x0, PetscBool
   PetscCall(TSSetExactFinalTime(ts, TS_EXACTFINALTIME_MATCHSTEP));
   PetscCall(TSVSHMMSetObservables(ts, 1, FirstComponent, nullptr));
   PetscCall(TSSetFromOptions(ts));
+  if (gSlowVectorAtol > 0) {
+    Vec A;
+    PetscCall(VecDuplicate(X, &A));
+    PetscCall(VecSet(A, gSlowVectorAtol));
+    PetscCall(VecSetValue(A, 2, 1.0, INSERT_VALUES));
+    PetscCall(VecAssemblyBegin(A));
+    PetscCall(VecAssemblyEnd(A));
+    PetscCall(TSSetTolerances(ts, PETSC_DECIDE, A, PETSC_DECIDE, nullptr));
+    PetscCall(VecDestroy(&A));
+  }
   PetscCall(TSVSHMMGetAdaptSlowComponents(ts, slow));
   PetscCall(TSSolve(ts, X));
   PetscCall(VecGetValues(X, 1, &split[0], x0));
@@ -1617,6 +1629,25 @@ TEST(VSHMMAdapt, TheSlowComponentsOfADecayingSlowLevelAreNotTakenAsCoherent)
   EXPECT_LE(std::abs(x0 - ref), tol * (1 + std::abs(ref))) << "x(4) = " << x0 << ", reference " << ref;
   EXPECT_LT(evaluations, 6500);
   EXPECT_NE(view.find("with the observables, the 2 slow components"), std::string::npos) << view;
+}
+
+// A vector atol (TSSetTolerances()) weighs the slow components per component beside the
+// observables, which take the scalars: atol 1e-1 for the observable x, 1e-3 on the slow
+// components, rtol 1e-3. Before, the slow components took the scalar atol too (x(4) then within
+// the loose one only).
+TEST(VSHMMAdapt, AVectorAtolWeighsTheSlowComponents)
+{
+  const double ref = SlowOscillatorReference(1e-5);
+  PetscReal    x0, loose;
+  PetscBool    slow;
+  std::string  view;
+  ASSERT_EQ(SolveSlowOscillator("-ts_vshmm_adapt -ts_rtol 1e-3 -ts_atol 1e-1 -ts_vshmm_warnings_viewer none", &loose, &slow, &view), 0);
+  gSlowVectorAtol = 1e-3;
+  ASSERT_EQ(SolveSlowOscillator("-ts_vshmm_adapt -ts_rtol 1e-3 -ts_atol 1e-1 -ts_vshmm_warnings_viewer none", &x0, &slow, &view), 0);
+  gSlowVectorAtol = 0;
+  EXPECT_LE(std::abs(x0 - ref), 2e-3 * (1 + std::abs(ref))) << "x(4) = " << x0 << ", reference " << ref << " (scalar atol: " << loose << ")";
+  EXPECT_GT(std::abs(loose - ref), 5 * std::abs(x0 - ref)) << "x(4) = " << x0 << ", with the scalar atol " << loose << ", reference " << ref;
+  EXPECT_NE(view.find("atol per component (a vector) on the slow components"), std::string::npos) << view;
 }
 
 // Without adapt nothing changes: no estimate, no extra work.
