@@ -387,25 +387,21 @@ static vshmm::AdaptBounds Bounds(TS ts, PetscReal DeltaT)
       b.maxRatio[l] = PetscMin(b.maxRatio[l], S);
     }
   }
-  if ((vs->unaveraged_unknown || vs->unaveraged_max > kUnaveragedShare) && vs->unaveraged_omega > 0 && !vs->level_radius.empty()) {
-    /* the fastest level turns at least once per macro step in micro time, DeltaT / (r_0 ... r_{K-1}) */
-    const size_t K      = vs->level_radius.size() - 1;
-    PetscReal    slower = 1;
-    for (size_t l = 0; l + 1 < K && l < vs->adapt_params.ratios.size(); ++l) slower *= vs->adapt_params.ratios[l];
-    b.maxRatio.resize(K, PETSC_INFINITY);
-    b.maxRatio[K - 1] = PetscMin(b.maxRatio[K - 1], PetscMax(1.0, vs->unaveraged_omega * DeltaT / (2 * PETSC_PI * slower)));
-  }
-  for (size_t l = 1; l < vs->level_time_rate_max.size() && l < vs->level_radius.size(); ++l) {
-    /* a level whose splits depend on time explicitly sees that dependence r_0 ... r_{l-1} times
-       faster than it is (one clock for every level): it stays kMinSeparation below the level's
-       radius (LevelTimeRates() in vshmmstability.cpp; a fast forcing sin(t / eps) allows no savings) */
-    const PetscReal nu = vs->level_time_rate_max[l];
-    if (!(nu > 0) || !(vs->level_radius[l] > 0)) continue;
+  /* level l (>= 1) sped up at most `speedup` relative to the clock: r_0 ... r_{l-1} <= speedup, by
+     bounding r_{l-1} with the slower ratios as they are */
+  const auto boundSpeedup = [&](size_t l, PetscReal speedup) {
     PetscReal slower = 1;
     for (size_t j = 0; j + 1 < l && j < vs->adapt_params.ratios.size(); ++j) slower *= vs->adapt_params.ratios[j];
     b.maxRatio.resize(vs->level_radius.size() - 1, PETSC_INFINITY);
-    b.maxRatio[l - 1] = PetscMin(b.maxRatio[l - 1], PetscMax(1.0, vs->level_radius[l] / (kMinSeparation * nu * slower)));
-  }
+    b.maxRatio[l - 1] = PetscMin(b.maxRatio[l - 1], PetscMax(1.0, speedup / slower));
+  };
+  /* the fastest level turns at least once per macro step in micro time, DeltaT / (r_0 ... r_{K-1}) */
+  if ((vs->unaveraged_unknown || vs->unaveraged_max > kUnaveragedShare) && vs->unaveraged_omega > 0 && vs->level_radius.size() > 1) boundSpeedup(vs->level_radius.size() - 1, vs->unaveraged_omega * DeltaT / (2 * PETSC_PI));
+  /* a level whose splits depend on time explicitly sees that dependence r_0 ... r_{l-1} times
+     faster than it is (one clock for every level): it stays kMinSeparation below the level's
+     radius (LevelTimeRates() in vshmmstability.cpp; a fast forcing sin(t / eps) allows no savings) */
+  for (size_t l = 1; l < vs->level_time_rate_max.size() && l < vs->level_radius.size(); ++l)
+    if (vs->level_time_rate_max[l] > 0 && vs->level_radius[l] > 0) boundSpeedup(l, vs->level_radius[l] / (kMinSeparation * vs->level_time_rate_max[l]));
   if (vs->no_separation && vs->savings.empty() && !vs->adapt_verified.empty()) { /* savings up to those a single-rate step confirmed */
     bool any = false;
     b.maxRatio.resize(vs->adapt_verified.size(), PETSC_INFINITY);
