@@ -155,6 +155,15 @@ double Rk4Reference(const std::vector<SplitProblem::Term> &terms, const void *pa
   return x[0];
 }
 
+// Rk4Reference() at step h, checked against step `check`: a reference shown converged (the two
+// agree to `agree`).
+double ConvergedReference(const std::vector<SplitProblem::Term> &terms, const void *params, const std::vector<double> &x, double T, double h, double check, double agree = 1e-10)
+{
+  const double ref = Rk4Reference(terms, params, x, T, h);
+  EXPECT_NEAR(ref, Rk4Reference(terms, params, x, T, check), agree);
+  return ref;
+}
+
 // x(t) of the band problem by RK4 with step h from x = 1, y_i = 1/2 (on the slow manifold).
 std::vector<double> BandInitial()
 {
@@ -518,13 +527,11 @@ TEST(VSHMMAdapt, SavingsAreTestedWhereTheScalesAreNotSeparated)
   for (const bool moving : {false, true}) {
     RelaxParams  params;
     SplitProblem p;
-    params.moving          = moving;
-    p.terms                = {RelaxSlow, RelaxFast};
-    p.params               = &params;
-    const double T         = 4;
-    const auto   Reference = [&](double h) { return Rk4Reference({RelaxSlow, RelaxFast}, &params, {1.0, 0.5}, T, h); };
-    const double ref       = Reference(1e-4);
-    EXPECT_NEAR(ref, Reference(5e-5), 1e-10);
+    params.moving    = moving;
+    p.terms          = {RelaxSlow, RelaxFast};
+    p.params         = &params;
+    const double T   = 4;
+    const double ref = ConvergedReference({RelaxSlow, RelaxFast}, &params, {1.0, 0.5}, T, 1e-4, 5e-5);
     for (const double tol : {1e-2, 1e-3}) {
       const std::string options = "-ts_vshmm_adapt -ts_vshmm_warnings_viewer none -ts_vshmm_micro_dt 0.01 -ts_rtol " + std::to_string(tol) + " -ts_atol " + std::to_string(tol);
       AdaptRun          run;
@@ -572,11 +579,9 @@ void RobertsonFast(const void *, PetscReal, const PetscScalar *x, PetscScalar *f
 TEST(VSHMMAdapt, ScalesSeparatedLaterTakeSavings)
 {
   SplitProblem p;
-  p.terms                = {RobertsonSlow, RobertsonFast};
-  const double T         = 4;
-  const auto   Reference = [&](double h) { return Rk4Reference({RobertsonSlow, RobertsonFast}, nullptr, {0.0, 0.0}, T, h); };
-  const double ref       = Reference(2e-5);
-  EXPECT_NEAR(ref, Reference(4e-5), 1e-10);
+  p.terms          = {RobertsonSlow, RobertsonFast};
+  const double T   = 4;
+  const double ref = ConvergedReference({RobertsonSlow, RobertsonFast}, nullptr, {0.0, 0.0}, T, 2e-5, 4e-5);
   for (const double tol : {1e-1, 1e-2, 1e-3}) {
     const std::string options = "-ts_vshmm_adapt -ts_vshmm_warnings_viewer none -ts_rtol " + std::to_string(tol) + " -ts_atol " + std::to_string(tol);
     AdaptRun          run;
@@ -623,10 +628,8 @@ TEST(VSHMMAdapt, AFastRateThatGrowsKeepsTheMicroStepStable)
   SplitProblem p;
   p.terms = {GrowingSlow, GrowingFast};
   for (const double x0 : {0.2, 0.0}) {
-    const double T         = x0 > 0 ? 4 : 1.5;
-    const auto   Reference = [&](double h) { return Rk4Reference({GrowingSlow, GrowingFast}, nullptr, {x0, x0}, T, h); };
-    const double ref       = Reference(1e-5);
-    EXPECT_NEAR(ref, Reference(2e-5), 1e-10);
+    const double T   = x0 > 0 ? 4 : 1.5;
+    const double ref = ConvergedReference({GrowingSlow, GrowingFast}, nullptr, {x0, x0}, T, 1e-5, 2e-5);
     for (const double tol : {1e-1, 1e-2}) {
       const std::string options = "-ts_vshmm_adapt -ts_vshmm_warnings_viewer none -ts_rtol " + std::to_string(tol) + " -ts_atol " + std::to_string(tol);
       AdaptRun          run;
@@ -658,12 +661,10 @@ void GrowingRotationFast(const void *, PetscReal, const PetscScalar *x, PetscSca
 TEST(VSHMMAdapt, AFastRotationWhoseFrequencyGrowsFromZeroKeepsItsEnergy)
 {
   SplitProblem p;
-  p.terms                = {GrowingRotationSlow, GrowingRotationFast};
-  const double T         = 1;
-  const auto   Reference = [&](double h) { return Rk4Reference({GrowingRotationSlow, GrowingRotationFast}, nullptr, {0.0, 1.0, 0.0}, T, h); };
-  const double ref       = Reference(2e-6);
-  EXPECT_NEAR(ref, Reference(4e-6), 1e-10);
-  AdaptRun run;
+  p.terms          = {GrowingRotationSlow, GrowingRotationFast};
+  const double T   = 1;
+  const double ref = ConvergedReference({GrowingRotationSlow, GrowingRotationFast}, nullptr, {0.0, 1.0, 0.0}, T, 2e-6, 4e-6);
+  AdaptRun     run;
   ASSERT_EQ(SolveObservingX0("-ts_vshmm_adapt -ts_vshmm_warnings_viewer none -ts_rtol 1e-2 -ts_atol 1e-2", p, {0.0, 1.0, 0.0}, {"slow", "fast"}, 0.1, T, &run), 0);
   EXPECT_LE(std::abs(run.x[0] - ref), 1e-2 * (1 + std::abs(ref))) << "x(1) = " << run.x[0] << ", reference " << ref;
 }
@@ -692,12 +693,10 @@ void UnaveragedFast(const void *, PetscReal, const PetscScalar *x, PetscScalar *
 TEST(VSHMMAdapt, AFastRotationTurnsAtLeastOnceInAMacroStep)
 {
   SplitProblem p;
-  p.terms                = {UnaveragedSlow, UnaveragedFast};
-  const double T         = 0.5;
-  const auto   Reference = [&](double h) { return Rk4Reference({UnaveragedSlow, UnaveragedFast}, nullptr, {0.0, 0.7, 0.0}, T, h); };
-  const double ref       = Reference(1e-6);
-  EXPECT_NEAR(ref, Reference(2e-6), 1e-10);
-  AdaptRun run;
+  p.terms          = {UnaveragedSlow, UnaveragedFast};
+  const double T   = 0.5;
+  const double ref = ConvergedReference({UnaveragedSlow, UnaveragedFast}, nullptr, {0.0, 0.7, 0.0}, T, 1e-6, 2e-6);
+  AdaptRun     run;
   ASSERT_EQ(SolveObservingX0("-ts_vshmm_adapt -ts_vshmm_warnings_viewer none -ts_rtol 1e-2 -ts_atol 1e-2", p, {0.0, 0.7, 0.0}, {"slow", "fast"}, 0.1, T, &run), 0);
   EXPECT_LE(std::abs(run.x[0] - ref), 0.5e-2 * (1 + std::abs(ref))) << "x(0.5) = " << run.x[0] << ", reference " << ref;
 }
@@ -733,12 +732,10 @@ TEST(VSHMMAdapt, ABandOfFastRotationsTurnsAtItsSlowestFrequency)
     x0[1 + 2 * k] = 0.7 * std::cos(0.7 * k);
     x0[2 + 2 * k] = 0.7 * std::sin(0.7 * k);
   }
-  p.terms                = {BandRotationsSlow, BandRotationsFast};
-  const double T         = 2;
-  const auto   Reference = [&](double h) { return Rk4Reference({BandRotationsSlow, BandRotationsFast}, nullptr, x0, T, h); };
-  const double ref       = Reference(1e-6);
-  EXPECT_NEAR(ref, Reference(2e-6), 1e-10);
-  AdaptRun run;
+  p.terms          = {BandRotationsSlow, BandRotationsFast};
+  const double T   = 2;
+  const double ref = ConvergedReference({BandRotationsSlow, BandRotationsFast}, nullptr, x0, T, 1e-6, 2e-6);
+  AdaptRun     run;
   ASSERT_EQ(SolveObservingX0("-ts_vshmm_adapt -ts_vshmm_warnings_viewer none -ts_rtol 1e-2 -ts_atol 1e-2", p, x0, {"slow", "fast"}, 0.1, T, &run), 0);
   EXPECT_LE(std::abs(run.x[0] - ref), 1e-2 * (1 + std::abs(ref))) << "x(2) = " << run.x[0] << ", reference " << ref;
   EXPECT_LT(run.evaluations + run.stats.adapt_evaluations, 60000);
@@ -771,12 +768,10 @@ void SlowForcedFast(const void *, PetscReal t, const PetscScalar *x, PetscScalar
 TEST(VSHMMAdapt, AFastForcingInTimeTakesNoSavings)
 {
   SplitProblem p;
-  p.terms                = {ForcedSlow, FastForcedFast};
-  const double T         = 1;
-  const auto   Reference = [&](double h) { return Rk4Reference({ForcedSlow, FastForcedFast}, nullptr, {0.2, 0.0}, T, h); };
-  const double ref       = Reference(1e-6);
-  EXPECT_NEAR(ref, Reference(2e-6), 1e-10);
-  AdaptRun run;
+  p.terms          = {ForcedSlow, FastForcedFast};
+  const double T   = 1;
+  const double ref = ConvergedReference({ForcedSlow, FastForcedFast}, nullptr, {0.2, 0.0}, T, 1e-6, 2e-6);
+  AdaptRun     run;
   ASSERT_EQ(SolveObservingX0("-ts_vshmm_adapt -ts_vshmm_warnings_viewer none -ts_rtol 1e-2 -ts_atol 1e-2", p, {0.2, 0.0}, {"slow", "fast"}, 0.1, T, &run), 0);
   EXPECT_LE(std::abs(run.x[0] - ref), 1e-2 * (1 + std::abs(ref))) << "x(1) = " << run.x[0] << ", reference " << ref;
   ASSERT_EQ(run.savings.size(), 1u);
@@ -796,12 +791,10 @@ void ZeroForcedFast(const void *, PetscReal t, const PetscScalar *x, PetscScalar
 TEST(VSHMMAdapt, AFastForcingWhoseAmplitudeStartsAtZeroIsFoundAtSetUp)
 {
   SplitProblem p;
-  p.terms                = {ForcedSlow, ZeroForcedFast};
-  const double T         = 0.3;
-  const auto   Reference = [&](double h) { return Rk4Reference({ForcedSlow, ZeroForcedFast}, nullptr, {0.0, 0.0}, T, h); };
-  const double ref       = Reference(1e-6);
-  EXPECT_NEAR(ref, Reference(2e-6), 1e-10);
-  AdaptRun run;
+  p.terms          = {ForcedSlow, ZeroForcedFast};
+  const double T   = 0.3;
+  const double ref = ConvergedReference({ForcedSlow, ZeroForcedFast}, nullptr, {0.0, 0.0}, T, 1e-6, 2e-6);
+  AdaptRun     run;
   ASSERT_EQ(SolveObservingX0("-ts_vshmm_adapt -ts_vshmm_warnings_viewer none -ts_rtol 1e-3 -ts_atol 1e-3", p, {0.0, 0.0}, {"slow", "fast"}, 0.1, T, &run), 0);
   EXPECT_LE(std::abs(run.x[0] - ref), 1.5e-3 * (1 + std::abs(ref))) << "x(0.3) = " << run.x[0] << ", reference " << ref;
 }
@@ -882,12 +875,10 @@ void SpiralFast(const void *, PetscReal, const PetscScalar *x, PetscScalar *f)
 TEST(VSHMMAdapt, ADampedFastSpiralFromRestTurnsAtLeastOnceInAMacroStep)
 {
   SplitProblem p;
-  p.terms                = {SpiralSlow, SpiralFast};
-  const double T         = 0.5;
-  const auto   Reference = [&](double h) { return Rk4Reference({SpiralSlow, SpiralFast}, nullptr, {0.5, 0.0, 0.0}, T, h); };
-  const double ref       = Reference(1e-6);
-  EXPECT_NEAR(ref, Reference(2e-6), 1e-10);
-  AdaptRun run;
+  p.terms          = {SpiralSlow, SpiralFast};
+  const double T   = 0.5;
+  const double ref = ConvergedReference({SpiralSlow, SpiralFast}, nullptr, {0.5, 0.0, 0.0}, T, 1e-6, 2e-6);
+  AdaptRun     run;
   ASSERT_EQ(SolveObservingX0("-ts_vshmm_adapt -ts_vshmm_warnings_viewer none -ts_rtol 1e-2 -ts_atol 1e-2", p, {0.5, 0.0, 0.0}, {"slow", "fast"}, 0.1, T, &run), 0);
   EXPECT_LE(std::abs(run.x[0] - ref), 0.6e-2 * (1 + std::abs(ref))) << "x(0.5) = " << run.x[0] << ", reference " << ref;
 }
@@ -917,11 +908,9 @@ void MergedFast(const void *, PetscReal, const PetscScalar *x, PetscScalar *f)
 TEST(VSHMMAdapt, APairMergedAtTheInitialStateTakesSavingsOnceSeparated)
 {
   SplitProblem p;
-  p.terms                = {MergedSlow, MergedMedium, MergedFast};
-  const double T         = 4;
-  const auto   Reference = [&](double h) { return Rk4Reference({MergedSlow, MergedMedium, MergedFast}, nullptr, {0.0, 0.0, 0.0}, T, h); };
-  const double ref       = Reference(1e-5);
-  EXPECT_NEAR(ref, Reference(5e-6), 1e-10);
+  p.terms          = {MergedSlow, MergedMedium, MergedFast};
+  const double T   = 4;
+  const double ref = ConvergedReference({MergedSlow, MergedMedium, MergedFast}, nullptr, {0.0, 0.0, 0.0}, T, 1e-5, 5e-6);
   for (const double tol : {1e-1, 1e-2}) {
     const std::string options = "-ts_vshmm_adapt -ts_vshmm_warnings_viewer none -ts_rtol " + std::to_string(tol) + " -ts_atol " + std::to_string(tol);
     AdaptRun          run;
@@ -948,11 +937,9 @@ void SwitchFast(const void *, PetscReal t, const PetscScalar *x, PetscScalar *f)
 TEST(VSHMMAdapt, SteadyStepsLeaveOutTheirComparisons)
 {
   SplitProblem p;
-  p.terms                = {RelaxSlow, SwitchFast};
-  const double T         = 4;
-  const auto   Reference = [&](double h) { return Rk4Reference({RelaxSlow, SwitchFast}, nullptr, {1.0, 0.5}, T, h); };
-  const double ref       = Reference(1e-5);
-  EXPECT_NEAR(ref, Reference(5e-6), 1e-10);
+  p.terms          = {RelaxSlow, SwitchFast};
+  const double T   = 4;
+  const double ref = ConvergedReference({RelaxSlow, SwitchFast}, nullptr, {1.0, 0.5}, T, 1e-5, 5e-6);
   for (const double tol : {1e-2, 1e-3}) {
     const std::string options = "-ts_vshmm_adapt -ts_rtol " + std::to_string(tol) + " -ts_atol " + std::to_string(tol);
     AdaptRun          run;
@@ -991,9 +978,7 @@ TEST(VSHMMAdapt, AThinFastRotationThatDrivesTheSlowVariableBoundsTheMicroStep)
   RotationParams params;
   params.coupling = 1000;
   const double u0 = 0.03, T = 2;
-  const auto   Reference = [&](double h) { return Rk4Reference({RotationSlow, RotationFast}, &params, {0.5, u0, 0}, T, h); };
-  const double ref       = Reference(5e-6);
-  EXPECT_NEAR(ref, Reference(1e-5), 1e-8);
+  const double ref = ConvergedReference({RotationSlow, RotationFast}, &params, {0.5, u0, 0}, T, 5e-6, 1e-5, 1e-8);
   for (const SplitKind kind : {SplitKind::Component, SplitKind::Additive})
     for (const double tol : {1e-1, 1e-2}) {
       const std::string options = "-ts_vshmm_adapt -ts_vshmm_warnings_viewer none -ts_rtol " + std::to_string(tol) + " -ts_atol " + std::to_string(tol);
