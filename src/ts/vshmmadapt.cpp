@@ -56,6 +56,9 @@ static constexpr PetscReal kMinShare               = 1e-3; /* no error term is t
 static constexpr PetscReal kRatioCoarsening        = 4;    /* a calibration's coarser r_l - 1 */
 static constexpr PetscReal kFinerComparison        = 0.75; /* the micro step of a comparison where nothing can be coarsened */
 static constexpr PetscReal kRadiusGrowth           = 1.1;  /* the fastest level's radius grown this much since the spectra were estimated: estimated again */
+static constexpr PetscReal kRadiusFall             = 2;    /* a decaying fastest level's radius fallen this much: estimated again */
+static constexpr PetscReal kGrowingEnd             = 0.5;  /* a Rayleigh quotient above this fraction of the radius at a try's end: a growing fast mode */
+static constexpr PetscReal kRelaxations            = 3;    /* and where it fell within a try, relaxes at least this many e-folds of its rate there per macro step in micro time */
 static constexpr PetscReal kFinerTermShare         = 1.0;  /* a micro step term measured from the finer side below this share of the step's is not counted */
 static constexpr PetscReal kComparableCoarsening   = 1.5;  /* a retry's r_l - 1 whose comparison cannot reach this factor of it is not coarsened */
 static constexpr PetscReal kMaxCheaper             = 8;    /* after an accepted step the work may fall by this factor at most */
@@ -360,6 +363,14 @@ static PetscReal StableMicroStep(TS_VSHMM *vs)
 static PetscReal Separation(TS_VSHMM *, PetscInt);
 static PetscBool LevelDecays(TS_VSHMM *, PetscInt);
 
+/* Whether every level faster than the slowest only decays (no oscillating limiting mode). */
+static bool FasterLevelsDecay(TS_VSHMM *vs)
+{
+  for (PetscInt l = 1; l < (PetscInt)vs->level_end.size(); ++l)
+    if (!LevelDecays(vs, l)) return false;
+  return true;
+}
+
 /* The bounds of the choice: user-set parameters, stability, enough cycles per macro step. */
 static vshmm::AdaptBounds Bounds(TS ts, PetscReal DeltaT)
 {
@@ -402,6 +413,10 @@ static vshmm::AdaptBounds Bounds(TS ts, PetscReal DeltaT)
      radius (LevelTimeRates() in vshmmstability.cpp; a fast forcing sin(t / eps) allows no savings) */
   for (size_t l = 1; l < vs->level_time_rate_max.size() && l < vs->level_radius.size(); ++l)
     if (vs->level_time_rate_max[l] > 0 && vs->level_radius[l] > 0) boundSpeedup(l, vs->level_radius[l] / (kMinSeparation * vs->level_time_rate_max[l]));
+  /* a decaying fastest level whose rate fell within the try (RateGrewInStep(): a fold of its slow
+     manifold, where the rate goes to 0) relaxes kRelaxations e-folds of its rate at the try's end
+     per macro step in micro time */
+  if (vs->adapt_end_rate > 0 && vs->level_radius.size() > 1 && LevelDecays(vs, (PetscInt)vs->level_radius.size() - 1)) boundSpeedup(vs->level_radius.size() - 1, vs->adapt_end_rate * DeltaT / kRelaxations);
   if (vs->no_separation && vs->savings.empty() && !vs->adapt_verified.empty()) { /* savings up to those a single-rate step confirmed */
     bool any = false;
     b.maxRatio.resize(vs->adapt_verified.size(), PETSC_INFINITY);
@@ -447,7 +462,7 @@ static PetscErrorCode RadiusBaseline(TS ts)
   PetscReal rho;
 
   PetscFunctionBegin;
-  PetscCall(TSVSHMMFastestRadius_Private(ts, &rho));
+  PetscCall(TSVSHMMFastestRadius_Private(ts, &rho, NULL));
   vs->radius_baseline = PetscMax(rho, vs->level_radius.empty() ? 0.0 : vs->level_radius.back());
   PetscFunctionReturn(0);
 }
@@ -491,11 +506,27 @@ static PetscErrorCode RateGrewInStep(TS ts, PetscReal t1, PetscBool *redo)
   PetscErrorCode                                 ierr;
 
   PetscFunctionBegin;
-  const PetscReal base = vs->radius_baseline;
-  *redo                = PETSC_FALSE;
-  ts->vec_sol          = vs->Xbase;
-  ts->ptime            = t1;
-  ierr                 = TSVSHMMFastestRadius_Private(ts, &rho);
+  const PetscReal base   = vs->radius_baseline;
+  PetscReal       growth = 0;
+  *redo                  = PETSC_FALSE;
+  ts->vec_sol            = vs->Xbase;
+  ts->ptime              = t1;
+  ierr                   = TSVSHMMFastestRadius_Private(ts, &rho, &growth);
+  /* a decaying fastest level whose rate fell by kRadiusFall since the spectra were estimated (a fold
+     of its slow manifold ahead, where the rate goes to 0): the rate at the end bounds the savings
+     of this step (Bounds(): the level relaxes in micro time), and the spectra are estimated again
+     at the next macro step (the van der Pol oscillator at eps = 1e-3 took the micro step of a
+     state near the fold, rate 1,600, into the jump, rate 3,000, where RK4 is unstable: it came to
+     rest on the repelling middle branch, uncompared, 8.7 tol off). Where its dominant mode grows
+     at the end (the state past a fold, the fast variable not jumped yet: the same oscillator with
+     savings 12.6 crossed the fold a step late, and the comparison with doubled terms, as late, saw
+     1/100 of the error) the try is taken again without savings of the fastest level. */
+  const PetscBool grows = (!ierr && FasterLevelsDecay(vs) && rho > 0 && growth > kGrowingEnd * rho) ? PETSC_TRUE : PETSC_FALSE;
+  const PetscBool fell  = (!ierr && FasterLevelsDecay(vs) && rho > 0 && (grows || rho * kRadiusFall < base)) ? PETSC_TRUE : PETSC_FALSE;
+  if (fell) {
+    vs->adapt_rate_fell = PETSC_TRUE;
+    vs->adapt_end_rate  = grows ? PETSC_SMALL : rho;
+  }
   /* a millionfold growth of the fastest rate within one macro step is a blow-up (the try's state
      grew without bound, finite yet: three levels started from a zero state had a medium
      rate of 6e18 at the end of their first try), not a rate to take the micro step from */
@@ -510,7 +541,22 @@ static PetscErrorCode RateGrewInStep(TS ts, PetscReal t1, PetscBool *redo)
   ts->vec_sol = X0;
   ts->ptime   = t0;
   PetscCall(ierr);
-  if (!grew) PetscFunctionReturn(0);
+  const auto relaxing = [&]() -> PetscErrorCode { /* the savings that keep it relaxing (Bounds()) */
+                                                  PetscFunctionBegin;
+                                                  if (!fell) PetscFunctionReturn(0);
+                                                  const vshmm::AdaptBounds b = Bounds(ts, t1 - t0);
+                                                  for (size_t l = 0; l < b.maxRatio.size() && l < vs->adapt_params.ratios.size(); ++l)
+                                                    if (vs->adapt_params.ratios[l] > 1.001 * PetscMax(1.0, b.maxRatio[l])) {
+                                                      vs->adapt_params.ratios[l] = PetscMax(1.0, b.maxRatio[l]);
+                                                      *redo                      = PETSC_TRUE;
+                                                    }
+                                                  PetscCall(PetscInfo(ts, "Adapt: the fastest level's radius %s %g times within the macro step [%g, %g]%s%s\n", rho < base ? "fell" : "grew", (double)(rho < base ? base / rho : rho / base), (double)t0, (double)t1, grows ? " and its dominant mode grows at the end" : "", *redo ? ": the try taken again with the savings that keep it relaxing" : ""));
+                                                  PetscFunctionReturn(0);
+  };
+  if (!grew) {
+    PetscCall(relaxing());
+    PetscFunctionReturn(0);
+  }
   for (size_t l = 0; l < hmax.size() && l < vs->level_max_step.size(); ++l) {
     if (hmax[l] < vs->level_max_step[l]) { /* the start's limit is the tighter */
       vs->level_max_step[l] = hmax[l];
@@ -522,7 +568,8 @@ static PetscErrorCode RateGrewInStep(TS ts, PetscReal t1, PetscBool *redo)
   vs->spectra_time    = t0; /* the spectra of the step [t0, t1] */
   vs->radius_baseline = PetscMax(rho, vs->level_radius.back());
   LimitToStableSteps(ts, vs->adapt_params);
-  *redo = (vs->adapt_params.microStep < 0.999 * dt || vshmm::cycleLength(vs->adapt_params) < 0.999 * cycle) ? PETSC_TRUE : PETSC_FALSE;
+  PetscCall(relaxing());
+  *redo = (*redo || vs->adapt_params.microStep < 0.999 * dt || vshmm::cycleLength(vs->adapt_params) < 0.999 * cycle) ? PETSC_TRUE : PETSC_FALSE;
   PetscCall(PetscInfo(ts, "Adapt: the fastest level's radius grew %g times within the macro step [%g, %g]: spectra of its end state too; micro step %g (was %g)%s\n", (double)(base > 0 ? rho / base : PETSC_INFINITY), (double)t0, (double)t1,
                       (double)vs->adapt_params.microStep, (double)dt, *redo ? ", the try taken again" : ""));
   PetscFunctionReturn(0);
@@ -604,14 +651,6 @@ static std::vector<double> Saturations(TS ts, const vshmm::AdaptParameters &p)
     else if (OwnRatio(vs, l) > 0 && OwnRatio(vs, l) < RadiusRatio(vs, l) / kInitialSeparation) s[l] = s[l] > 0 ? PetscMin(s[l], OwnRatio(vs, l)) : OwnRatio(vs, l);
   }
   return s;
-}
-
-/* Whether every level faster than the slowest only decays (no oscillating limiting mode). */
-static bool FasterLevelsDecay(TS_VSHMM *vs)
-{
-  for (PetscInt l = 1; l < (PetscInt)vs->level_end.size(); ++l)
-    if (!LevelDecays(vs, l)) return false;
-  return true;
 }
 
 /* A steady step, whose comparison is left out (the model's prediction stands in): where every
@@ -1398,7 +1437,9 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
      at 0.9 of the initial limit its comparisons ran at the limit until the next calibration).
      A first step accepted as it was tried is no layer, and the estimate (an Arnoldi run per
      level, 12% of the sparse-spectral diffusion scenes' work at 1e-2) is not made again. */
-  if (calibrate || (vs->adapt_accepted == 1 && vs->adapt_rejections > 0)) PetscCall(UpdateStableSteps(ts));
+  if (calibrate || (vs->adapt_accepted == 1 && vs->adapt_rejections > 0) || vs->adapt_rate_fell) PetscCall(UpdateStableSteps(ts));
+  vs->adapt_rate_fell = PETSC_FALSE;
+  vs->adapt_end_rate  = 0;
   if (vs->spectra_time == ts->ptime) {
     PetscCall(RecheckSeparation(ts));
     if (!vs->adapt_calibrated) calibrate = later;

@@ -320,8 +320,10 @@ PetscErrorCode TSVSHMMLevelSpectra_Private(TS ts)
    power method on its field's Jacobian (forward differences), started from the vector the last
    call ended with: a cheap follower of a radius that moves with the solution between the levels'
    full spectra (TSVSHMMLevelSpectra_Private()), at the end of each of -ts_vshmm_adapt's macro
-   steps. 0 where the field is not finite near the state. Counted as the stability check's evaluations. */
-PetscErrorCode TSVSHMMFastestRadius_Private(TS ts, PetscReal *rho)
+   steps. 0 where the field is not finite near the state. Counted as the stability check's evaluations.
+   growth (may be NULL): the last power step's Rayleigh quotient, the real part of the dominant
+   eigenvalue once the vector has converged (positive: that mode grows at the state). */
+PetscErrorCode TSVSHMMFastestRadius_Private(TS ts, PetscReal *rho, PetscReal *growth)
 {
   TS_VSHMM       *vs = (TS_VSHMM *)ts->data;
   const PetscInt  K  = (PetscInt)vs->level_end.size() - 1;
@@ -331,6 +333,7 @@ PetscErrorCode TSVSHMMFastestRadius_Private(TS ts, PetscReal *rho)
 
   PetscFunctionBegin;
   *rho = 0;
+  if (growth) *growth = 0;
   const StabilityCounting counting(vs);
   if (!vs->radius_vec) {
     PetscCall(VecDuplicate(X, &vs->radius_vec));
@@ -350,6 +353,11 @@ PetscErrorCode TSVSHMMFastestRadius_Private(TS ts, PetscReal *rho)
     PetscCall(VecAXPY(W, -1.0, G0));
     PetscCall(VecScale(W, 1.0 / delta));
     PetscCall(VecNorm(W, NORM_2, rho));
+    if (growth) {
+      PetscScalar vw;
+      PetscCall(VecDot(W, vs->radius_vec, &vw));
+      *growth = PetscRealPart(vw);
+    }
     if (!std::isfinite(*rho)) {
       *rho = 0;
       break;

@@ -855,6 +855,50 @@ TEST(VSHMMAdapt, AChaoticFastLevelDoesNotRefineBelowItsFloor)
   EXPECT_LT(run.evaluations + run.stats.adapt_evaluations, 100000000);
 }
 
+// A van der Pol relaxation oscillator (Lienard form): y' = -x (slow), x' = (y - x^3 / 3 + x) / eps
+// (fast) from (y, x) = (2/3, 2), DeltaT = 0.1. The fast variable follows the outer branches of
+// the cubic; at its folds (x = +-1, where its rate (x^2 - 1) / eps goes to 0) it jumps to the
+// other branch, every 0.8 time units. With savings the fold was crossed late: the slowed fast
+// variable stayed on the middle, repelling branch for a macro step (growing, not decaying), the
+// comparison with doubled terms, as late, saw a hundredth of the error, and y ended 5.9 tol off at
+// 1e-1 by t = 3.7; at 1e-2 the micro step of a state near the fold (rate 1,600) was taken into
+// the jump (rate 3,000), where RK4 is unstable and came to rest on the middle branch, and y ended
+// 8.7 tol off. The fastest radius at a step's end, followed every step, now brings the spectra in
+// again where it fell by half, bounds the step's savings by its end rate, and takes none where its
+// mode grows there.
+struct VanDerPolParams {
+  double eps = 1e-3;
+};
+void VanDerPolSlow(const void *, PetscReal, const PetscScalar *x, PetscScalar *f)
+{
+  f[0] = -x[1];
+  f[1] = 0;
+}
+void VanDerPolFast(const void *ctx, PetscReal, const PetscScalar *x, PetscScalar *f)
+{
+  f[0] = 0;
+  f[1] = (x[0] - x[1] * x[1] * x[1] / 3 + x[1]) / ((const VanDerPolParams *)ctx)->eps;
+}
+
+TEST(VSHMMAdapt, ARelaxationOscillatorJumpsAtItsFolds)
+{
+  const double T = 3.7;
+  for (const double eps : {1e-3, 1e-4}) {
+    VanDerPolParams params;
+    params.eps = eps;
+    SplitProblem p;
+    p.terms          = {VanDerPolSlow, VanDerPolFast};
+    p.params         = &params;
+    const double ref = ConvergedReference({VanDerPolSlow, VanDerPolFast}, &params, {2.0 / 3, 2.0}, T, eps / 100, eps / 200, 1e-8);
+    for (const double tol : eps > 5e-4 ? std::vector<double>{1e-1, 1e-2} : std::vector<double>{1e-1}) {
+      const std::string options = "-ts_vshmm_adapt -ts_vshmm_warnings_viewer none -ts_rtol " + std::to_string(tol) + " -ts_atol " + std::to_string(tol);
+      AdaptRun          run;
+      ASSERT_EQ(SolveObservingX0(options.c_str(), p, {2.0 / 3, 2.0}, {"slow", "fast"}, 0.1, T, &run), 0);
+      EXPECT_LE(std::abs(run.x[0] - ref), tol * (1 + std::abs(ref))) << options << ", eps = " << eps << ": y(" << T << ") = " << run.x[0] << ", reference " << ref;
+    }
+  }
+}
+
 // A damped fast spiral from rest: x' = 1 - x y, y' = w, w' = -1e6 (y - cos x) - 100 w from
 // (0.5, 0, 0), DeltaT = 0.1, to t = 0.5. The fast components are 0 at the initial state: there is
 // no oscillation to measure the slower field at its phases with, and the first ratios (20) slowed
