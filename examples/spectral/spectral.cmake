@@ -269,7 +269,7 @@ vshmm_example_test(NAME spectral_auto_zero_tuning_detect_rkc EXE diffusion
 vshmm_example_test(NAME spectral_auto_zero_tuning_tol1e-3 EXE diffusion
                    ARGS -spectral_grid_points 512 ${_sp_auto} -output_times 0.125,0.25 -ts_type vshmm -ts_vshmm_adapt -ts_rtol 1e-3 -ts_atol 1e-3
                         -compare_grid_solution ${_sp_dir}/spectral_auto_dns_ref/dns -compare_tolerance 1e-3 -no_timing
-                   REGEX "K1 = {27..37,60..68,92..100,124..132,159,189..195,222..226}: 51 wavenumbers.*output t 0.25 rhs_evaluations 8077 .*compare t 0.25 relative_l2_error")
+                   REGEX "K1 = {27..37,60..68,92..100,124..132,159,189..195,222..226}: 51 wavenumbers.*output t 0.25 rhs_evaluations 8083 .*compare t 0.25 relative_l2_error")
 # The same with adapt's own micro step (-micro_step_from_stability false): the micro step starts
 # at the stability limit and the comparison cannot coarsen it, so the model expects the micro
 # term to fall while the saturated pair's term barely rises; the difference is then taken as the
@@ -281,7 +281,7 @@ vshmm_example_test(NAME spectral_auto_zero_tuning_tol1e-3 EXE diffusion
 vshmm_example_test(NAME spectral_auto_adapt_micro_step_tol1e-3 EXE diffusion
                    ARGS -spectral_grid_points 512 ${_sp_auto} -output_times 0.125,0.25 -ts_type vshmm -ts_vshmm_adapt -ts_rtol 1e-3 -ts_atol 1e-3 -micro_step_from_stability false
                         -compare_grid_solution ${_sp_dir}/spectral_auto_dns_ref/dns -compare_tolerance 1e-3 -no_timing
-                   REGEX "output t 0.25 rhs_evaluations 11925 .*compare t 0.25 relative_l2_error")
+                   REGEX "output t 0.25 rhs_evaluations 11931 .*compare t 0.25 relative_l2_error")
 # The tolerance-1e-3 run on two ranks: the same clusters and separations (the parallel norms round
 # differently, so the work can differ by a few evaluations: measured 8,064 as on one rank), the same accuracy.
 vshmm_example_test(NAME spectral_auto_zero_tuning_tol1e-3_np2 EXE diffusion NP 2
@@ -400,19 +400,19 @@ endfunction()
 # stiffness bounds the micro step, 5,824).
 spectral_auto_scene(diffusion diffusion 0.0625,0.125 0.125 2.5e-6 150000
                     1.3e-2 "the thin band 318..322 [(]share 0.00037[0-9]*[)] is kept with every band below it: it moves the other bands [(]influence 4.6[0-9]*[)]\n.*K0 = {0..5}: 6 wavenumbers.*K1 = {60..68,126..130,189..195,253..259,318..322}: 33 wavenumbers.*detection dns_steps 88 evaluations 444\n"
-                    1e-3 "bands left out [^\n]*: 511..513 [(]2.038[0-9]*e-05[)]\n.*K0 = {0..6}: 7 wavenumbers.*K1 = {60..68,125..131,189..195,252..260,317..323}: 39 wavenumbers.*detection dns_steps 80 evaluations 348\n.*output t 0.125 rhs_evaluations 2177 ")
+                    1e-3 "bands left out [^\n]*: 511..513 [(]2.038[0-9]*e-05[)]\n.*K0 = {0..6}: 7 wavenumbers.*K1 = {60..68,125..131,189..195,252..260,317..323}: 39 wavenumbers.*detection dns_steps 80 evaluations 348\n.*output t 0.125 rhs_evaluations 2183 ")
 # The same scene at 1e-3 with -spectral_cluster_min_band_share 0: every band is kept, 511..513
 # among them, and its stiffness bounds the micro step: 5,824 evaluations for 5.7e-4, 4.9e-4.
 vshmm_example_test(NAME spectral_auto_diffusion_min_band_share0 EXE diffusion
                    ARGS -options_file_yaml ${PROJECT_SOURCE_DIR}/examples/scenes/diffusion_auto.yaml -output_times 0.0625,0.125 -ts_rtol 1e-3 -ts_atol 1e-3 -spectral_cluster_min_band_share 0
                         -compare_grid_solution ${_sp_dir}/spectral_auto_diffusion_dns_ref/dns -compare_tolerance 1e-3 -no_timing
-                   REGEX "K1 = {60..68,125..131,189..195,252..260,317..323,511..513}: 42 wavenumbers.*detection dns_steps 80 evaluations 346\n.*output t 0.125 rhs_evaluations 5837 .*compare t 0.125 relative_l2_error")
+                   REGEX "K1 = {60..68,125..131,189..195,252..260,317..323,511..513}: 42 wavenumbers.*detection dns_steps 80 evaluations 346\n.*output t 0.125 rhs_evaluations 5843 .*compare t 0.125 relative_l2_error")
 # The same decision on two ranks (the detection runs on every rank alike): 511..513 left out, the
 # same work and errors (5.9e-4, 5.1e-4).
 vshmm_example_test(NAME spectral_auto_diffusion_zero_tuning_tol1e-3_np2 EXE diffusion NP 2
                    ARGS -options_file_yaml ${PROJECT_SOURCE_DIR}/examples/scenes/diffusion_auto.yaml -output_times 0.0625,0.125 -ts_rtol 1e-3 -ts_atol 1e-3
                         -compare_grid_solution ${_sp_dir}/spectral_auto_diffusion_dns_ref/dns -compare_tolerance 1e-3 -no_timing
-                   REGEX "bands left out [^\n]*: 511..513 [(]2.038[0-9]*e-05[)]\n.*output t 0.125 rhs_evaluations 2177 .*compare t 0.125 relative_l2_error")
+                   REGEX "bands left out [^\n]*: 511..513 [(]2.038[0-9]*e-05[)]\n.*output t 0.125 rhs_evaluations 2183 .*compare t 0.125 relative_l2_error")
 set_tests_properties(spectral_auto_diffusion_zero_tuning_tol1e-3_np2 spectral_auto_diffusion_min_band_share0 PROPERTIES FIXTURES_REQUIRED spectral_auto_diffusion_ref LABELS "example;spectral")
 # diffusion3_auto.yaml (N = 1024) to t = 0.125, 0.25 against RK3 dt = 1e-5 (dt = 5e-6 differs by
 # 6e-14): tol 1e-2: 9.6e-3, 1.09e-2 (bound 1.5e-2); tol 1e-3: 7.7e-4, 5.6e-4 (bound 1.2e-3) (with

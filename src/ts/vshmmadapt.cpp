@@ -58,6 +58,7 @@ static constexpr PetscReal kFinerComparison        = 0.75; /* the micro step of 
 static constexpr PetscReal kRadiusGrowth           = 1.1;  /* the fastest level's radius grown this much since the spectra were estimated: estimated again */
 static constexpr PetscReal kRadiusFall             = 2;    /* a decaying fastest level's radius fallen this much: estimated again */
 static constexpr PetscReal kGrowingEnd             = 0.5;  /* a Rayleigh quotient above this fraction of the radius at a try's end: a growing fast mode */
+static constexpr PetscInt  kMaxRadiusChecks        = 3;    /* RateGrewInStep() per macro step at most */
 static constexpr PetscReal kRelaxations            = 3;    /* and where it fell within a try, relaxes at least this many e-folds of its rate there per macro step in micro time */
 static constexpr PetscReal kFinerTermShare         = 1.0;  /* a micro step term measured from the finer side below this share of the step's is not counted */
 static constexpr PetscReal kComparableCoarsening   = 1.5;  /* a retry's r_l - 1 whose comparison cannot reach this factor of it is not coarsened */
@@ -72,6 +73,7 @@ static constexpr PetscReal kWorthTesting           = 4;    /* the product of the
 static constexpr PetscReal kSavingsMargin          = 0.5;  /* and admitted where they differ by at most this fraction of the step's coherent share */
 static constexpr PetscReal kUncomparedBelow        = 10;   /* a steady step's last two estimates below 1/this of their shares: its comparison may be left out */
 static constexpr PetscInt  kMaxUncompared          = 3;    /* at most this many steps in a row */
+static constexpr PetscReal kOffManifold            = 10;   /* a field at a try's end that would move the state by this many times its norm plus its change in a macro step: a fast variable off its slow manifold, the try compared */
 static constexpr PetscReal kPostponeBelow          = 10;   /* a scheduled calibration at a step whose estimate is below 1/this of its share waits a step */
 static constexpr PetscReal kNegligibleTerm         = 0.1;  /* a calibration difference below this fraction of the largest: a negligible term */
 static constexpr PetscInt  kNegligibleCalibrations = 2;    /* negligible in this many of a macro step's calibrations in a row: a retry's calibration does not measure it again */
@@ -462,7 +464,7 @@ static PetscErrorCode RadiusBaseline(TS ts)
   PetscReal rho;
 
   PetscFunctionBegin;
-  PetscCall(TSVSHMMFastestRadius_Private(ts, &rho, NULL));
+  PetscCall(TSVSHMMFastestRadius_Private(ts, &rho, NULL, NULL));
   vs->radius_baseline = PetscMax(rho, vs->level_radius.empty() ? 0.0 : vs->level_radius.back());
   PetscFunctionReturn(0);
 }
@@ -507,11 +509,25 @@ static PetscErrorCode RateGrewInStep(TS ts, PetscReal t1, PetscBool *redo)
 
   PetscFunctionBegin;
   const PetscReal base   = vs->radius_baseline;
-  PetscReal       growth = 0;
-  *redo                  = PETSC_FALSE;
-  ts->vec_sol            = vs->Xbase;
-  ts->ptime              = t1;
-  ierr                   = TSVSHMMFastestRadius_Private(ts, &rho, &growth);
+  PetscReal       growth = 0, speed = 0, xnorm = 0, moved = 0;
+  *redo       = PETSC_FALSE;
+  ts->vec_sol = vs->Xbase;
+  ts->ptime   = t1;
+  ierr        = TSVSHMMFastestRadius_Private(ts, &rho, &speed, &growth);
+  if (!ierr) ierr = VecNorm(vs->Xbase, NORM_2, &xnorm);
+  if (!ierr) ierr = VecWAXPY(vs->Xtrial, -1.0, X0, vs->Xbase);
+  if (!ierr) ierr = VecNorm(vs->Xtrial, NORM_2, &moved);
+  /* the field at the end of the try against the sampled motion: where every faster level decays
+     the fast variables end each macro step on their slow manifold, where the field moves the state
+     by about its change over a step (ts->time_step |F| <= the change plus the state; with savings
+     the fast variables lag the manifold by the product of the time ratios times more, and their
+     field is that much larger); far more is a fast variable stopped off it, and the try is compared
+     however small its last estimates (the van der Pol oscillator, single-rate at the micro step of
+     a state before the fold, went through the jump at h rho = 4.1 uncompared and ended at x = 1.59,
+     off its branch at 1.98: 77 tol off at 1e-3, silently) */
+  PetscReal slowed = 1;
+  for (double r : vs->adapt_params.ratios) slowed *= r;
+  vs->adapt_off_manifold = (!ierr && FasterLevelsDecay(vs) && std::isfinite(speed) && ts->time_step * speed > kOffManifold * slowed * (xnorm + moved)) ? PETSC_TRUE : PETSC_FALSE;
   /* a decaying fastest level whose rate fell by kRadiusFall since the spectra were estimated (a fold
      of its slow manifold ahead, where the rate goes to 0): the rate at the end bounds the savings
      of this step (Bounds(): the level relaxes in micro time), and the spectra are estimated again
@@ -1108,13 +1124,16 @@ static PetscReal Estimate(const vshmm::ErrorModel &model, const vshmm::AdaptPara
 /* A level whose time ratio r saves less than kNegligibleSavings (r - 1 below it) saves almost no work
    but still samples the faster scales: it takes no savings (r = 1, alpha = 0) for the rest of the
    solve, which removes its error term. It is applied to the choice after an accepted step, not to
-   the retries of a step (an initial layer refines the ratios fast and must keep the way back open).
+   the retries of a step (an initial layer refines the ratios fast and must keep the way back open),
    Without this, a problem whose slow quantities carry a part
    of the fast phase (any savings shift it: the stiff-spring chain's I) drives r towards 1
    geometrically, and the micro step down with it, without ever meeting the tolerance. */
 static void SnapNegligibleSavings(TS_VSHMM *vs, vshmm::AdaptParameters &p, const vshmm::AdaptBounds &bounds)
 {
-  if (bounds.fixedRatios) return;
+  /* nor where a fold of the fastest level's slow manifold took the savings back for this step only
+     (RateGrewInStep(): its rate fell, or its mode grew, within the step): a bistable fast variable
+     driven across its folds stayed single-rate for the rest of the run after its first jump */
+  if (bounds.fixedRatios || vs->adapt_end_rate > 0) return;
   vs->adapt_no_savings.resize(p.ratios.size(), PETSC_FALSE);
   for (size_t l = 0; l < p.ratios.size(); ++l)
     if (p.ratios[l] - 1.0 < kNegligibleSavings) {
@@ -1453,7 +1472,7 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
   vshmm::AdaptParameters beforeSingleRate;            /* the try that found that floor */
   PetscBool              edgeFound     = PETSC_FALSE; /* a try blew up within the stable steps of this state */
   PetscBool              edgeMargin    = PETSC_FALSE; /* the micro step was bounded by a blow-up's edge (EdgeMargin()) */
-  PetscBool              radiusChecked = PETSC_FALSE; /* the fastest radius at the end of a try was checked (RateGrewInStep()) */
+  PetscInt               radiusChecks  = 0;           /* the fastest radius at the end of a try was checked (RateGrewInStep()) */
   PetscReal              floorEstimate = 0;           /* and its estimate */
   for (PetscInt attempt = 0;; ++attempt) {
     vshmm::AdaptParameters &p = vs->adapt_params;
@@ -1488,9 +1507,13 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
       continue;
     }
 
-    if (!radiusChecked && attempt + 1 < kMaxAttempts) { /* once per macro step: a fast rate that grew within it */
+    /* at the end of the first kMaxRadiusChecks tries of a macro step (a fast rate that grew within
+       it; a retry's end may be past a fold where the first try's was not: the van der Pol
+       oscillator's try at time ratio 5.6, and a retry that coarsened the ratio from 12 to 24,
+       ended on the repelling branch) */
+    if (radiusChecks < kMaxRadiusChecks && attempt + 1 < kMaxAttempts) {
       PetscBool redo;
-      radiusChecked = PETSC_TRUE;
+      radiusChecks++;
       PetscCall(RateGrewInStep(ts, t1, &redo));
       if (redo) {
         DiscardTry(vs, rhs0, lev0);
@@ -1528,13 +1551,15 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
        comparisons) */
     const bool modelled = attempt == 0 && !calibrate && vs->adapt_model.total(p) > 0;
     const bool small    = vs->adapt_last_ratio < kNegligibleEstimate || (vs->adapt_last_ratio < 1.0 / kUncomparedBelow && vs->adapt_uncompared < kMaxUncompared);
-    bool       pinned   = modelled && small && p.microStep >= 0.999 * bounds.maxMicroStep;
+    bool       pinned   = modelled && small && !vs->adapt_off_manifold && p.microStep >= 0.999 * bounds.maxMicroStep;
     for (double r : p.ratios) pinned = pinned && r == 1.0;
-    const bool steady = modelled && SteadyStep(vs, p, bounds);
+    const bool steady = modelled && !vs->adapt_off_manifold && SteadyStep(vs, p, bounds);
+    if (vs->adapt_off_manifold && modelled)
+      PetscCall(PetscInfo(ts, "Adapt: macro step [%g, %g]: the fast variables ended it off their slow manifold (the field would move the state by more than %g times its norm and change in a macro step): compared\n", (double)t0, (double)t1, (double)kOffManifold));
     if (steady && !pinned)
       PetscCall(PetscInfo(ts, "Adapt: macro step [%g, %g]: at the cycle and micro step bounds, the last two estimates %g and %g of their shares: no comparison\n", (double)t0, (double)t1, (double)vs->adapt_prev_ratio, (double)vs->adapt_last_ratio));
     if (pinned || steady) d = -1;
-    else PetscCall(Compare(ts, p, t0, DeltaT, (modelled && vs->adapt_calibrated) ? PETSC_TRUE : PETSC_FALSE, &q, &d));
+    else PetscCall(Compare(ts, p, t0, DeltaT, (modelled && vs->adapt_calibrated && !vs->adapt_off_manifold) ? PETSC_TRUE : PETSC_FALSE, &q, &d));
     PetscReal E = d < 0 ? vs->adapt_model.total(p) : Estimate(vs->adapt_model, p, q, d);
     if (calibrate && FasterLevelsDecay(vs) && attempt == 0 && vs->adapt_calibrated_times >= kTrustedCalibrations && d > 0 && std::isfinite(E) && E > 0) {
       /* a scheduled measurement of the split that the model has just predicted: it predicted this

@@ -90,13 +90,14 @@ struct TS_VSHMM {
   PetscReal                                      spectra_time       = PETSC_MIN_REAL; // when they were estimated
 
   // Accuracy control (-ts_vshmm_adapt)
-  vshmm::AdaptParameters adapt_params;                      // micro step and time ratios for the next macro step
-  vshmm::AdaptParameters adapt_used;                        // those of the last accepted macro step
-  PetscReal              adapt_last_ratio = PETSC_MAX_REAL; // the last accepted step's estimate over its share
-  PetscReal              adapt_prev_ratio = PETSC_MAX_REAL; // the one before it
-  PetscInt               adapt_uncompared = 0;              // accepted steps in a row whose comparison was left out
-  PetscBool              adapt_rate_fell  = PETSC_FALSE;    // a decaying fastest level's radius fell at the last step's end (the spectra are estimated again)
-  PetscReal              adapt_end_rate   = 0;              // and its radius there (bounds the savings of the step's tries; 0: none)
+  vshmm::AdaptParameters adapt_params;                        // micro step and time ratios for the next macro step
+  vshmm::AdaptParameters adapt_used;                          // those of the last accepted macro step
+  PetscReal              adapt_last_ratio   = PETSC_MAX_REAL; // the last accepted step's estimate over its share
+  PetscReal              adapt_prev_ratio   = PETSC_MAX_REAL; // the one before it
+  PetscInt               adapt_uncompared   = 0;              // accepted steps in a row whose comparison was left out
+  PetscBool              adapt_off_manifold = PETSC_FALSE;    // the last try ended with a decaying fast variable off its slow manifold (its comparison is made)
+  PetscBool              adapt_rate_fell    = PETSC_FALSE;    // a decaying fastest level's radius fell at the last step's end (the spectra are estimated again)
+  PetscReal              adapt_end_rate     = 0;              // and its radius there (bounds the savings of the step's tries; 0: none)
   vshmm::ErrorModel      adapt_model;
   PetscBool              adapt_ready = PETSC_FALSE; // initial parameters chosen
   std::vector<PetscBool> adapt_no_savings;          // per time ratio: no savings for the rest of the solve (they were negligible)
@@ -191,7 +192,7 @@ PETSC_INTERN PetscErrorCode TSVSHMMLevelSpectra_Private(TS);
 PETSC_INTERN PetscErrorCode TSVSHMMLevelOwnRates_Private(TS);
 /* vshmmadapt.cpp: the separation check, accuracy control */
 PETSC_INTERN PetscErrorCode TSVSHMMCheckSeparation_Private(TS);
-PETSC_INTERN PetscErrorCode TSVSHMMFastestRadius_Private(TS, PetscReal *, PetscReal *);
+PETSC_INTERN PetscErrorCode TSVSHMMFastestRadius_Private(TS, PetscReal *, PetscReal *, PetscReal *);
 PETSC_INTERN PetscErrorCode TSVSHMMAdaptCheckSeparation_Private(TS);
 PETSC_INTERN PetscErrorCode TSVSHMMAdaptStep_Private(TS, PetscReal, PetscReal);
 PETSC_INTERN PetscErrorCode TSVSHMMAdaptSetUp_Private(TS);

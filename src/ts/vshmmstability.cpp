@@ -321,9 +321,10 @@ PetscErrorCode TSVSHMMLevelSpectra_Private(TS ts)
    call ended with: a cheap follower of a radius that moves with the solution between the levels'
    full spectra (TSVSHMMLevelSpectra_Private()), at the end of each of -ts_vshmm_adapt's macro
    steps. 0 where the field is not finite near the state. Counted as the stability check's evaluations.
+   speed (may be NULL): the 2-norm of the fastest level's field at the state (evaluated anyway);
    growth (may be NULL): the last power step's Rayleigh quotient, the real part of the dominant
    eigenvalue once the vector has converged (positive: that mode grows at the state). */
-PetscErrorCode TSVSHMMFastestRadius_Private(TS ts, PetscReal *rho, PetscReal *growth)
+PetscErrorCode TSVSHMMFastestRadius_Private(TS ts, PetscReal *rho, PetscReal *speed, PetscReal *growth)
 {
   TS_VSHMM       *vs = (TS_VSHMM *)ts->data;
   const PetscInt  K  = (PetscInt)vs->level_end.size() - 1;
@@ -333,6 +334,7 @@ PetscErrorCode TSVSHMMFastestRadius_Private(TS ts, PetscReal *rho, PetscReal *gr
 
   PetscFunctionBegin;
   *rho = 0;
+  if (speed) *speed = 0;
   if (growth) *growth = 0;
   const StabilityCounting counting(vs);
   if (!vs->radius_vec) {
@@ -345,6 +347,7 @@ PetscErrorCode TSVSHMMFastestRadius_Private(TS ts, PetscReal *rho, PetscReal *gr
   PetscCall(VecNorm(X, NORM_2, &xnorm));
   const PetscReal delta = std::sqrt(PETSC_MACHINE_EPSILON) * (1.0 + xnorm);
   PetscCall(TSVSHMMEvaluateLevel_Private(vs, K, t, X, G0));
+  if (speed) PetscCall(VecNorm(G0, NORM_2, speed));
   for (PetscInt it = 0; it < kRadiusIterations; ++it) {
     PetscCall(VecNormalize(vs->radius_vec, &vnorm));
     if (!(vnorm > 0) || !std::isfinite(vnorm)) break;
