@@ -88,11 +88,12 @@ _ode_error_test(oscillatory_x0_extra oscillatory "-x0 takes 4 values x1,x2,y1,y2
 _ode_error_test(chain_x0_extra chain "-x0 takes 1 to 3 values x0,...,xK, got more than 3" -scales 3 -x0 1,2,3,4)
 # A decaying pair less than 2 apart among separated ones takes no savings, and -ts_view says so:
 # at eps = 3e-2 the medium and fast levels are 1.31 apart (slow/medium 667); tol 3e-3, xi
-# observed: 4,980 + 8,864 split evaluations (7,472 + 7,900 before the stable steps were also
+# observed: 5,128 + 9,216 split evaluations (4,980 + 8,864 before the decaying medium level's rate
+# was followed too, docs/accuracy.md section 17: it fell by half at t = 1.5; 7,472 + 7,900 before the stable steps were also
 # estimated at the end of a first try whose fast rate grew; 4,784 + 7,692 before the first macro
 # step measured the micro step's term from the finer side; 3.6e5 when the pair's ratio was left to
-# the choice), xi(2) = 1.481651 against RK4's 1.48150 (dt 5e-5; 1e-4 agrees to 2e-9): 0.02 tol.
+# the choice), xi(2) = 1.481299 (1.481651 before) against RK4's 1.48150 (dt 5e-5; 1e-4 agrees to 2e-9): 0.05 tol.
 vshmm_example_test(NAME dissipative_vshmm_adapt_unseparated_pair_view EXE dissipative NP 1
                    ARGS -ts_type vshmm -eps 3e-2 -ts_vshmm_adapt -ts_rtol 3e-3 -ts_atol 3e-3 -ts_view -no_timing
-                   REGEX "levels 1/2: no savings between them [(]they are 1.31 apart, less than 2, and the faster only decays[)].*final t 2.0000 xi 1.481[0-9]*e[+]00\nrhs_evaluations 4980\n")
+                   REGEX "levels 1/2: no savings between them [(]they are 1.31 apart, less than 2, and the faster only decays[)].*final t 2.0000 xi 1.481[0-9]*e[+]00\nrhs_evaluations 5128\n")
 

@@ -45,7 +45,8 @@ static PetscErrorCode TSVSHMMTearDown_Private(TS ts)
   vs->level_end.clear();
   PetscCall(VecDestroy(&vs->Y));
   PetscCall(VecDestroy(&vs->X0));
-  PetscCall(VecDestroy(&vs->radius_vec));
+  for (Vec &v : vs->radius_vecs) PetscCall(VecDestroy(&v));
+  vs->radius_vecs.clear();
   for (Vec &v : vs->fastest_phase) PetscCall(VecDestroy(&v));
   vs->fastest_phase.clear();
   for (Vec &k : vs->K) PetscCall(VecDestroy(&k));

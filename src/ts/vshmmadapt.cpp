@@ -56,7 +56,7 @@ static constexpr PetscReal kMinShare               = 1e-3; /* no error term is t
 static constexpr PetscReal kRatioCoarsening        = 4;    /* a calibration's coarser r_l - 1 */
 static constexpr PetscReal kFinerComparison        = 0.75; /* the micro step of a comparison where nothing can be coarsened */
 static constexpr PetscReal kRadiusGrowth           = 1.1;  /* the fastest level's radius grown this much since the spectra were estimated: estimated again */
-static constexpr PetscReal kRadiusFall             = 2;    /* a decaying fastest level's radius fallen this much: estimated again */
+static constexpr PetscReal kRadiusFall             = 2;    /* a decaying level's radius fallen this much: estimated again */
 static constexpr PetscReal kGrowingEnd             = 0.5;  /* a Rayleigh quotient above this fraction of the radius at a try's end: a growing fast mode */
 static constexpr PetscInt  kMaxRadiusChecks        = 3;    /* RateGrewInStep() per macro step at most */
 static constexpr PetscReal kRelaxations            = 3;    /* and where it fell within a try, relaxes at least this many e-folds of its rate there per macro step in micro time */
@@ -415,10 +415,11 @@ static vshmm::AdaptBounds Bounds(TS ts, PetscReal DeltaT)
      radius (LevelTimeRates() in vshmmstability.cpp; a fast forcing sin(t / eps) allows no savings) */
   for (size_t l = 1; l < vs->level_time_rate_max.size() && l < vs->level_radius.size(); ++l)
     if (vs->level_time_rate_max[l] > 0 && vs->level_radius[l] > 0) boundSpeedup(l, vs->level_radius[l] / (kMinSeparation * vs->level_time_rate_max[l]));
-  /* a decaying fastest level whose rate fell within the try (RateGrewInStep(): a fold of its slow
+  /* a decaying faster level whose rate fell within the try (RateGrewInStep(): a fold of its slow
      manifold, where the rate goes to 0) relaxes kRelaxations e-folds of its rate at the try's end
      per macro step in micro time */
-  if (vs->adapt_end_rate > 0 && vs->level_radius.size() > 1 && LevelDecays(vs, (PetscInt)vs->level_radius.size() - 1)) boundSpeedup(vs->level_radius.size() - 1, vs->adapt_end_rate * DeltaT / kRelaxations);
+  for (size_t l = 1; l < vs->adapt_end_rates.size() && l < vs->level_radius.size(); ++l)
+    if (vs->adapt_end_rates[l] > 0 && LevelDecays(vs, (PetscInt)l)) boundSpeedup(l, vs->adapt_end_rates[l] * DeltaT / kRelaxations);
   if (vs->no_separation && vs->savings.empty() && !vs->adapt_verified.empty()) { /* savings up to those a single-rate step confirmed */
     bool any = false;
     b.maxRatio.resize(vs->adapt_verified.size(), PETSC_INFINITY);
@@ -496,6 +497,23 @@ static PetscErrorCode UpdateStableSteps(TS ts)
    grows from 0 within the first step (1000 x with x from 0) lost its amplitude there at the micro
    step chosen for frequency 0, which the slow variable driven by its energy showed only later
    (3 tol at 1e-2). */
+/* The try's time ratios brought inside the bounds that keep a level whose rate fell relaxing
+   (Bounds()); *redo where they changed. */
+static PetscErrorCode KeepRelaxing(TS ts, PetscReal DeltaT, PetscBool *redo)
+{
+  TS_VSHMM                *vs = (TS_VSHMM *)ts->data;
+  const vshmm::AdaptBounds b  = Bounds(ts, DeltaT);
+
+  PetscFunctionBegin;
+  for (size_t l = 0; l < b.maxRatio.size() && l < vs->adapt_params.ratios.size(); ++l)
+    if (vs->adapt_params.ratios[l] > 1.001 * PetscMax(1.0, b.maxRatio[l])) {
+      vs->adapt_params.ratios[l] = PetscMax(1.0, b.maxRatio[l]);
+      *redo                      = PETSC_TRUE;
+    }
+  if (*redo) PetscCall(PetscInfo(ts, "Adapt: the try taken again with the savings that keep the levels whose rate fell relaxing\n"));
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode RateGrewInStep(TS ts, PetscReal t1, PetscBool *redo)
 {
   TS_VSHMM                                      *vs = (TS_VSHMM *)ts->data;
@@ -537,12 +555,30 @@ static PetscErrorCode RateGrewInStep(TS ts, PetscReal t1, PetscBool *redo)
      at the end (the state past a fold, the fast variable not jumped yet: the same oscillator with
      savings 12.6 crossed the fold a step late, and the comparison with doubled terms, as late, saw
      1/100 of the error) the try is taken again without savings of the fastest level. */
+  const PetscInt  K     = (PetscInt)vs->level_end.size() - 1;
   const PetscBool grows = (!ierr && FasterLevelsDecay(vs) && rho > 0 && growth > kGrowingEnd * rho) ? PETSC_TRUE : PETSC_FALSE;
-  const PetscBool fell  = (!ierr && FasterLevelsDecay(vs) && rho > 0 && (grows || rho * kRadiusFall < base)) ? PETSC_TRUE : PETSC_FALSE;
+  PetscBool       fell  = (!ierr && FasterLevelsDecay(vs) && rho > 0 && (grows || rho * kRadiusFall < base)) ? PETSC_TRUE : PETSC_FALSE;
+  vs->adapt_end_rates.resize(K + 1, 0.0);
   if (fell) {
-    vs->adapt_rate_fell = PETSC_TRUE;
-    vs->adapt_end_rate  = grows ? PETSC_SMALL : rho;
+    vs->adapt_end_rates[K] = grows ? PETSC_SMALL : rho;
+    ierr                   = PetscInfo(ts, "Adapt: the fastest level's radius %s %g times within the macro step [%g, %g]%s\n", rho < base ? "fell" : "grew", (double)(rho < base ? base / rho : rho / base), (double)t0, (double)t1, grows ? " and its dominant mode grows at the end" : "");
   }
+  /* the same for each decaying medium level, against the radius of its last spectra (a fold in a
+     medium level of three: y' = -x + (w - x) / 10, x' = (y - x^3 / 3 + x) / 1e-2, w' = -(w - x) /
+     1e-4 crossed its folds with savings 9, 9.8 tol at 1e-1) */
+  for (PetscInt l = 1; l < K && !ierr; ++l) {
+    PetscReal rl, gl;
+    if (!LevelDecays(vs, l) || (PetscInt)vs->level_radius.size() <= l) continue;
+    ierr = TSVSHMMLevelRadius_Private(ts, l, &rl, NULL, &gl);
+    if (ierr || !(rl > 0)) continue;
+    const PetscBool growsl = gl > kGrowingEnd * rl ? PETSC_TRUE : PETSC_FALSE;
+    if (!growsl && rl > vs->level_radius[l]) vs->level_radius[l] = rl; /* the baseline of the next fall: its rate back after a jump */
+    if (!growsl && !(rl * kRadiusFall < vs->level_radius[l])) continue;
+    vs->adapt_end_rates[l] = growsl ? PETSC_SMALL : rl;
+    fell                   = PETSC_TRUE;
+    ierr = PetscInfo(ts, "Adapt: level %" PetscInt_FMT "'s radius fell %g times within the macro step [%g, %g]%s\n", l, (double)(vs->level_radius[l] / rl), (double)t0, (double)t1, growsl ? " and its dominant mode grows at the end" : "");
+  }
+  if (fell) vs->adapt_rate_fell = PETSC_TRUE;
   /* a millionfold growth of the fastest rate within one macro step is a blow-up (the try's state
      grew without bound, finite yet: three levels started from a zero state had a medium
      rate of 6e18 at the end of their first try), not a rate to take the micro step from */
@@ -557,20 +593,9 @@ static PetscErrorCode RateGrewInStep(TS ts, PetscReal t1, PetscBool *redo)
   ts->vec_sol = X0;
   ts->ptime   = t0;
   PetscCall(ierr);
-  const auto relaxing = [&]() -> PetscErrorCode { /* the savings that keep it relaxing (Bounds()) */
-                                                  PetscFunctionBegin;
-                                                  if (!fell) PetscFunctionReturn(0);
-                                                  const vshmm::AdaptBounds b = Bounds(ts, t1 - t0);
-                                                  for (size_t l = 0; l < b.maxRatio.size() && l < vs->adapt_params.ratios.size(); ++l)
-                                                    if (vs->adapt_params.ratios[l] > 1.001 * PetscMax(1.0, b.maxRatio[l])) {
-                                                      vs->adapt_params.ratios[l] = PetscMax(1.0, b.maxRatio[l]);
-                                                      *redo                      = PETSC_TRUE;
-                                                    }
-                                                  PetscCall(PetscInfo(ts, "Adapt: the fastest level's radius %s %g times within the macro step [%g, %g]%s%s\n", rho < base ? "fell" : "grew", (double)(rho < base ? base / rho : rho / base), (double)t0, (double)t1, grows ? " and its dominant mode grows at the end" : "", *redo ? ": the try taken again with the savings that keep it relaxing" : ""));
-                                                  PetscFunctionReturn(0);
-  };
+
   if (!grew) {
-    PetscCall(relaxing());
+    if (fell) PetscCall(KeepRelaxing(ts, t1 - t0, redo));
     PetscFunctionReturn(0);
   }
   for (size_t l = 0; l < hmax.size() && l < vs->level_max_step.size(); ++l) {
@@ -584,7 +609,7 @@ static PetscErrorCode RateGrewInStep(TS ts, PetscReal t1, PetscBool *redo)
   vs->spectra_time    = t0; /* the spectra of the step [t0, t1] */
   vs->radius_baseline = PetscMax(rho, vs->level_radius.back());
   LimitToStableSteps(ts, vs->adapt_params);
-  PetscCall(relaxing());
+  if (fell) PetscCall(KeepRelaxing(ts, t1 - t0, redo));
   *redo = (*redo || vs->adapt_params.microStep < 0.999 * dt || vshmm::cycleLength(vs->adapt_params) < 0.999 * cycle) ? PETSC_TRUE : PETSC_FALSE;
   PetscCall(PetscInfo(ts, "Adapt: the fastest level's radius grew %g times within the macro step [%g, %g]: spectra of its end state too; micro step %g (was %g)%s\n", (double)(base > 0 ? rho / base : PETSC_INFINITY), (double)t0, (double)t1,
                       (double)vs->adapt_params.microStep, (double)dt, *redo ? ", the try taken again" : ""));
@@ -1133,7 +1158,9 @@ static void SnapNegligibleSavings(TS_VSHMM *vs, vshmm::AdaptParameters &p, const
   /* nor where a fold of the fastest level's slow manifold took the savings back for this step only
      (RateGrewInStep(): its rate fell, or its mode grew, within the step): a bistable fast variable
      driven across its folds stayed single-rate for the rest of the run after its first jump */
-  if (bounds.fixedRatios || vs->adapt_end_rate > 0) return;
+  for (PetscReal r : vs->adapt_end_rates)
+    if (r > 0) return;
+  if (bounds.fixedRatios) return;
   vs->adapt_no_savings.resize(p.ratios.size(), PETSC_FALSE);
   for (size_t l = 0; l < p.ratios.size(); ++l)
     if (p.ratios[l] - 1.0 < kNegligibleSavings) {
@@ -1458,7 +1485,7 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
      level, 12% of the sparse-spectral diffusion scenes' work at 1e-2) is not made again. */
   if (calibrate || (vs->adapt_accepted == 1 && vs->adapt_rejections > 0) || vs->adapt_rate_fell) PetscCall(UpdateStableSteps(ts));
   vs->adapt_rate_fell = PETSC_FALSE;
-  vs->adapt_end_rate  = 0;
+  vs->adapt_end_rates.assign(vs->level_end.size(), 0.0);
   if (vs->spectra_time == ts->ptime) {
     PetscCall(RecheckSeparation(ts));
     if (!vs->adapt_calibrated) calibrate = later;

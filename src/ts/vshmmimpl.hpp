@@ -97,7 +97,7 @@ struct TS_VSHMM {
   PetscInt               adapt_uncompared   = 0;              // accepted steps in a row whose comparison was left out
   PetscBool              adapt_off_manifold = PETSC_FALSE;    // the last try ended with a decaying fast variable off its slow manifold (its comparison is made)
   PetscBool              adapt_rate_fell    = PETSC_FALSE;    // a decaying fastest level's radius fell at the last step's end (the spectra are estimated again)
-  PetscReal              adapt_end_rate     = 0;              // and its radius there (bounds the savings of the step's tries; 0: none)
+  std::vector<PetscReal> adapt_end_rates;                     // and each decaying level's radius there where it fell (bounds the savings of the step's tries; 0: none)
   vshmm::ErrorModel      adapt_model;
   PetscBool              adapt_ready = PETSC_FALSE; // initial parameters chosen
   std::vector<PetscBool> adapt_no_savings;          // per time ratio: no savings for the rest of the solve (they were negligible)
@@ -118,15 +118,15 @@ struct TS_VSHMM {
   PetscReal              adapt_floor_dt         = 0;            // the micro step of the last step accepted at a floor without savings left: later steps do not refine below it (0: none)
   PetscReal              adapt_single_rate_from = -1;           // the start of the macro step from which the tolerance left no savings (-1: none)
   Vec                    Xtrial = nullptr, Xbase = nullptr;
-  Vec                    slow_mask       = nullptr;     // 1 on the slow components (written by the slowest level's splits only) where they are controlled with the observables
-  PetscInt               slow_count      = 0;           // their number (global)
-  PetscInt64             slow_led        = 0;           // differences in which they led (statistics)
-  PetscBool              slow_last       = PETSC_FALSE; // they led the last difference
-  PetscBool              step_slow       = PETSC_FALSE; // they led the last comparison of the step being taken
-  PetscReal              finer_term      = 0;           // the last calibration's micro step term measured from the finer side and counted (0: none)
-  Vec                    radius_vec      = nullptr;     // the power method's vector of TSVSHMMFastestRadius_Private()
-  PetscReal              radius_baseline = 0;           // its radius at the levels' last full spectra (adapt)
-  PetscInt               slow_steps      = 0;           // accepted steps whose estimate they led
+  Vec                    slow_mask  = nullptr;     // 1 on the slow components (written by the slowest level's splits only) where they are controlled with the observables
+  PetscInt               slow_count = 0;           // their number (global)
+  PetscInt64             slow_led   = 0;           // differences in which they led (statistics)
+  PetscBool              slow_last  = PETSC_FALSE; // they led the last difference
+  PetscBool              step_slow  = PETSC_FALSE; // they led the last comparison of the step being taken
+  PetscReal              finer_term = 0;           // the last calibration's micro step term measured from the finer side and counted (0: none)
+  std::vector<Vec>       radius_vecs;              // the power method's vector of each level (TSVSHMMLevelRadius_Private())
+  PetscReal              radius_baseline = 0;      // its radius at the levels' last full spectra (adapt)
+  PetscInt               slow_steps      = 0;      // accepted steps whose estimate they led
   std::vector<PetscReal> obs_a, obs_b;
   std::vector<PetscReal> obs_diff;                 // the last ObservableDifference, signed and weighted, per observable
   std::vector<PetscReal> step_signed;              // that of the last comparison of the step being taken
@@ -193,6 +193,7 @@ PETSC_INTERN PetscErrorCode TSVSHMMLevelOwnRates_Private(TS);
 /* vshmmadapt.cpp: the separation check, accuracy control */
 PETSC_INTERN PetscErrorCode TSVSHMMCheckSeparation_Private(TS);
 PETSC_INTERN PetscErrorCode TSVSHMMFastestRadius_Private(TS, PetscReal *, PetscReal *, PetscReal *);
+PETSC_INTERN PetscErrorCode TSVSHMMLevelRadius_Private(TS, PetscInt, PetscReal *, PetscReal *, PetscReal *);
 PETSC_INTERN PetscErrorCode TSVSHMMAdaptCheckSeparation_Private(TS);
 PETSC_INTERN PetscErrorCode TSVSHMMAdaptStep_Private(TS, PetscReal, PetscReal);
 PETSC_INTERN PetscErrorCode TSVSHMMAdaptSetUp_Private(TS);

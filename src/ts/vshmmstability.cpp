@@ -287,6 +287,14 @@ PetscErrorCode TSVSHMMLevelSpectra_Private(TS ts)
 
   PetscFunctionBegin;
   const StabilityCounting counting(vs);
+  /* a level whose every mode grows at this state has no limiting mode here (a decaying level past
+     a fold of its slow manifold, its fast variable on the repelling branch before it jumps): it
+     keeps those of its last estimate, so that it is not taken for an oscillating level from here
+     on (a medium van der Pol level of three, estimated past a fold, lost the fold checks and its
+     savings for the rest of the run) */
+  const std::vector<PetscReal>                         hmax     = vs->level_max_step;
+  const std::vector<std::complex<double>>              worst    = vs->level_worst;
+  const std::vector<std::vector<std::complex<double>>> limiting = vs->level_limiting;
   vs->level_radius.assign(nscales, 0.0);
   vs->level_max_step.assign(nscales, PETSC_INFINITY);
   vs->level_worst.assign(nscales, 0.0);
@@ -310,6 +318,11 @@ PetscErrorCode TSVSHMMLevelSpectra_Private(TS ts)
       }
       vs->level_limiting[level].push_back(lambda);
     }
+    if (vs->level_limiting[level].empty() && vs->level_radius[level] > 0 && (PetscInt)limiting.size() == nscales && !limiting[level].empty()) {
+      vs->level_max_step[level] = hmax[level];
+      vs->level_worst[level]    = worst[level];
+      vs->level_limiting[level] = limiting[level];
+    }
   }
   vs->spectra_time   = ts->ptime;
   vs->own_rates_time = PETSC_MIN_REAL; /* made again with these spectra where it is used */
@@ -326,8 +339,18 @@ PetscErrorCode TSVSHMMLevelSpectra_Private(TS ts)
    eigenvalue once the vector has converged (positive: that mode grows at the state). */
 PetscErrorCode TSVSHMMFastestRadius_Private(TS ts, PetscReal *rho, PetscReal *speed, PetscReal *growth)
 {
+  TS_VSHMM *vs = (TS_VSHMM *)ts->data;
+
+  PetscFunctionBegin;
+  PetscCall(TSVSHMMLevelRadius_Private(ts, (PetscInt)vs->level_end.size() - 1, rho, speed, growth));
+  PetscFunctionReturn(0);
+}
+
+/* The same for level `level` (its field f_0 + ... + f_level), each level with its own vector. */
+PetscErrorCode TSVSHMMLevelRadius_Private(TS ts, PetscInt level, PetscReal *rho, PetscReal *speed, PetscReal *growth)
+{
   TS_VSHMM       *vs = (TS_VSHMM *)ts->data;
-  const PetscInt  K  = (PetscInt)vs->level_end.size() - 1;
+  const PetscInt  K  = level;
   Vec             X  = ts->vec_sol, G0, Xp, W;
   PetscReal       xnorm, vnorm;
   const PetscReal t = ts->ptime;
@@ -337,9 +360,11 @@ PetscErrorCode TSVSHMMFastestRadius_Private(TS ts, PetscReal *rho, PetscReal *sp
   if (speed) *speed = 0;
   if (growth) *growth = 0;
   const StabilityCounting counting(vs);
-  if (!vs->radius_vec) {
-    PetscCall(VecDuplicate(X, &vs->radius_vec));
-    PetscCall(DeterministicStart(vs->radius_vec));
+  if ((PetscInt)vs->radius_vecs.size() <= level) vs->radius_vecs.resize(level + 1, nullptr);
+  Vec &radius_vec = vs->radius_vecs[level];
+  if (!radius_vec) {
+    PetscCall(VecDuplicate(X, &radius_vec));
+    PetscCall(DeterministicStart(radius_vec));
   }
   PetscCall(VecDuplicate(X, &G0));
   PetscCall(VecDuplicate(X, &Xp));
@@ -349,26 +374,26 @@ PetscErrorCode TSVSHMMFastestRadius_Private(TS ts, PetscReal *rho, PetscReal *sp
   PetscCall(TSVSHMMEvaluateLevel_Private(vs, K, t, X, G0));
   if (speed) PetscCall(VecNorm(G0, NORM_2, speed));
   for (PetscInt it = 0; it < kRadiusIterations; ++it) {
-    PetscCall(VecNormalize(vs->radius_vec, &vnorm));
+    PetscCall(VecNormalize(radius_vec, &vnorm));
     if (!(vnorm > 0) || !std::isfinite(vnorm)) break;
-    PetscCall(VecWAXPY(Xp, delta, vs->radius_vec, X));
+    PetscCall(VecWAXPY(Xp, delta, radius_vec, X));
     PetscCall(TSVSHMMEvaluateLevel_Private(vs, K, t, Xp, W));
     PetscCall(VecAXPY(W, -1.0, G0));
     PetscCall(VecScale(W, 1.0 / delta));
     PetscCall(VecNorm(W, NORM_2, rho));
     if (growth) {
       PetscScalar vw;
-      PetscCall(VecDot(W, vs->radius_vec, &vw));
+      PetscCall(VecDot(W, radius_vec, &vw));
       *growth = PetscRealPart(vw);
     }
     if (!std::isfinite(*rho)) {
       *rho = 0;
       break;
     }
-    PetscCall(VecCopy(W, vs->radius_vec));
+    PetscCall(VecCopy(W, radius_vec));
   }
-  PetscCall(VecNorm(vs->radius_vec, NORM_2, &vnorm));
-  if (!(vnorm > 0) || !std::isfinite(vnorm)) PetscCall(VecDestroy(&vs->radius_vec)); /* started again next time */
+  PetscCall(VecNorm(radius_vec, NORM_2, &vnorm));
+  if (!(vnorm > 0) || !std::isfinite(vnorm)) PetscCall(VecDestroy(&radius_vec)); /* started again next time */
   PetscCall(VecDestroy(&G0));
   PetscCall(VecDestroy(&Xp));
   PetscCall(VecDestroy(&W));
