@@ -57,6 +57,7 @@ static constexpr PetscReal kRatioCoarsening        = 4;    /* a calibration's co
 static constexpr PetscReal kFinerComparison        = 0.75; /* the micro step of a comparison where nothing can be coarsened */
 static constexpr PetscReal kRadiusGrowth           = 1.1;  /* the fastest level's radius grown this much since the spectra were estimated: estimated again */
 static constexpr PetscReal kRadiusFall             = 2;    /* a decaying level's radius fallen this much: estimated again */
+static constexpr PetscReal kGrowingStep            = 2;    /* a growing mode at a try's end with dt |lambda| above this is not resolved: the micro step bounded to it */
 static constexpr PetscReal kGrowingEnd             = 0.5;  /* a Rayleigh quotient above this fraction of the radius at a try's end: a growing fast mode */
 static constexpr PetscInt  kMaxRadiusChecks        = 3;    /* RateGrewInStep() per macro step at most */
 static constexpr PetscReal kRelaxations            = 3;    /* and where it fell within a try, relaxes at least this many e-folds of its rate there per macro step in micro time */
@@ -594,7 +595,20 @@ static PetscErrorCode RateGrewInStep(TS ts, PetscReal t1, PetscBool *redo)
   ts->ptime   = t0;
   PetscCall(ierr);
 
+  /* a growing fast mode at the end whose rate the micro step does not resolve (dt rho above
+     kGrowingStep): not a fold but the try's own instability on its way to a blow-up (the
+     Oregonator's fast variable, falling towards its pole at x = -q within a macro step whose
+     fastest rate grew 346 times, ended past it at dt rho = 470, finite; the step was accepted and
+     the next one failed with Inf). The micro step is bounded by kGrowingStep / rho until the
+     spectra are estimated again (next step), and the try taken again. Not past a millionfold
+     growth (a blow-up, above: the micro step would be cut to 1e-32). */
+  const PetscBool unresolved = (grows && dt * rho > kGrowingStep && !(rho > kBlowUpGrowth * base)) ? PETSC_TRUE : PETSC_FALSE;
   if (!grew) {
+    if (unresolved) {
+      vs->level_max_step.back() = PetscMin(vs->level_max_step.back(), kGrowingStep / rho);
+      LimitToStableSteps(ts, vs->adapt_params);
+      if (vs->adapt_params.microStep < 0.999 * dt) *redo = PETSC_TRUE;
+    }
     if (fell) PetscCall(KeepRelaxing(ts, t1 - t0, redo));
     PetscFunctionReturn(0);
   }
@@ -608,6 +622,7 @@ static PetscErrorCode RateGrewInStep(TS ts, PetscReal t1, PetscBool *redo)
   }
   vs->spectra_time    = t0; /* the spectra of the step [t0, t1] */
   vs->radius_baseline = PetscMax(rho, vs->level_radius.back());
+  if (unresolved) vs->level_max_step.back() = PetscMin(vs->level_max_step.back(), kGrowingStep / rho);
   LimitToStableSteps(ts, vs->adapt_params);
   if (fell) PetscCall(KeepRelaxing(ts, t1 - t0, redo));
   *redo = (*redo || vs->adapt_params.microStep < 0.999 * dt || vshmm::cycleLength(vs->adapt_params) < 0.999 * cycle) ? PETSC_TRUE : PETSC_FALSE;
