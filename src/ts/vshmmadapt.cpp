@@ -59,7 +59,7 @@ static constexpr PetscReal kRadiusGrowth           = 1.1;  /* the fastest level'
 static constexpr PetscReal kRadiusFall             = 2;    /* a decaying level's radius fallen this much: estimated again */
 static constexpr PetscReal kGrowingStep            = 2;    /* a growing mode at a try's end with dt |lambda| above this is not resolved: the micro step bounded to it */
 static constexpr PetscReal kGrowingEnd             = 0.5;  /* a Rayleigh quotient above this fraction of the radius at a try's end: a growing fast mode */
-static constexpr PetscInt  kMaxRadiusChecks        = 3;    /* RateGrewInStep() per macro step at most */
+static constexpr PetscInt  kMaxRadiusChecks        = 3;    /* FollowRatesAtTryEnd() per macro step at most */
 static constexpr PetscReal kRelaxations            = 3;    /* and where it fell within a try, relaxes at least this many e-folds of its rate there per macro step in micro time */
 static constexpr PetscReal kFinerTermShare         = 1.0;  /* a micro step term measured from the finer side below this share of the step's is not counted */
 static constexpr PetscReal kComparableCoarsening   = 1.5;  /* a retry's r_l - 1 whose comparison cannot reach this factor of it is not coarsened */
@@ -416,7 +416,7 @@ static vshmm::AdaptBounds Bounds(TS ts, PetscReal DeltaT)
      radius (LevelTimeRates() in vshmmstability.cpp; a fast forcing sin(t / eps) allows no savings) */
   for (size_t l = 1; l < vs->level_time_rate_max.size() && l < vs->level_radius.size(); ++l)
     if (vs->level_time_rate_max[l] > 0 && vs->level_radius[l] > 0) boundSpeedup(l, vs->level_radius[l] / (kMinSeparation * vs->level_time_rate_max[l]));
-  /* a decaying faster level whose rate fell within the try (RateGrewInStep(): a fold of its slow
+  /* a decaying faster level whose rate fell within the try (FollowRatesAtTryEnd(): a fold of its slow
      manifold, where the rate goes to 0) relaxes kRelaxations e-folds of its rate at the try's end
      per macro step in micro time */
   for (size_t l = 1; l < vs->adapt_end_rates.size() && l < vs->level_radius.size(); ++l)
@@ -486,18 +486,6 @@ static PetscErrorCode UpdateStableSteps(TS ts)
   PetscFunctionReturn(0);
 }
 
-/* The fastest level's radius at the end of the try just taken (vs->Xbase at t1), by a few power
-   steps (TSVSHMMFastestRadius_Private(), at every macro step). Where it has grown by kRadiusGrowth
-   past the radius the steps were made for, the levels' spectra are estimated at that state too,
-   each level's largest stable step and radius taken as the tighter of the two states', and the
-   parameters brought inside them (*redo: the micro step or the cycle shrank, the try is taken
-   again). A fast rate that grows with the solution (z' = 1000 x (x - z) as x goes from 0.2 to 1:
-   the rate 5x) otherwise took the micro step past its stability limit between calibrations: the
-   few fast steps of a macro step with savings do not blow up, the comparison at the same micro
-   step sees nothing, and x ended 7.9 tol off at 1e-2, silently; a fast rotation whose frequency
-   grows from 0 within the first step (1000 x with x from 0) lost its amplitude there at the micro
-   step chosen for frequency 0, which the slow variable driven by its energy showed only later
-   (3 tol at 1e-2). */
 /* The try's time ratios brought inside the bounds that keep a level whose rate fell relaxing
    (Bounds()); *redo where they changed. */
 static PetscErrorCode KeepRelaxing(TS ts, PetscReal DeltaT, PetscBool *redo)
@@ -515,7 +503,21 @@ static PetscErrorCode KeepRelaxing(TS ts, PetscReal DeltaT, PetscBool *redo)
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode RateGrewInStep(TS ts, PetscReal t1, PetscBool *redo)
+/* The fastest level's radius at the end of the try just taken (vs->Xbase at t1), by a few power
+   steps (TSVSHMMFastestRadius_Private(), at every macro step). Where it has grown by kRadiusGrowth
+   past the radius the steps were made for, the levels' spectra are estimated at that state too,
+   each level's largest stable step and radius taken as the tighter of the two states', and the
+   parameters brought inside them (*redo: the micro step or the cycle shrank, the try is taken
+   again). A fast rate that grows with the solution (z' = 1000 x (x - z) as x goes from 0.2 to 1:
+   the rate 5x) otherwise took the micro step past its stability limit between calibrations: the
+   few fast steps of a macro step with savings do not blow up, the comparison at the same micro
+   step sees nothing, and x ended 7.9 tol off at 1e-2, silently; a fast rotation whose frequency
+   grows from 0 within the first step (1000 x with x from 0) lost its amplitude there at the micro
+   step chosen for frequency 0, which the slow variable driven by its energy showed only later
+   (3 tol at 1e-2). The same look follows the folds of a decaying level's slow manifold (its rate
+   fallen, its dominant mode growing at the end, a fast variable ended off the manifold: below,
+   and docs/accuracy.md section 17), for the fastest level and each decaying medium one. */
+static PetscErrorCode FollowRatesAtTryEnd(TS ts, PetscReal t1, PetscBool *redo)
 {
   TS_VSHMM                                      *vs = (TS_VSHMM *)ts->data;
   const PetscReal                                t0 = ts->ptime, cycle = vshmm::cycleLength(vs->adapt_params), dt = vs->adapt_params.microStep;
@@ -1171,7 +1173,7 @@ static PetscReal Estimate(const vshmm::ErrorModel &model, const vshmm::AdaptPara
 static void SnapNegligibleSavings(TS_VSHMM *vs, vshmm::AdaptParameters &p, const vshmm::AdaptBounds &bounds)
 {
   /* nor where a fold of the fastest level's slow manifold took the savings back for this step only
-     (RateGrewInStep(): its rate fell, or its mode grew, within the step): a bistable fast variable
+     (FollowRatesAtTryEnd(): its rate fell, or its mode grew, within the step): a bistable fast variable
      driven across its folds stayed single-rate for the rest of the run after its first jump */
   for (PetscReal r : vs->adapt_end_rates)
     if (r > 0) return;
@@ -1514,7 +1516,7 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
   vshmm::AdaptParameters beforeSingleRate;            /* the try that found that floor */
   PetscBool              edgeFound     = PETSC_FALSE; /* a try blew up within the stable steps of this state */
   PetscBool              edgeMargin    = PETSC_FALSE; /* the micro step was bounded by a blow-up's edge (EdgeMargin()) */
-  PetscInt               radiusChecks  = 0;           /* the fastest radius at the end of a try was checked (RateGrewInStep()) */
+  PetscInt               radiusChecks  = 0;           /* the fastest radius at the end of a try was checked (FollowRatesAtTryEnd()) */
   PetscReal              floorEstimate = 0;           /* and its estimate */
   for (PetscInt attempt = 0;; ++attempt) {
     vshmm::AdaptParameters &p = vs->adapt_params;
@@ -1556,7 +1558,7 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
     if (radiusChecks < kMaxRadiusChecks && attempt + 1 < kMaxAttempts) {
       PetscBool redo;
       radiusChecks++;
-      PetscCall(RateGrewInStep(ts, t1, &redo));
+      PetscCall(FollowRatesAtTryEnd(ts, t1, &redo));
       if (redo) {
         DiscardTry(vs, rhs0, lev0);
         bounds = Bounds(ts, DeltaT);
