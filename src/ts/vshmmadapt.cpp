@@ -374,6 +374,15 @@ static bool FasterLevelsDecay(TS_VSHMM *vs)
   return true;
 }
 
+/* Whether a decaying level's rate fell at the end of a try of the present macro step
+   (FollowRatesAtTryEnd()). */
+static bool RateFell(const TS_VSHMM *vs)
+{
+  for (PetscReal r : vs->adapt_end_rates)
+    if (r > 0) return true;
+  return false;
+}
+
 /* The bounds of the choice: user-set parameters, stability, enough cycles per macro step. */
 static vshmm::AdaptBounds Bounds(TS ts, PetscReal DeltaT)
 {
@@ -466,7 +475,7 @@ static PetscErrorCode RadiusBaseline(TS ts)
   PetscReal rho;
 
   PetscFunctionBegin;
-  PetscCall(TSVSHMMFastestRadius_Private(ts, &rho, NULL, NULL));
+  PetscCall(TSVSHMMLevelRadius_Private(ts, (PetscInt)vs->level_end.size() - 1, &rho, NULL, NULL));
   vs->radius_baseline = PetscMax(rho, vs->level_radius.empty() ? 0.0 : vs->level_radius.back());
   PetscFunctionReturn(0);
 }
@@ -504,7 +513,7 @@ static PetscErrorCode KeepRelaxing(TS ts, PetscReal DeltaT, PetscBool *redo)
 }
 
 /* The fastest level's radius at the end of the try just taken (vs->Xbase at t1), by a few power
-   steps (TSVSHMMFastestRadius_Private(), at every macro step). Where it has grown by kRadiusGrowth
+   steps (TSVSHMMLevelRadius_Private(), at every macro step). Where it has grown by kRadiusGrowth
    past the radius the steps were made for, the levels' spectra are estimated at that state too,
    each level's largest stable step and radius taken as the tighter of the two states', and the
    parameters brought inside them (*redo: the micro step or the cycle shrank, the try is taken
@@ -534,7 +543,7 @@ static PetscErrorCode FollowRatesAtTryEnd(TS ts, PetscReal t1, PetscBool *redo)
   *redo       = PETSC_FALSE;
   ts->vec_sol = vs->Xbase;
   ts->ptime   = t1;
-  ierr        = TSVSHMMFastestRadius_Private(ts, &rho, &speed, &growth);
+  ierr        = TSVSHMMLevelRadius_Private(ts, (PetscInt)vs->level_end.size() - 1, &rho, &speed, &growth);
   if (!ierr) ierr = VecNorm(vs->Xbase, NORM_2, &xnorm);
   if (!ierr) ierr = VecWAXPY(vs->Xtrial, -1.0, X0, vs->Xbase);
   if (!ierr) ierr = VecNorm(vs->Xtrial, NORM_2, &moved);
@@ -559,8 +568,8 @@ static PetscErrorCode FollowRatesAtTryEnd(TS ts, PetscReal t1, PetscBool *redo)
      savings 12.6 crossed the fold a step late, and the comparison with doubled terms, as late, saw
      1/100 of the error) the try is taken again without savings of the fastest level. */
   const PetscInt  K     = (PetscInt)vs->level_end.size() - 1;
-  const PetscBool grows = (!ierr && FasterLevelsDecay(vs) && rho > 0 && growth > kGrowingEnd * rho) ? PETSC_TRUE : PETSC_FALSE;
-  PetscBool       fell  = (!ierr && FasterLevelsDecay(vs) && rho > 0 && (grows || rho * kRadiusFall < base)) ? PETSC_TRUE : PETSC_FALSE;
+  const PetscBool grows = (!ierr && LevelDecays(vs, K) && rho > 0 && growth > kGrowingEnd * rho) ? PETSC_TRUE : PETSC_FALSE;
+  PetscBool       fell  = (!ierr && LevelDecays(vs, K) && rho > 0 && (grows || rho * kRadiusFall < base)) ? PETSC_TRUE : PETSC_FALSE;
   vs->adapt_end_rates.resize(K + 1, 0.0);
   if (fell) {
     vs->adapt_end_rates[K] = grows ? PETSC_SMALL : rho;
@@ -581,7 +590,6 @@ static PetscErrorCode FollowRatesAtTryEnd(TS ts, PetscReal t1, PetscBool *redo)
     fell                   = PETSC_TRUE;
     ierr = PetscInfo(ts, "Adapt: level %" PetscInt_FMT "'s radius fell %g times within the macro step [%g, %g]%s\n", l, (double)(vs->level_radius[l] / rl), (double)t0, (double)t1, growsl ? " and its dominant mode grows at the end" : "");
   }
-  if (fell) vs->adapt_rate_fell = PETSC_TRUE;
   /* a millionfold growth of the fastest rate within one macro step is a blow-up (the try's state
      grew without bound, finite yet: three levels started from a zero state had a medium
      rate of 6e18 at the end of their first try), not a rate to take the micro step from */
@@ -1175,9 +1183,7 @@ static void SnapNegligibleSavings(TS_VSHMM *vs, vshmm::AdaptParameters &p, const
   /* nor where a fold of the fastest level's slow manifold took the savings back for this step only
      (FollowRatesAtTryEnd(): its rate fell, or its mode grew, within the step): a bistable fast variable
      driven across its folds stayed single-rate for the rest of the run after its first jump */
-  for (PetscReal r : vs->adapt_end_rates)
-    if (r > 0) return;
-  if (bounds.fixedRatios) return;
+  if (bounds.fixedRatios || RateFell(vs)) return;
   vs->adapt_no_savings.resize(p.ratios.size(), PETSC_FALSE);
   for (size_t l = 0; l < p.ratios.size(); ++l)
     if (p.ratios[l] - 1.0 < kNegligibleSavings) {
@@ -1500,8 +1506,7 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
      at 0.9 of the initial limit its comparisons ran at the limit until the next calibration).
      A first step accepted as it was tried is no layer, and the estimate (an Arnoldi run per
      level, 12% of the sparse-spectral diffusion scenes' work at 1e-2) is not made again. */
-  if (calibrate || (vs->adapt_accepted == 1 && vs->adapt_rejections > 0) || vs->adapt_rate_fell) PetscCall(UpdateStableSteps(ts));
-  vs->adapt_rate_fell = PETSC_FALSE;
+  if (calibrate || (vs->adapt_accepted == 1 && vs->adapt_rejections > 0) || RateFell(vs)) PetscCall(UpdateStableSteps(ts));
   vs->adapt_end_rates.assign(vs->level_end.size(), 0.0);
   if (vs->spectra_time == ts->ptime) {
     PetscCall(RecheckSeparation(ts));

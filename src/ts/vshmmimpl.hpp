@@ -96,8 +96,7 @@ struct TS_VSHMM {
   PetscReal              adapt_prev_ratio   = PETSC_MAX_REAL; // the one before it
   PetscInt               adapt_uncompared   = 0;              // accepted steps in a row whose comparison was left out
   PetscBool              adapt_off_manifold = PETSC_FALSE;    // the last try ended with a decaying fast variable off its slow manifold (its comparison is made)
-  PetscBool              adapt_rate_fell    = PETSC_FALSE;    // a decaying fastest level's radius fell at the last step's end (the spectra are estimated again)
-  std::vector<PetscReal> adapt_end_rates;                     // and each decaying level's radius there where it fell (bounds the savings of the step's tries; 0: none)
+  std::vector<PetscReal> adapt_end_rates;                     // per level: its radius at the last try's end where a decaying level's fell there (the spectra are estimated again at the next step) (bounds the savings of the step's tries; 0: none)
   vshmm::ErrorModel      adapt_model;
   PetscBool              adapt_ready = PETSC_FALSE; // initial parameters chosen
   std::vector<PetscBool> adapt_no_savings;          // per time ratio: no savings for the rest of the solve (they were negligible)
@@ -192,7 +191,6 @@ PETSC_INTERN PetscErrorCode TSVSHMMLevelSpectra_Private(TS);
 PETSC_INTERN PetscErrorCode TSVSHMMLevelOwnRates_Private(TS);
 /* vshmmadapt.cpp: the separation check, accuracy control */
 PETSC_INTERN PetscErrorCode TSVSHMMCheckSeparation_Private(TS);
-PETSC_INTERN PetscErrorCode TSVSHMMFastestRadius_Private(TS, PetscReal *, PetscReal *, PetscReal *);
 PETSC_INTERN PetscErrorCode TSVSHMMLevelRadius_Private(TS, PetscInt, PetscReal *, PetscReal *, PetscReal *);
 PETSC_INTERN PetscErrorCode TSVSHMMAdaptCheckSeparation_Private(TS);
 PETSC_INTERN PetscErrorCode TSVSHMMAdaptStep_Private(TS, PetscReal, PetscReal);

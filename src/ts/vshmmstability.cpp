@@ -27,7 +27,7 @@
 #include <string>
 
 static constexpr PetscInt  kArnoldiSteps        = 16;
-static constexpr PetscInt  kRadiusIterations    = 2;    /* power steps of TSVSHMMFastestRadius_Private() per call */
+static constexpr PetscInt  kRadiusIterations    = 2;    /* power steps of TSVSHMMLevelRadius_Private() per call */
 static constexpr PetscReal kAmplitudeSpanChange = 0.05; /* an additive level's own amplitude rate counts where it changes the amplitude by this much over the run */
 static constexpr PetscReal kDampingTarget       = 0.5;  /* what a suggested savings factor achieves over a macro step */
 static constexpr PetscReal kGrowingMode         = 0.1;  /* Re lambda > this |lambda|: a growing mode, not checked */
@@ -329,24 +329,15 @@ PetscErrorCode TSVSHMMLevelSpectra_Private(TS ts)
   PetscFunctionReturn(0);
 }
 
-/* The fastest level's spectral radius at the present state by kRadiusIterations steps of the
-   power method on its field's Jacobian (forward differences), started from the vector the last
-   call ended with: a cheap follower of a radius that moves with the solution between the levels'
-   full spectra (TSVSHMMLevelSpectra_Private()), at the end of each of -ts_vshmm_adapt's macro
-   steps. 0 where the field is not finite near the state. Counted as the stability check's evaluations.
-   speed (may be NULL): the 2-norm of the fastest level's field at the state (evaluated anyway);
+/* Level `level`'s spectral radius at the present state by kRadiusIterations steps of the power
+   method on the Jacobian of its field f_0 + ... + f_level (forward differences), started from the
+   vector the level's last call ended with: a cheap follower of a radius that moves with the
+   solution between the levels' full spectra (TSVSHMMLevelSpectra_Private()), at the ends of
+   -ts_vshmm_adapt's tries. 0 where the field is not finite near the state. Counted as the
+   stability check's evaluations.
+   speed (may be NULL): the 2-norm of the level's field at the state (evaluated anyway);
    growth (may be NULL): the last power step's Rayleigh quotient, the real part of the dominant
    eigenvalue once the vector has converged (positive: that mode grows at the state). */
-PetscErrorCode TSVSHMMFastestRadius_Private(TS ts, PetscReal *rho, PetscReal *speed, PetscReal *growth)
-{
-  TS_VSHMM *vs = (TS_VSHMM *)ts->data;
-
-  PetscFunctionBegin;
-  PetscCall(TSVSHMMLevelRadius_Private(ts, (PetscInt)vs->level_end.size() - 1, rho, speed, growth));
-  PetscFunctionReturn(0);
-}
-
-/* The same for level `level` (its field f_0 + ... + f_level), each level with its own vector. */
 PetscErrorCode TSVSHMMLevelRadius_Private(TS ts, PetscInt level, PetscReal *rho, PetscReal *speed, PetscReal *growth)
 {
   TS_VSHMM       *vs = (TS_VSHMM *)ts->data;
