@@ -109,10 +109,12 @@ struct TS_VSHMM {
   std::vector<PetscReal> adapt_merged;                          // per level pair: its separation where adapt took no savings between a decaying pair less than kInitialDecaySeparation apart (0: not merged)
   std::vector<PetscInt>  adapt_negligible;                      // per parameter: this macro step's calibrations in a row that measured its term as negligible
   std::vector<double>    adapt_negligible_reach;                // per parameter: the coarsest value (dt, or r_l) at which its last calibration measured it
-  PetscReal              adapt_tstart           = 0.0;          // the time the solve started (the error budget runs from it)
-  PetscBool              no_separation          = PETSC_FALSE;  // no pair of levels is separated
-  PetscReal              separation_time        = 0.0;          // the time of the check that gave that verdict
-  PetscReal              separated_from         = -1;           // adapt: the time a later check found the scales separated (-1: not so)
+  PetscReal              adapt_tstart    = 0.0;                 // the time the solve started (the error budget runs from it)
+  PetscBool              no_separation   = PETSC_FALSE;         // no pair of levels is separated
+  PetscReal              separation_time = 0.0;                 // the time of the check that gave that verdict
+  PetscReal              separated_from  = -1;                  // adapt: the time a later check found the scales separated (-1: not so)
+  std::vector<PetscReal> adapt_lost;                            // per level pair: the time from which its oscillating faster level is less than kMinSeparation from it, so no savings between them (-1: separated)
+  PetscBool              lost_warned            = PETSC_FALSE;  // told that a pair lost its separation
   PetscBool              floor_warned           = PETSC_FALSE;  // told that the estimate does not fall
   PetscReal              adapt_floor_dt         = 0;            // the micro step of the last step accepted at a floor without savings left: later steps do not refine below it (0: none)
   PetscReal              adapt_single_rate_from = -1;           // the start of the macro step from which the tolerance left no savings (-1: none)
