@@ -881,7 +881,8 @@ PetscErrorCode TSVSHMMAdaptReset_Private(TS ts)
   vs->no_separation           = PETSC_FALSE;
   vs->separated_from          = -1;
   vs->adapt_lost.clear();
-  vs->lost_warned = PETSC_FALSE;
+  vs->lost_warned     = PETSC_FALSE;
+  vs->unstable_warned = PETSC_FALSE;
   vs->adapt_no_savings.clear();
   vs->adapt_merged.clear();
   vs->adapt_signed.clear();

@@ -115,6 +115,7 @@ struct TS_VSHMM {
   PetscReal              separated_from  = -1;                  // adapt: the time a later check found the scales separated (-1: not so)
   std::vector<PetscReal> adapt_lost;                            // per level pair: the time from which its oscillating faster level is less than kMinSeparation from it, so no savings between them (-1: separated)
   PetscBool              lost_warned            = PETSC_FALSE;  // told that a pair lost its separation
+  PetscBool              unstable_warned        = PETSC_FALSE;  // told that the fastest level sits at an unstable equilibrium
   PetscBool              floor_warned           = PETSC_FALSE;  // told that the estimate does not fall
   PetscReal              adapt_floor_dt         = 0;            // the micro step of the last step accepted at a floor without savings left: later steps do not refine below it (0: none)
   PetscReal              adapt_single_rate_from = -1;           // the start of the macro step from which the tolerance left no savings (-1: none)

@@ -36,6 +36,8 @@ static constexpr PetscReal kMaxCouplingGrowth   = 1.05; /* largest growth of a m
 static constexpr PetscReal kFastEnergyGrowth    = 4;    /* growth of the fastest scale's oscillation energy that is warned about */
 static constexpr PetscReal kCouplingTarget      = 1.01; /* what suggested savings factors achieve */
 static constexpr PetscReal kNegligibleDrive     = 1e-3; /* of the fastest level's part of the state: a drive of the slower levels whose response is not estimated */
+static constexpr PetscReal kUnstableShare       = 1e-6; /* the fastest level's part of the state below which it is at an equilibrium (CheckUnstableEquilibrium()) */
+static constexpr PetscReal kUnstableSeparation  = 10;   /* an own mode growing this many times faster than the slower level's radius: an unstable equilibrium */
 
 /* A deterministic start vector for the Arnoldi and power iterations, the same on any number of
    ranks: 1 + sin(1.7 i + 0.3) / 2 at global index i. */
@@ -636,6 +638,37 @@ static PetscErrorCode LevelTimeRates(TS ts)
   PetscFunctionReturn(0);
 }
 
+/* The fastest level's own components at (near) an unstable equilibrium: a small part of the state
+   (below kUnstableShare of its norm) and an own mode growing (Re lambda above the Ritz values'
+   noise) kUnstableSeparation times faster than the slower level's spectral radius. They leave it
+   when their amplitude has grown back from how small it became before: a slow passage through a
+   bifurcation (a fast rotation whose damping x / eps changes sign as x drifts through 0 leaves
+   u = 0 at the time the growth since 0 has made up the decay before it, not when x crosses 0). The
+   savings slow the level's decay and growth alike, by time ratios that differ between the two,
+   and its amplitude is far below anything a comparison of the slow values sees: that time, and
+   the answer after it, can be wrong by O(1) (the rotation above left u = 0 at t = 1.8 instead of 2:
+   89 tol at 1e-3, estimates 0.3). Said once per solve (an error with -ts_vshmm_check_separation
+   error); nothing else changes. */
+static PetscErrorCode CheckUnstableEquilibrium(TS ts, PetscInt level, const std::vector<std::complex<double>> &ritz, double noise)
+{
+  TS_VSHMM *vs = (TS_VSHMM *)ts->data;
+
+  PetscFunctionBegin;
+  if (vs->unstable_warned || vs->check_separation == TSVSHMM_SEPARATION_OFF || !(vs->fastest_share < kUnstableShare) || (PetscInt)vs->level_radius.size() <= level) PetscFunctionReturn(0);
+  double growth = 0, largest = 0;
+  for (const std::complex<double> &lambda : ritz) largest = std::max(largest, std::abs(lambda));
+  for (const std::complex<double> &lambda : ritz)
+    if (lambda.real() > noise * std::abs(lambda) && std::abs(lambda) > 1e-8 * largest) growth = std::max(growth, lambda.real());
+  const PetscReal slower = vs->level_radius[level - 1];
+  if (!(growth > kUnstableSeparation * slower) || !(slower > 0)) PetscFunctionReturn(0);
+  vs->unstable_warned = PETSC_TRUE;
+  PetscCheck(vs->check_separation != TSVSHMM_SEPARATION_ERROR, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_INCOMP, "TSVSHMM separation check at t = %g: the fastest level's own components (%g of the state norm) sit at an unstable equilibrium: a mode grows at rate %g (Re lambda), %g times the slower level's spectral radius (%g). When they leave it depends on how small they became before (a slow passage through a bifurcation), which the savings change; use a single-rate TS type (-ts_type rk), or -ts_vshmm_check_separation warn to run anyway",
+             (double)ts->ptime, (double)vs->fastest_share, growth, growth / slower, (double)slower);
+  PetscCall(TSVSHMMWarn_Private(ts, "TSVSHMM warning: separation check at t = %g: the fastest level's own components (%g of the state norm) sit at an unstable equilibrium: a mode grows at rate %g (Re lambda), %g times the slower level's spectral radius (%g). When they leave it depends on how small they became before (a slow passage through a bifurcation), and the savings slow the level's decay and growth by different time ratios: that time, and the answer after it, can be wrong by O(1) without the error estimates showing it. A single-rate TS type (-ts_type rk) is the right tool across such a passage. (-ts_vshmm_check_separation error makes this an error, off silences it.)\n",
+                                (double)ts->ptime, (double)vs->fastest_share, growth, growth / slower, (double)slower));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode TSVSHMMLevelOwnRates_Private(TS ts)
 {
   TS_VSHMM                         *vs      = (TS_VSHMM *)ts->data;
@@ -691,6 +724,7 @@ PetscErrorCode TSVSHMMLevelOwnRates_Private(TS ts)
     }
     PetscCall(VecDestroy(&mask));
     if (!finite) continue;
+    if (level == nscales - 1) PetscCall(CheckUnstableEquilibrium(ts, level, ritz, noise));
     const double slowest = vshmm::slowestRate(ritz, noise);
     if (slowest > 0) vs->level_slowest[level] = slowest;
     PetscCall(PetscInfo(ts, "Own components of level %" PetscInt_FMT " at t = %g: slowest rate %g%s\n", level, (double)ts->ptime, (double)vs->level_slowest[level], level == nscales - 1 ? " (its part of the state: the line above)" : ""));
