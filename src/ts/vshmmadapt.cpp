@@ -233,13 +233,22 @@ static PetscErrorCode TrialStep(TS ts, const vshmm::AdaptParameters &p, PetscRea
    wavenumbers of a sparse spectral advection scene hold about 5e-3 of ||u||, and their damping is
    not the answer's error. dtMax where the fastest level has no oscillating mode. */
 /* The run the accuracy control answers for: from the solve's start (or the last restart of the
-   accuracy control) to the final time; 0 where there is no final time. */
+   accuracy control) to the final time, or to the last step where TSSetMaxSteps() ends the solve
+   first (PETSc's default final time is PETSC_MAX_REAL: a solve bounded by its steps alone had no
+   final time, and one with a far final time, -ts_max_time 1e300 -ts_max_steps 20, gave each step
+   1e-300 of the tolerance: 620 million evaluations for 20 steps); 0 where neither bounds it. */
 static PetscReal RunSpan(TS ts)
 {
-  const TS_VSHMM *vs   = (TS_VSHMM *)ts->data;
-  const PetscReal span = ts->max_time - (vs->adapt_ready ? vs->adapt_tstart : ts->ptime);
+  const TS_VSHMM *vs    = (TS_VSHMM *)ts->data;
+  const PetscReal start = vs->adapt_ready ? vs->adapt_tstart : ts->ptime;
+  PetscReal       span  = ts->max_time - start;
 
-  return (span > 0 && std::isfinite(span) && span < PETSC_MAX_REAL / 2) ? span : 0.0;
+  if (!(span > 0 && std::isfinite(span) && span < PETSC_MAX_REAL / 2)) span = 0;
+  if (ts->max_steps < PETSC_MAX_INT && ts->max_steps > ts->steps && ts->time_step > 0) {
+    const PetscReal bySteps = (ts->ptime - start) + (PetscReal)(ts->max_steps - ts->steps) * ts->time_step;
+    span                    = span > 0 ? PetscMin(span, bySteps) : bySteps;
+  }
+  return span;
 }
 
 /* The run over which the micro step's amplitude error adds up: RunSpan(), kOscillationSpanSteps
@@ -1540,7 +1549,7 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
 
   PetscFunctionBegin;
   if (!vs->adapt_ready) PetscCall(TSVSHMMAdaptSetUp_Private(ts));
-  const PetscBool later = (ts->max_time - t1 > 0.5 * DeltaT) ? PETSC_TRUE : PETSC_FALSE;
+  const PetscBool later = (ts->max_time - t1 > 0.5 * DeltaT && ts->steps + 1 < ts->max_steps) ? PETSC_TRUE : PETSC_FALSE; /* a later macro step follows */
   /* the split between the terms is measured when a later macro step can use it: at the first, then
      after 1, 2, 4, 8 macro steps (a first measurement may fall in an initial transient), then every
      kRecalibrate */

@@ -1800,6 +1800,38 @@ TEST(VSHMMAdapt, TheSlowComponentsOfADecayingSlowLevelAreNotTakenAsCoherent)
   EXPECT_NE(view.find("with the observables, the 2 slow components"), std::string::npos) << view;
 }
 
+// A solve bounded by its step count alone (TSSetMaxSteps(), PETSc's default final time
+// PETSC_MAX_REAL): x' = -y + sin 3t (slow {x}), y' = -(y - cos(t) sin x) / 1e-3 (fast {y}) from
+// (1, 0), 20 macro steps of 0.1, at 1e-3. The accuracy control answers for the run to the last
+// step, 2.0, as it does for a final time: the same run as with the final time 2, x(2) within 1.5
+// tol (1.10 tol) of RK4 references at 1e-5 and 2e-5. Before, such a solve had no final time, each macro step
+// took the whole tolerance, and x(2) ended 11 tol off (the sum of the estimates 10.7).
+void StepCountSlow(const void *, PetscReal t, const PetscScalar *x, PetscScalar *f)
+{
+  f[0] = -x[1] + std::sin(3 * t);
+  f[1] = 0;
+}
+void StepCountFast(const void *, PetscReal t, const PetscScalar *x, PetscScalar *f)
+{
+  f[0] = 0;
+  f[1] = -(x[1] - std::cos(t) * std::sin(x[0])) / 1e-3;
+}
+
+TEST(VSHMMAdapt, ASolveBoundedByItsStepCountMeetsTheToleranceAtItsEnd)
+{
+  const double ref = ConvergedReference({StepCountSlow, StepCountFast}, nullptr, {1.0, 0.0}, 2, 1e-5, 2e-5, 1e-9);
+  SplitProblem p;
+  AdaptRun     run;
+  p.terms = {StepCountSlow, StepCountFast};
+  ASSERT_EQ(SolveObservingX0("-ts_vshmm_adapt -ts_vshmm_warnings_viewer none -ts_rtol 1e-3 -ts_atol 1e-3 -ts_max_steps 20", p, {1.0, 0.0}, {"slow", "fast"}, 0.1, PETSC_MAX_REAL, &run), 0);
+  ASSERT_EQ(run.stats.macro_steps, 20);
+  EXPECT_LE(std::abs(run.x[0] - ref), 1.5e-3 * (1 + std::abs(ref))) << "x(2) = " << run.x[0] << ", reference " << ref;
+  AdaptRun timed; /* the same run with the final time 2 instead: the same steps */
+  ASSERT_EQ(SolveObservingX0("-ts_vshmm_adapt -ts_vshmm_warnings_viewer none -ts_rtol 1e-3 -ts_atol 1e-3", p, {1.0, 0.0}, {"slow", "fast"}, 0.1, 2, &timed), 0);
+  EXPECT_NEAR(run.x[0], timed.x[0], 1e-12); /* up to the last step's end: 20 steps of 0.1, or the final time 2 */
+  EXPECT_EQ(run.evaluations, timed.evaluations);
+}
+
 // A vector atol (TSSetTolerances()) weighs the slow components per component beside the
 // observables, which take the scalars: atol 1e-1 for the observable x, 1e-3 on the slow
 // components, rtol 1e-3. Before, the slow components took the scalar atol too (x(4) then within
