@@ -40,6 +40,7 @@
 #include <limits>
 #include <string>
 
+static constexpr PetscReal kZeroEstimate           = 1e-3; /* of the share: the model's error after a comparison that changed nothing */
 static constexpr PetscReal kMinSeparation          = 10;   /* a pair of levels this far apart in spectral radius is separated */
 static constexpr PetscReal kInitialSeparation      = 10;   /* effective separation sigma_l of the first parameters */
 static constexpr PetscReal kInitialDecaySeparation = 2;    /* the same where the faster level only decays */
@@ -1707,7 +1708,14 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
     if (std::isfinite(E) && E > 0) {
       vs->adapt_model.scale(E / vs->adapt_model.total(p));
       vs->adapt_model.floorShares(p, kMinShare);
+    } else if (E == 0 && vs->adapt_model.total(p) > 0) {
+      /* a comparison that changed nothing (a state at rest, observables that do not move): the model
+         at kZeroEstimate of the share, so that the parameters coarsen; it stood at its unmeasured
+         equal shares of a whole tolerance, and each such step refined them (a solution at rest
+         from 0 took 48,828 evaluations to t = 1 at 1e-3, 1,056 now) */
+      vs->adapt_model.scale(kZeroEstimate * budget / vs->adapt_model.total(p));
     }
+    const PetscReal Echoice = E > 0 ? E : vs->adapt_model.total(p); /* the present error the choice starts from */
 
     /* The parameters for the next try or the next macro step: the work may fall by
        sqrt(target / E) (at most kMaxCheaper) and rise by kMaxDearer per choice */
@@ -1716,9 +1724,9 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
     if (std::isfinite(E)) {
       /* the least-work parameters of the present error (moving error between the terms, as the
          calibration measured them), and from there towards the target, with the work limited */
-      const vshmm::AdaptParameters same = vshmm::chooseParameters(p, vs->adapt_model, E, bounds);
+      const vshmm::AdaptParameters same = vshmm::chooseParameters(p, vs->adapt_model, Echoice, bounds);
       next                              = vshmm::chooseParameters(p, vs->adapt_model, target, bounds);
-      vshmm::limitWorkChange(next, same, PetscMin(kMaxCheaper, PetscMax(1.0, PetscSqrtReal(target / PetscMax(E, PETSC_SMALL)))), kMaxDearer);
+      vshmm::limitWorkChange(next, same, PetscMin(kMaxCheaper, PetscMax(1.0, PetscSqrtReal(target / PetscMax(Echoice, PETSC_SMALL)))), kMaxDearer);
     }
     PetscBool refinable = vs->adapt_model.total(next) < 0.9 * vs->adapt_model.total(p) ? PETSC_TRUE : PETSC_FALSE; /* the model expects a clearly lower error */
     if (!std::isfinite(E) || (E > kFloorAccept * budget && !refinable)) {                                          /* no estimate, or far off and the model is stuck: every parameter finer */

@@ -1800,6 +1800,30 @@ TEST(VSHMMAdapt, TheSlowComponentsOfADecayingSlowLevelAreNotTakenAsCoherent)
   EXPECT_NE(view.find("with the observables, the 2 slow components"), std::string::npos) << view;
 }
 
+// A state at rest until a slow forcing starts at t = 0.5: x' = -x + z + H(t - 0.5) (slow {x}),
+// z' = -(z - x) / 1e-3 (fast {z}) from (0, 0), DeltaT = 0.1, to t = 1 at 1e-3. Until t = 0.5 every
+// comparison changes nothing (estimate 0); the model stood at its unmeasured equal shares of a
+// whole tolerance and each such step refined the parameters (48,828 evaluations to t = 1 for the
+// state at rest throughout, 1,056 now). Now an estimate of 0 puts the model at a thousandth of the
+// share and the parameters coarsen; the forcing is then followed within the tolerance, with a
+// third of the work.
+void AtRestSlow(const void *, PetscReal t, const PetscScalar *x, PetscScalar *f)
+{
+  f[0] = -x[0] + x[1] + (t > 0.5 ? 1.0 : 0.0);
+  f[1] = 0;
+}
+void AtRestFast(const void *, PetscReal, const PetscScalar *x, PetscScalar *f)
+{
+  f[0] = 0;
+  f[1] = -(x[1] - x[0]) / 1e-3;
+}
+
+TEST(VSHMMAdapt, AStateAtRestCoarsensItsParameters)
+{
+  const AdaptRun run = ExpectWithinTolerance({AtRestSlow, AtRestFast}, {0.0, 0.0}, 1, 1e-3, 1e-5, 2e-5, 1, 1e-5);
+  EXPECT_LT(run.evaluations + run.stats.adapt_evaluations, 12000); /* 8,296; 24,404 when an estimate of 0 refined the parameters */
+}
+
 // A solve bounded by its step count alone (TSSetMaxSteps(), PETSc's default final time
 // PETSC_MAX_REAL): x' = -y + sin 3t (slow {x}), y' = -(y - cos(t) sin x) / 1e-3 (fast {y}) from
 // (1, 0), 20 macro steps of 0.1, at 1e-3. The accuracy control answers for the run to the last
