@@ -536,6 +536,8 @@ static PetscErrorCode KeepRelaxing(TS ts, PetscReal DeltaT, PetscBool *redo)
    (3 tol at 1e-2). The same look follows the folds of a decaying level's slow manifold (its rate
    fallen, its dominant mode growing at the end, a fast variable ended off the manifold: below,
    and docs/accuracy.md section 17), for the fastest level and each decaying medium one. */
+static PetscErrorCode NoteLostSeparation(TS, PetscReal);
+
 static PetscErrorCode FollowRatesAtTryEnd(TS ts, PetscReal t1, PetscBool *redo)
 {
   TS_VSHMM                                      *vs = (TS_VSHMM *)ts->data;
@@ -603,6 +605,18 @@ static PetscErrorCode FollowRatesAtTryEnd(TS ts, PetscReal t1, PetscBool *redo)
   /* a millionfold growth of the fastest rate within one macro step is a blow-up (the try's state
      grew without bound, finite yet: three levels started from a zero state had a medium
      rate of 6e18 at the end of their first try), not a rate to take the micro step from */
+  /* an oscillating faster level slowed by the savings whose own slowest rate (an amplitude rate)
+     has come within kMinSeparation of the slower level's radius by the try's end: a process inside
+     it that the savings slow (NoteLostSeparation(), below; a rotation damped by a slow variable
+     from 0, DeltaT = 0.5: separated at t = 0, 0.39 apart at the end of the first step, taken with
+     time ratios of 11 and 25 tol off at 1e-3, silently) */
+  std::vector<PetscReal> ownEnd(K + 1, 0.0);
+  PetscReal              slowedTo = 1;
+  for (PetscInt l = 1; l <= K && !ierr; ++l) {
+    slowedTo *= vs->adapt_params.ratios[l - 1];
+    if (LevelDecays(vs, l) || !(slowedTo > 1.0) || (PetscInt)vs->separations.size() >= l || (PetscInt)vs->level_slowest.size() <= l) continue;
+    ierr = TSVSHMMLevelOwnSlowest_Private(ts, l, &ownEnd[l]);
+  }
   const PetscBool grew = (!ierr && rho > kRadiusGrowth * base && !(rho > kBlowUpGrowth * base)) ? PETSC_TRUE : PETSC_FALSE;
   if (grew) { /* the start's spectra, kept where they are the tighter */
     hmax     = vs->level_max_step;
@@ -623,6 +637,20 @@ static PetscErrorCode FollowRatesAtTryEnd(TS ts, PetscReal t1, PetscBool *redo)
      spectra are estimated again (next step), and the try taken again. Not past a millionfold
      growth (a blow-up, above: the micro step would be cut to 1e-32). */
   const PetscBool unresolved = (grows && dt * rho > kGrowingStep && !(rho > kBlowUpGrowth * base)) ? PETSC_TRUE : PETSC_FALSE;
+  {
+    bool slower = false; /* an own rate at the end below the one the spectra gave */
+    for (PetscInt l = 1; l <= K; ++l)
+      if (ownEnd[l] > 0 && ownEnd[l] < vs->level_slowest[l]) {
+        PetscCall(PetscInfo(ts, "Adapt: level %" PetscInt_FMT "'s own slowest rate is %g at the end of the macro step [%g, %g] (%g at its spectra)\n", l, (double)ownEnd[l], (double)t0, (double)t1, (double)vs->level_slowest[l]));
+        vs->level_slowest[l] = ownEnd[l];
+        slower               = true;
+      }
+    if (slower) {
+      const std::vector<double> before = vs->adapt_params.ratios;
+      PetscCall(NoteLostSeparation(ts, t1));
+      if (vs->adapt_params.ratios != before) *redo = PETSC_TRUE;
+    }
+  }
   if (!grew) {
     if (unresolved) {
       vs->level_max_step.back() = PetscMin(vs->level_max_step.back(), kGrowingStep / rho);
@@ -1460,13 +1488,14 @@ static PetscErrorCode RecheckMergedPairs(TS ts)
 /* Separated scales whose oscillating faster level came within kMinSeparation of the slower one at
    the spectra just estimated: a process inside it as slow as the slower level (its amplitude damped
    at a rate a slow variable sets), which savings would slow with it. Bounds() takes no savings
-   between them while so, from this step's first try on; said once per solve (an error with
+   between them while so, from this step's first try on (the levels' spectra at tseen: the start
+   of the step, or the end of its try, FollowRatesAtTryEnd()); said once per solve (an error with
    -ts_vshmm_check_separation error), as the check at set-up says it. A Duffing rotation damped by
    a slow variable x that starts at 0 (q' = p / eps, p' = -(q + q^3) / eps - x p / 2, x' = -x + q^2,
    eps = 1e-3) was separated at t = 0, 0.012 apart at t = 0.1, took time ratios of 3.6 there and
    ended 1.7 tol off at 1e-3, silently (the damping ran 3.6x too slowly; the comparison, whose
    error saturates in r, read 0.1 of the step's share where the step took 5.5). */
-static PetscErrorCode NoteLostSeparation(TS ts)
+static PetscErrorCode NoteLostSeparation(TS ts, PetscReal tseen)
 {
   TS_VSHMM      *vs   = (TS_VSHMM *)ts->data;
   const PetscInt K    = (PetscInt)vs->level_end.size() - 1;
@@ -1489,13 +1518,13 @@ static PetscErrorCode NoteLostSeparation(TS ts)
   std::string figures;
   bool        own;
   PetscCall(SeparationFigures(ts, &best, figures, &own));
-  PetscCall(PetscInfo(ts, "Adapt: separation at t = %g: %s; an oscillating level within %g of the slower one takes no savings\n", (double)ts->ptime, figures.c_str(), (double)kMinSeparation));
+  PetscCall(PetscInfo(ts, "Adapt: separation at t = %g: %s; an oscillating level within %g of the slower one takes no savings from t = %g\n", (double)tseen, figures.c_str(), (double)kMinSeparation, (double)ts->ptime));
   if (vs->check_separation == TSVSHMM_SEPARATION_OFF) PetscFunctionReturn(0);
   vs->lost_warned = PETSC_TRUE;
-  PetscCheck(vs->check_separation != TSVSHMM_SEPARATION_ERROR, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_INCOMP, "TSVSHMM separation check at t = %g: the time scales of the RHS splits are no longer separated (at least %g needed: %s): a faster level oscillates and a process inside it (its amplitude's rate) is as slow as the slower level, which savings would slow with it; use a single-rate TS type (-ts_type rk), or -ts_vshmm_check_separation warn to run anyway (-ts_vshmm_adapt then takes no savings between those levels while so)",
-             (double)ts->ptime, (double)kMinSeparation, figures.c_str());
-  PetscCall(TSVSHMMWarn_Private(ts, "TSVSHMM warning: separation check at t = %g: the time scales of the RHS splits are no longer separated (at least %g needed: %s): a faster level oscillates and a process inside it (its amplitude's rate) is as slow as the slower level, which savings would slow with it. -ts_vshmm_adapt takes no savings between those levels while so (-ts_view names them); where it lasts, a single-rate TS type (-ts_type rk) is the right tool. (-ts_vshmm_check_separation error makes this an error, off silences it.)\n",
-                                (double)ts->ptime, (double)kMinSeparation, figures.c_str()));
+  PetscCheck(vs->check_separation != TSVSHMM_SEPARATION_ERROR, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_INCOMP, "TSVSHMM separation check at t = %g: the time scales of the RHS splits are no longer separated (at least %g needed: %s): a faster level oscillates and a process inside it (its amplitude's rate) is as slow as the slower level, which savings would slow with it; use a single-rate TS type (-ts_type rk), or -ts_vshmm_check_separation warn to run anyway (-ts_vshmm_adapt then takes no savings between those levels while so)", (double)tseen, (double)kMinSeparation,
+             figures.c_str());
+  PetscCall(TSVSHMMWarn_Private(ts, "TSVSHMM warning: separation check at t = %g: the time scales of the RHS splits are no longer separated (at least %g needed: %s): a faster level oscillates and a process inside it (its amplitude's rate) is as slow as the slower level, which savings would slow with it. -ts_vshmm_adapt takes no savings between those levels while so (-ts_view names them); where it lasts, a single-rate TS type (-ts_type rk) is the right tool. (-ts_vshmm_check_separation error makes this an error, off silences it.)\n", (double)tseen, (double)kMinSeparation,
+                                figures.c_str()));
   PetscFunctionReturn(0);
 }
 
@@ -1509,7 +1538,7 @@ static PetscErrorCode RecheckSeparation(TS ts)
   PetscFunctionBegin;
   if (!vs->savings.empty() || vs->spectra_time != ts->ptime) PetscFunctionReturn(0);
   if (!vs->no_separation) {
-    PetscCall(NoteLostSeparation(ts));
+    PetscCall(NoteLostSeparation(ts, ts->ptime));
     PetscCall(RecheckMergedPairs(ts));
     PetscFunctionReturn(0);
   }

@@ -192,6 +192,7 @@ PETSC_INTERN PetscErrorCode TSVSHMMResetLevelEvents_Private(void);
 PETSC_INTERN PetscErrorCode TSVSHMMCheckStability_Private(TS);
 PETSC_INTERN PetscErrorCode TSVSHMMLevelSpectra_Private(TS);
 PETSC_INTERN PetscErrorCode TSVSHMMLevelOwnRates_Private(TS);
+PETSC_INTERN PetscErrorCode TSVSHMMLevelOwnSlowest_Private(TS, PetscInt, PetscReal *); /* the slowest own rate of a level at ts->vec_sol (component splits; 0 otherwise), not stored */
 /* vshmmadapt.cpp: the separation check, accuracy control */
 PETSC_INTERN PetscErrorCode TSVSHMMCheckSeparation_Private(TS);
 PETSC_INTERN PetscErrorCode TSVSHMMLevelRadius_Private(TS, PetscInt, PetscReal *, PetscReal *, PetscReal *);

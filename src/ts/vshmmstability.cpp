@@ -669,6 +669,30 @@ static PetscErrorCode CheckUnstableEquilibrium(TS ts, PetscInt level, const std:
   PetscFunctionReturn(0);
 }
 
+/* The slowest rate of a level's own components (component splits) at ts->vec_sol, ts->ptime, as
+   TSVSHMMLevelOwnRates_Private() estimates it; 0 where the level has additive splits or its Ritz
+   values are not finite. The estimate is not stored. */
+PetscErrorCode TSVSHMMLevelOwnSlowest_Private(TS ts, PetscInt level, PetscReal *slowest)
+{
+  TS_VSHMM                         *vs = (TS_VSHMM *)ts->data;
+  std::vector<std::complex<double>> ritz;
+  PetscBool                         finite = PETSC_FALSE;
+  double                            noise;
+  Vec                               mask;
+
+  PetscFunctionBegin;
+  *slowest = 0;
+  for (PetscInt k = vs->level_end[level - 1]; k < vs->level_end[level]; ++k)
+    if (vs->splits[k].additive) PetscFunctionReturn(0);
+  const StabilityCounting counting(vs);
+  PetscCall(VecDuplicate(ts->vec_sol, &mask));
+  PetscCall(TSVSHMMWrittenComponents_Private(vs, vs->level_end[level - 1], vs->level_end[level], ts->ptime, mask));
+  PetscCall(OwnBlockRitzValues(ts, level, mask, PETSC_FALSE, ritz, &finite, &noise));
+  PetscCall(VecDestroy(&mask));
+  if (finite) *slowest = vshmm::slowestRate(ritz, noise);
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode TSVSHMMLevelOwnRates_Private(TS ts)
 {
   TS_VSHMM                         *vs      = (TS_VSHMM *)ts->data;
