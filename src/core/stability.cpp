@@ -112,22 +112,31 @@ LevelAmplification levelAmplification(const StabilityFunction &R, const Mesoscop
 }
 
 namespace {
-// Calls f(|lambda|, |Re lambda|, oscillates) for every mode above 1e-8 of the largest |lambda| (the
-// others are zero modes and not counted).
+// Calls f(|lambda|, |Re lambda|, oscillates, Re lambda) for every mode above 1e-8 of the largest
+// |lambda| (the others are zero modes and not counted).
 template <class F>
 void forEachCountedMode(const std::vector<std::complex<double>> &modes, F f)
 {
   double largest = 0;
   for (const std::complex<double> &lambda : modes) largest = std::max(largest, std::abs(lambda));
   for (const std::complex<double> &lambda : modes)
-    if (std::abs(lambda) > 1e-8 * largest) f(std::abs(lambda), std::fabs(lambda.real()), oscillates(lambda));
+    if (std::abs(lambda) > 1e-8 * largest) f(std::abs(lambda), std::fabs(lambda.real()), oscillates(lambda), lambda.real());
 }
 } // namespace
+
+double fastestGrowthRate(const std::vector<std::complex<double>> &modes, double noise)
+{
+  double fastest = 0;
+  forEachCountedMode(modes, [&](double size, double, bool, double re) {
+    if (re > noise * size) fastest = std::max(fastest, re);
+  });
+  return fastest;
+}
 
 double slowestAmplitudeRate(const std::vector<std::complex<double>> &modes, double noise)
 {
   double slowest = std::numeric_limits<double>::infinity();
-  forEachCountedMode(modes, [&](double size, double re, bool osc) {
+  forEachCountedMode(modes, [&](double size, double re, bool osc, double) {
     if (osc && re > noise * size) slowest = std::min(slowest, re);
   });
   return std::isfinite(slowest) ? slowest : 0.0;
@@ -136,14 +145,14 @@ double slowestAmplitudeRate(const std::vector<std::complex<double>> &modes, doub
 bool ambiguousAmplitudeRate(const std::vector<std::complex<double>> &modes)
 {
   bool ambiguous = false;
-  forEachCountedMode(modes, [&](double size, double re, bool osc) { ambiguous = ambiguous || (osc && re > kAmplitudeRateCentralNoise * size && re <= kAmplitudeRateNoise * size); });
+  forEachCountedMode(modes, [&](double size, double re, bool osc, double) { ambiguous = ambiguous || (osc && re > kAmplitudeRateCentralNoise * size && re <= kAmplitudeRateNoise * size); });
   return ambiguous;
 }
 
 double slowestRate(const std::vector<std::complex<double>> &modes, double noise)
 {
   double slowest = std::numeric_limits<double>::infinity();
-  forEachCountedMode(modes, [&](double size, double re, bool osc) { slowest = std::min(slowest, (osc && re > noise * size) ? re : size); });
+  forEachCountedMode(modes, [&](double size, double re, bool osc, double) { slowest = std::min(slowest, (osc && re > noise * size) ? re : size); });
   return std::isfinite(slowest) ? slowest : 0.0;
 }
 

@@ -66,6 +66,9 @@ constexpr double kAmplitudeRateCentralNoise = 1e-8; // from central differences 
 // |lambda| above 1e-8 of the largest); 0 where there is none. For additive splits only these count
 // as a slow process of a level (its own terms' block has many zero and interior Ritz values).
 double slowestAmplitudeRate(const std::vector<std::complex<double>> &modes, double noise = 1e-6);
+// The fastest growth rate Re lambda among the modes that grow (Re lambda > noise |lambda|, |lambda|
+// above 1e-8 of the largest); 0 where none grows.
+double fastestGrowthRate(const std::vector<std::complex<double>> &modes, double noise = 1e-6);
 // Whether an oscillation's amplitude rate lies between the two noise levels (|Re| / |lambda| in
 // (kAmplitudeRateCentralNoise, kAmplitudeRateNoise]): forward differences cannot tell a slow
 // damping from their truncation error there, and central differences can.

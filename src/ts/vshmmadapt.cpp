@@ -375,6 +375,7 @@ static PetscReal StableMicroStep(TS_VSHMM *vs)
 
 static PetscReal Separation(TS_VSHMM *, PetscInt);
 static PetscBool LevelDecays(TS_VSHMM *, PetscInt);
+static bool      LostSeparation(TS_VSHMM *, PetscInt);
 
 /* Whether every level faster than the slowest only decays (no oscillating limiting mode). */
 static bool FasterLevelsDecay(TS_VSHMM *vs)
@@ -415,9 +416,13 @@ static vshmm::AdaptBounds Bounds(TS ts, PetscReal DeltaT)
        term measured as negligible would otherwise coarsen by 2x per choice without limit (the
        oscillators at tol 1.5e-3, t = 0.8: r_2 = 11,787 against a separation of 1,000) */
     const PetscReal S = Separation(vs, (PetscInt)l);
-    if (std::isfinite(S) && S > 0 && !LevelDecays(vs, (PetscInt)l + 1)) {
+    if (std::isfinite(S) && S > 1 && !LevelDecays(vs, (PetscInt)l + 1)) {
       b.maxRatio.resize(vs->level_radius.size() - 1, PETSC_INFINITY);
-      b.maxRatio[l] = PetscMin(b.maxRatio[l], S >= kMinSeparation ? S : 1.0);
+      b.maxRatio[l] = PetscMin(b.maxRatio[l], S);
+    }
+    if (LostSeparation(vs, (PetscInt)l)) { /* NoteLostSeparation() */
+      b.maxRatio.resize(vs->level_radius.size() - 1, PETSC_INFINITY);
+      b.maxRatio[l] = 1.0;
     }
   }
   /* level l (>= 1) sped up at most `speedup` relative to the clock: r_0 ... r_{l-1} <= speedup, by
@@ -737,6 +742,15 @@ static PetscBool LevelDecays(TS_VSHMM *vs, PetscInt l)
 {
   if ((PetscInt)vs->level_worst.size() <= l || (PetscInt)vs->level_limiting.size() <= l || vs->level_limiting[l].empty()) return PETSC_FALSE;
   return vshmm::oscillates(vs->level_worst[l]) ? PETSC_FALSE : PETSC_TRUE;
+}
+
+/* Whether pair l's faster level oscillates and is less than kMinSeparation from the slower one by
+   the estimates (not by separations the application set): a process inside it as slow as the
+   slower level, which savings would slow with it (NoteLostSeparation(); Bounds() takes none). */
+static bool LostSeparation(TS_VSHMM *vs, PetscInt l)
+{
+  const PetscReal S = Separation(vs, l);
+  return (PetscInt)vs->separations.size() <= l && !LevelDecays(vs, l + 1) && std::isfinite(S) && S < kMinSeparation;
 }
 
 /* The saturation scale of each level pair's error term in adapt's model: the separation set by the
@@ -1509,8 +1523,7 @@ static PetscErrorCode NoteLostSeparation(TS ts, PetscReal tseen)
   PetscFunctionBegin;
   vs->adapt_lost.resize(K, -1.0);
   for (PetscInt l = 0; l < K; ++l) {
-    const PetscReal S   = Separation(vs, l);
-    const bool      now = (PetscInt)vs->separations.size() <= l && !LevelDecays(vs, l + 1) && std::isfinite(S) && S < kMinSeparation;
+    const bool now = LostSeparation(vs, l);
     if (!now) vs->adapt_lost[l] = -1;
     else if (vs->adapt_lost[l] < 0) {
       vs->adapt_lost[l] = ts->ptime;

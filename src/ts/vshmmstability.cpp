@@ -659,10 +659,7 @@ static PetscErrorCode CheckUnstableEquilibrium(TS ts, PetscInt level, const std:
 
   PetscFunctionBegin;
   if (vs->unstable_warned || vs->check_separation == TSVSHMM_SEPARATION_OFF || !(vs->fastest_share < kUnstableShare) || (PetscInt)vs->level_radius.size() <= level) PetscFunctionReturn(0);
-  double growth = 0, largest = 0;
-  for (const std::complex<double> &lambda : ritz) largest = std::max(largest, std::abs(lambda));
-  for (const std::complex<double> &lambda : ritz)
-    if (lambda.real() > noise * std::abs(lambda) && std::abs(lambda) > 1e-8 * largest) growth = std::max(growth, lambda.real());
+  const double    growth = vshmm::fastestGrowthRate(ritz, noise);
   const PetscReal slower = vs->level_radius[level - 1];
   if (!(growth > kUnstableSeparation * slower) || !(slower > 0)) PetscFunctionReturn(0);
   vs->unstable_warned = PETSC_TRUE;
@@ -671,6 +668,14 @@ static PetscErrorCode CheckUnstableEquilibrium(TS ts, PetscInt level, const std:
   PetscCall(TSVSHMMWarn_Private(ts, "TSVSHMM warning: separation check at t = %g: the fastest level's own components (%g of the state norm) sit at an unstable equilibrium: a mode grows at rate %g (Re lambda), %g times the slower level's spectral radius (%g). When they leave it depends on how small they became before (a slow passage through a bifurcation), and the savings slow the level's decay and growth by different time ratios: that time, and the answer after it, can be wrong by O(1) without the error estimates showing it. A single-rate TS type (-ts_type rk) is the right tool across such a passage. (-ts_vshmm_check_separation error makes this an error, off silences it.)\n",
                                 (double)ts->ptime, (double)vs->fastest_share, growth, growth / slower, (double)slower));
   PetscFunctionReturn(0);
+}
+
+/* Whether every split of level `level`'s own is a component split (its IS a subset it writes). */
+static bool ComponentLevel(const TS_VSHMM *vs, PetscInt level)
+{
+  for (PetscInt k = vs->level_end[level - 1]; k < vs->level_end[level]; ++k)
+    if (vs->splits[k].additive) return false;
+  return true;
 }
 
 /* The slowest rate of a level's own components (component splits) at ts->vec_sol, ts->ptime, as
@@ -686,8 +691,7 @@ PetscErrorCode TSVSHMMLevelOwnSlowest_Private(TS ts, PetscInt level, PetscReal *
 
   PetscFunctionBegin;
   *slowest = 0;
-  for (PetscInt k = vs->level_end[level - 1]; k < vs->level_end[level]; ++k)
-    if (vs->splits[k].additive) PetscFunctionReturn(0);
+  if (!ComponentLevel(vs, level)) PetscFunctionReturn(0);
   const StabilityCounting counting(vs);
   PetscCall(VecDuplicate(ts->vec_sol, &mask));
   PetscCall(TSVSHMMWrittenComponents_Private(vs, vs->level_end[level - 1], vs->level_end[level], ts->ptime, mask));
@@ -711,10 +715,8 @@ PetscErrorCode TSVSHMMLevelOwnRates_Private(TS ts)
   vs->fastest_drive     = 0.0;
   vs->fastest_phase_now = PETSC_FALSE;
   for (PetscInt level = 1; level < nscales; ++level) {
-    PetscBool component = PETSC_TRUE;
-    for (PetscInt k = vs->level_end[level - 1]; k < vs->level_end[level]; ++k) component = vs->splits[k].additive ? PETSC_FALSE : component;
-    if (!component) {          /* additive splits: the fastest level's part of the state as its field sees it, ||G_K(X)|| / (rho_K ||X||) (the stiffest modes count fully) */
-      bool oscillates = false; /* used by -ts_vshmm_adapt's micro step bound only, for oscillating modes */
+    if (!ComponentLevel(vs, level)) { /* additive splits: the fastest level's part of the state as its field sees it, ||G_K(X)|| / (rho_K ||X||) (the stiffest modes count fully) */
+      bool oscillates = false;        /* used by -ts_vshmm_adapt's micro step bound only, for oscillating modes */
       if ((PetscInt)vs->level_limiting.size() > level)
         for (const std::complex<double> &lambda : vs->level_limiting[level]) oscillates = oscillates || vshmm::oscillates(lambda);
       if (vs->adapt && oscillates && level == nscales - 1 && (PetscInt)vs->level_radius.size() > level && vs->level_radius[level] > 0) {

@@ -164,6 +164,20 @@ TEST(LargestStableSavingsFactor, IsTheEdgeOfTheCriterion)
   EXPECT_EQ(vshmm::largestStableSavingsFactor(R, *kernel, 1e-4, savings, subintervals, 0.1, 2, 10.0, target, growth), 0.0);
 }
 
+TEST(FastestGrowthRate, CountsGrowingModesAboveTheNoise)
+{
+  using C = std::complex<double>;
+  // a rotation at 1e3 growing at 250 beside a decaying mode: 250
+  EXPECT_DOUBLE_EQ(vshmm::fastestGrowthRate({C(250, 1e3), C(250, -1e3), C(-50, 0)}), 250.0);
+  // only decaying modes, a growth at the noise (5e-7 of |lambda|), and a growing zero mode: none
+  EXPECT_EQ(vshmm::fastestGrowthRate({C(-1, 10), C(5e-7, 1e3), C(1e-9, 0)}), 0.0);
+  EXPECT_EQ(vshmm::fastestGrowthRate({}), 0.0);
+  // the largest of two growing modes; central differences' noise admits a smaller real part
+  EXPECT_DOUBLE_EQ(vshmm::fastestGrowthRate({C(3, 0), C(40, 100)}), 40.0);
+  EXPECT_EQ(vshmm::fastestGrowthRate({C(5e-4, 1e3)}), 0.0);
+  EXPECT_DOUBLE_EQ(vshmm::fastestGrowthRate({C(5e-4, 1e3)}, vshmm::kAmplitudeRateCentralNoise), 5e-4);
+}
+
 TEST(SlowestRate, AnOscillationsAmplitudeRateCounts)
 {
   using C = std::complex<double>;
