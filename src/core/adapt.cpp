@@ -316,4 +316,18 @@ void limitToStableSteps(AdaptParameters &p, double kernelPeak, const std::vector
   }
 }
 
+double fastSwingSquares(const std::vector<double> &rate, const std::vector<double> &weight, double tol, double minRate, double levelRadius)
+{
+  double sum = 0.0;
+  if (!(levelRadius > 0) || !(tol > 0)) return 0.0;
+  for (size_t i = 0; i < rate.size() && i < weight.size(); ++i) {
+    if (!(weight[i] > 0) || !std::isfinite(rate[i])) continue;
+    const double r = std::fabs(rate[i]) / weight[i]; /* tolerances per unit time */
+    if (!(r * tol > minRate)) continue;
+    const double swing = r / levelRadius;
+    sum += swing * swing;
+  }
+  return sum;
+}
+
 } // namespace vshmm

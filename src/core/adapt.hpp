@@ -136,4 +136,16 @@ void fitCycle(AdaptParameters &p, double maxCycle, bool fixedRatios, bool fixedM
 // by lowering dt, then r_{K-1}, ..., r_0 (an infinite bound does not limit).
 void limitToStableSteps(AdaptParameters &p, double kernelPeak, const std::vector<double> &maxLevelStep);
 
+// What a faster level moves of the sampled quantities on its own time scale: an observable that
+// carries the level's phase, which VSHMM does not compute (it samples the level statistically, and
+// with savings its value at a sampled time is one phase of it, not the solution's). For quantities
+// with derivatives rate[i] along the level's own field and weights weight[i] (atol + rtol |q_i|:
+// |rate[i]| / weight[i] tolerances per unit time), quantity i moves on the level's scale where its
+// relative rate |rate[i]| tol / weight[i] (tol the larger of rtol and atol: about
+// |dq/dt| / (1 + |q|)) exceeds minRate (a multiple of the slower level's spectral radius: a
+// quantity slaved to the slow ones moves at their rates), and then swings by at least
+// |rate[i]| / (weight[i] levelRadius) tolerances (its frequency is at most the level's radius).
+// Returns the sum of the squares of those swings (0: none), for the weighted norm's RMS.
+double fastSwingSquares(const std::vector<double> &rate, const std::vector<double> &weight, double tol, double minRate, double levelRadius);
+
 } // namespace vshmm

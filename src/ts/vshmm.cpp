@@ -359,6 +359,7 @@ static PetscErrorCode TSStep_VSHMM(TS ts)
     PetscCall(TSVSHMMRunMacroStep_Private(ts, *vs->schedule, t0, DeltaT, ts->vec_sol, &counts));
     vs->micro_cycles += counts.cycles;
     for (size_t l = 0; l < counts.levelSteps.size(); ++l) vs->level_steps[l] += counts.levelSteps[l];
+    if (ts->steps == 0 || (vs->stability_interval > 0 && ts->steps % vs->stability_interval == 0)) PetscCall(TSVSHMMCheckFastQuantities_Private(ts, t0 + DeltaT)); /* after the first macro step and with the periodic checks */
   }
   vs->macro_steps++;
 
@@ -579,6 +580,9 @@ static PetscErrorCode TSView_VSHMM(TS ts, PetscViewer viewer)
     else if (vs->observables && !vs->adapt_slow_components) PetscCall(PetscViewerASCIIPrintf(viewer, "    the observables only (-ts_vshmm_adapt_slow_components false)\n"));
     for (size_t l = 0; l < vs->adapt_merged.size(); ++l)
       if (vs->adapt_merged[l] > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "    levels %d/%d: no savings between them (they are %.3g apart, less than 2, and the faster only decays)\n", (int)l, (int)l + 1, (double)vs->adapt_merged[l]));
+    for (size_t l = 0; l < vs->adapt_phase.size(); ++l)
+      if (vs->adapt_phase[l] >= 0)
+        PetscCall(PetscViewerASCIIPrintf(viewer, "    levels %d/%d: no savings between them from t = %g on (the sampled quantities carry a faster level's phase: separation check)\n", (int)l, (int)l + 1, (double)vs->adapt_phase[l]));
     for (size_t l = 0; l < vs->adapt_lost.size(); ++l)
       if (vs->adapt_lost[l] >= 0)
         PetscCall(PetscViewerASCIIPrintf(viewer, "    levels %d/%d: no savings between them from t = %g on (the faster oscillates and is less than 10 from the slower level: separation check)\n", (int)l, (int)l + 1, (double)vs->adapt_lost[l]));

@@ -90,7 +90,10 @@ static constexpr PetscReal kUnaveragedShare        = 0.5; /* of the tolerance: w
 static constexpr PetscReal kBlowUpGrowth           = 1e6; /* a comparison this many times larger than its step and their start blew up */
 /* The difference to a run that blew up: IEEE infinity, which std::isfinite() rejects (PETSC_INFINITY
    is PETSC_MAX_REAL / 4, a finite number, and was once read as an estimate of 4.5e307 tolerances) */
-static constexpr PetscReal kBlownUp = std::numeric_limits<PetscReal>::infinity();
+static constexpr PetscReal kPhaseSwing = 1; /* tolerances: where a faster level's phase swings the sampled quantities by more, its savings go (NoteFastQuantities(); a ripple below it, as the paper's oscillators' I1 at eps = 5e-3, 0.52 tolerances at 1e-3, is left to the comparisons) */
+static constexpr PetscReal kFixedSwing      = 0.1; /* fixed parameters: a faster level's phase in the sampled quantities is said where it swings them by this much relative to 1 + |q| */
+static constexpr PetscReal kPhaseProjection = 0.5; /* of a step's coherent share where the sampled quantities carry an oscillation's phase: the comparison sees the phase error projected at one phase */
+static constexpr PetscReal kBlownUp         = std::numeric_limits<PetscReal>::infinity();
 
 const char *const TSVSHMMSeparationChecks[] = {"off", "warn", "error", "TSVSHMMSeparationCheck", "TSVSHMM_SEPARATION_", nullptr};
 
@@ -420,7 +423,7 @@ static vshmm::AdaptBounds Bounds(TS ts, PetscReal DeltaT)
       b.maxRatio.resize(vs->level_radius.size() - 1, PETSC_INFINITY);
       b.maxRatio[l] = PetscMin(b.maxRatio[l], S);
     }
-    if (LostSeparation(vs, (PetscInt)l)) { /* NoteLostSeparation() */
+    if (LostSeparation(vs, (PetscInt)l) || (l < vs->adapt_phase.size() && vs->adapt_phase[l] >= 0)) { /* NoteLostSeparation(), NoteFastQuantities() */
       b.maxRatio.resize(vs->level_radius.size() - 1, PETSC_INFINITY);
       b.maxRatio[l] = 1.0;
     }
@@ -938,7 +941,9 @@ PetscErrorCode TSVSHMMAdaptReset_Private(TS ts)
   vs->no_separation           = PETSC_FALSE;
   vs->separated_from          = -1;
   vs->adapt_lost.clear();
-  vs->lost_warned     = PETSC_FALSE;
+  vs->lost_warned = PETSC_FALSE;
+  vs->adapt_phase.clear();
+  vs->phase_warned    = PETSC_FALSE;
   vs->unstable_warned = PETSC_FALSE;
   vs->adapt_no_savings.clear();
   vs->adapt_merged.clear();
@@ -1084,6 +1089,8 @@ static PetscReal StepBudget(TS ts, PetscReal DeltaT)
 
   if (!(span > 0)) return 1.0;
   if (vs->slow_steps > 0 && !LevelDecays(vs, 0)) return PetscMin(1.0, DeltaT / span);
+  for (PetscReal from : vs->adapt_phase) /* the sampled quantities carry an oscillation's phase (NoteFastQuantities()): its error, a phase drift, adds up step by step while its sign turns with the oscillation, and a comparison sees it projected on the quantities at one phase (between none and all of it, half on the average) */
+    if (from >= 0) return PetscMin(1.0, kPhaseProjection * DeltaT / span);
   PetscReal gamma = 0.5;
   if (vs->adapt_accepted >= kCoherenceSteps && !vs->adapt_signed.empty() && vs->error_estimate_total > 0) {
     PetscReal S = 0;
@@ -1546,6 +1553,90 @@ static PetscErrorCode NoteLostSeparation(TS ts, PetscReal tseen)
   PetscFunctionReturn(0);
 }
 
+/* Said once per solve (an error with -ts_vshmm_check_separation error): the sampled quantities
+   carry the phase of level `level`'s oscillation (TSVSHMMFastQuantities_Private()). */
+static PetscErrorCode SayFastQuantities(TS ts, PetscReal t, PetscInt level, PetscInt which, PetscReal swing, PetscReal rate, PetscBool adapting)
+{
+  TS_VSHMM *vs = (TS_VSHMM *)ts->data;
+  char      what[64];
+
+  PetscFunctionBegin;
+  if (vs->phase_warned || vs->check_separation == TSVSHMM_SEPARATION_OFF) PetscFunctionReturn(0);
+  vs->phase_warned = PETSC_TRUE;
+  if (which >= 0) PetscCall(PetscSNPrintf(what, sizeof what, "observable %" PetscInt_FMT " (of %" PetscInt_FMT ")", which, vs->nobservables));
+  else PetscCall(PetscSNPrintf(what, sizeof what, "the sampled state (no observables set)"));
+  PetscCheck(vs->check_separation != TSVSHMM_SEPARATION_ERROR, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_INCOMP, "TSVSHMM separation check at t = %g: %s moves with level %" PetscInt_FMT "'s oscillation (%g times the slower level's spectral radius along that level's own splits, swinging by at least %g tolerances): VSHMM samples that level statistically and does not compute its phase, so with savings below it the sampled values are not the solution's. Name slow quantities as observables (TSVSHMMSetObservables(): energies, actions, averages), use a single-rate TS type (-ts_type rk), or -ts_vshmm_check_separation warn to run anyway", (double)t, what, level, (double)rate, (double)swing);
+  if (adapting)
+    PetscCall(TSVSHMMWarn_Private(ts, "TSVSHMM warning: separation check at t = %g: %s moves with level %" PetscInt_FMT "'s oscillation (%g times the slower level's spectral radius along that level's own splits, swinging by at least %g tolerances). VSHMM samples that level statistically and does not compute its phase: -ts_vshmm_adapt takes no savings below level %" PetscInt_FMT " (-ts_view names the pairs), a single-rate method there, where -ts_type rk is the right tool. The tolerance belongs on slow quantities (TSVSHMMSetObservables(): energies, actions, averages). (-ts_vshmm_check_separation error makes this an error, off silences it.)\n", (double)t, what, level, (double)rate, (double)swing, level));
+  else
+    PetscCall(TSVSHMMWarn_Private(ts, "TSVSHMM warning: separation check at t = %g: %s moves with level %" PetscInt_FMT "'s oscillation (%g times the slower level's spectral radius along that level's own splits, swinging by at least %g tolerances). VSHMM samples that level statistically and does not compute its phase: with the savings set below it, the sampled values are one phase of the oscillation, not the solution's. Name slow quantities as observables (TSVSHMMSetObservables(): energies, actions, averages), or take no savings below level %" PetscInt_FMT " (-ts_type rk). (-ts_vshmm_check_separation error makes this an error, off silences it.)\n", (double)t, what, level, (double)rate, (double)swing, level));
+  PetscFunctionReturn(0);
+}
+
+/* Whether p takes savings on a pair (time ratio above 1) not yet taken back by NoteFastQuantities(). */
+static bool PhaseSavings(const TS_VSHMM *vs, const vshmm::AdaptParameters &p)
+{
+  for (size_t l = 0; l < p.ratios.size(); ++l)
+    if (p.ratios[l] > 1.0 && !(l < vs->adapt_phase.size() && vs->adapt_phase[l] >= 0)) return true;
+  return false;
+}
+
+/* At the end of a try (state vs->Xbase at t1): where a faster level with a sustained oscillation
+   moves the sampled quantities on its own time scale (an observable that carries its phase, or the
+   state with such a level in it), savings below that level make the sampled values one phase of
+   the oscillation, an error the comparisons do not measure (the phase differs between the step and
+   its comparison as it does from the solution: x' = -x + q^2, q' = p / eps, p' = -q / eps observed
+   through x and q ended 2.2-2.5 tol off at 1e-1 and 1e-2 with estimates of 0.9, silently, and took
+   24 million evaluations at 1e-3). The pairs below it take no savings from this step on, the try
+   is taken again, and the user is told. */
+static PetscErrorCode NoteFastQuantities(TS ts, PetscReal t1, const vshmm::AdaptBounds &bounds, PetscBool *redo)
+{
+  TS_VSHMM *vs = (TS_VSHMM *)ts->data;
+  PetscInt  level, which;
+  PetscReal swing, rate;
+
+  PetscFunctionBegin;
+  *redo = PETSC_FALSE;
+  PetscCall(TSVSHMMFastQuantities_Private(ts, t1, vs->Xbase, kPhaseSwing, &level, &which, &swing, &rate));
+  if (level < 1) PetscFunctionReturn(0);
+  bool taken = false;
+  for (PetscInt l = 0; l < level && l < (PetscInt)vs->adapt_params.ratios.size(); ++l) {
+    if (vs->adapt_params.ratios[l] > 1.0) taken = true;
+    if (bounds.fixedRatios) continue;
+    vs->adapt_phase.resize(vs->adapt_params.ratios.size(), -1.0);
+    if (vs->adapt_phase[l] < 0) vs->adapt_phase[l] = ts->ptime;
+    vs->adapt_params.ratios[l] = 1.0;
+  }
+  if (!taken) PetscFunctionReturn(0);
+  PetscCall(PetscInfo(ts, "Adapt: at t = %g the sampled quantities move with level %" PetscInt_FMT "'s oscillation (swing %g tolerances): %s\n", (double)t1, level, (double)swing, bounds.fixedRatios ? "the savings are set, kept" : "no savings below it from this step on, the try taken again"));
+  PetscCall(SayFastQuantities(ts, t1, level, which, swing, rate, PETSC_TRUE));
+  if (!bounds.fixedRatios) *redo = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+/* The same for a run with fixed parameters (no -ts_vshmm_adapt), at the sampled state at t: only
+   said, the parameters are the user's. */
+PetscErrorCode TSVSHMMCheckFastQuantities_Private(TS ts, PetscReal t)
+{
+  TS_VSHMM *vs = (TS_VSHMM *)ts->data;
+  PetscInt  level, which;
+  PetscReal swing, rate;
+
+  PetscFunctionBegin;
+  if (vs->phase_warned || vs->check_separation == TSVSHMM_SEPARATION_OFF || vs->level_limiting.empty()) PetscFunctionReturn(0);
+  const std::vector<double> ratios = vshmm::timeRatiosFromSavings(vs->savings_used);
+  bool                      any    = false;
+  for (double r : ratios) any = any || r > 1.0;
+  if (!any) PetscFunctionReturn(0);
+  /* no tolerance was asked for (the TS's default ones): said where the swing is a tenth of the quantities */
+  PetscCall(TSVSHMMFastQuantities_Private(ts, t, ts->vec_sol, kFixedSwing / PetscMax(PetscMax(ts->rtol, ts->atol), PETSC_SMALL), &level, &which, &swing, &rate));
+  if (level < 1) PetscFunctionReturn(0);
+  any = false;
+  for (PetscInt l = 0; l < level && l < (PetscInt)ratios.size(); ++l) any = any || ratios[l] > 1.0;
+  if (any) PetscCall(SayFastQuantities(ts, t, level, which, swing, rate, PETSC_FALSE));
+  PetscFunctionReturn(0);
+}
+
 /* Scales not separated at the last check: checked again at the spectra just estimated (and merged
    pairs among separated scales, RecheckMergedPairs(), and oscillating pairs that lost their
    separation, NoteLostSeparation()). */
@@ -1664,6 +1755,15 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
        it; a retry's end may be past a fold where the first try's was not: the van der Pol
        oscillator's try at time ratio 5.6, and a retry that coarsened the ratio from 12 to 24,
        ended on the repelling branch) */
+    if (radiusChecks < kMaxRadiusChecks && attempt + 1 < kMaxAttempts && PhaseSavings(vs, p)) {
+      PetscBool redo;
+      PetscCall(NoteFastQuantities(ts, t1, bounds, &redo));
+      if (redo) {
+        DiscardTry(vs, rhs0, lev0);
+        bounds = Bounds(ts, DeltaT);
+        continue;
+      }
+    }
     if (radiusChecks < kMaxRadiusChecks && attempt + 1 < kMaxAttempts) {
       PetscBool redo;
       radiusChecks++;

@@ -114,11 +114,13 @@ struct TS_VSHMM {
   PetscReal              separation_time = 0.0;                 // the time of the check that gave that verdict
   PetscReal              separated_from  = -1;                  // adapt: the time a later check found the scales separated (-1: not so)
   std::vector<PetscReal> adapt_lost;                            // per level pair: the time from which its oscillating faster level is less than kMinSeparation from it, so no savings between them (-1: separated)
-  PetscBool              lost_warned            = PETSC_FALSE;  // told that a pair lost its separation
-  PetscBool              unstable_warned        = PETSC_FALSE;  // told that the fastest level sits at an unstable equilibrium
-  PetscBool              floor_warned           = PETSC_FALSE;  // told that the estimate does not fall
-  PetscReal              adapt_floor_dt         = 0;            // the micro step of the last step accepted at a floor without savings left: later steps do not refine below it (0: none)
-  PetscReal              adapt_single_rate_from = -1;           // the start of the macro step from which the tolerance left no savings (-1: none)
+  PetscBool              lost_warned = PETSC_FALSE;             // told that a pair lost its separation
+  std::vector<PetscReal> adapt_phase; // per level pair: the time from which a faster level with a sustained oscillation moves the sampled quantities on its own scale (they carry its phase), so no savings between them (-1: none)
+  PetscBool              phase_warned           = PETSC_FALSE; // told that the sampled quantities carry a faster level's phase
+  PetscBool              unstable_warned        = PETSC_FALSE; // told that the fastest level sits at an unstable equilibrium
+  PetscBool              floor_warned           = PETSC_FALSE; // told that the estimate does not fall
+  PetscReal              adapt_floor_dt         = 0;           // the micro step of the last step accepted at a floor without savings left: later steps do not refine below it (0: none)
+  PetscReal              adapt_single_rate_from = -1;          // the start of the macro step from which the tolerance left no savings (-1: none)
   Vec                    Xtrial = nullptr, Xbase = nullptr;
   Vec                    slow_mask  = nullptr;     // 1 on the slow components (written by the slowest level's splits only) where they are controlled with the observables
   PetscInt               slow_count = 0;           // their number (global)
@@ -192,7 +194,8 @@ PETSC_INTERN PetscErrorCode TSVSHMMResetLevelEvents_Private(void);
 PETSC_INTERN PetscErrorCode TSVSHMMCheckStability_Private(TS);
 PETSC_INTERN PetscErrorCode TSVSHMMLevelSpectra_Private(TS);
 PETSC_INTERN PetscErrorCode TSVSHMMLevelOwnRates_Private(TS);
-PETSC_INTERN PetscErrorCode TSVSHMMLevelOwnSlowest_Private(TS, PetscInt, PetscReal *); /* the slowest own rate of a level at ts->vec_sol (component splits; 0 otherwise), not stored */
+PETSC_INTERN PetscErrorCode TSVSHMMLevelOwnSlowest_Private(TS, PetscInt, PetscReal *);
+PETSC_INTERN PetscErrorCode TSVSHMMFastQuantities_Private(TS, PetscReal, Vec, PetscReal, PetscInt *, PetscInt *, PetscReal *, PetscReal *); /* sampled quantities a faster level moves on its own scale */ /* the slowest own rate of a level at ts->vec_sol (component splits; 0 otherwise), not stored */
 /* vshmmadapt.cpp: the separation check, accuracy control */
 PETSC_INTERN PetscErrorCode TSVSHMMCheckSeparation_Private(TS);
 PETSC_INTERN PetscErrorCode TSVSHMMLevelRadius_Private(TS, PetscInt, PetscReal *, PetscReal *, PetscReal *);
@@ -202,3 +205,4 @@ PETSC_INTERN PetscErrorCode TSVSHMMAdaptSetUp_Private(TS);
 PETSC_INTERN PetscErrorCode TSVSHMMAdaptReset_Private(TS);
 PETSC_INTERN PetscReal      TSVSHMMAmplitudeSpan_Private(TS);
 PETSC_INTERN PetscErrorCode TSVSHMMAdaptUnaveraged_Private(TS);
+PETSC_INTERN PetscErrorCode TSVSHMMCheckFastQuantities_Private(TS, PetscReal); /* fixed savings: said where the sampled quantities carry a faster level's phase */

@@ -38,6 +38,9 @@ static constexpr PetscReal kCouplingTarget      = 1.01; /* what suggested saving
 static constexpr PetscReal kNegligibleDrive     = 1e-3; /* of the fastest level's part of the state: a drive of the slower levels whose response is not estimated */
 static constexpr PetscReal kUnstableShare       = 1e-6; /* the fastest level's part of the state below which it is at an equilibrium (CheckUnstableEquilibrium()) */
 static constexpr PetscReal kUnstableSeparation  = 10;   /* an own mode growing this many times faster than the slower level's radius: an unstable equilibrium */
+static constexpr PetscReal kFastQuantityRate    = 10;   /* a sampled quantity moving this many times faster than the slower level's radius along a level's own splits moves on that level's scale */
+static constexpr PetscReal kSustainedDecay      = 3;    /* an oscillation whose amplitude decays by less than e^this over a macro step is sustained (more: a transient, a layer) */
+static constexpr PetscReal kDifferenceStep      = 1e-6; /* relative perturbation of the state for an observable's derivative (central differences) */
 
 /* A deterministic start vector for the Arnoldi and power iterations, the same on any number of
    ranks: 1 + sin(1.7 i + 0.3) / 2 at global index i. */
@@ -762,6 +765,116 @@ PetscErrorCode TSVSHMMLevelOwnRates_Private(TS ts)
   PetscCall(LevelTimeRates(ts));
   vs->own_rates_time = vs->spectra_time;
   if (vs->adapt) PetscCall(TSVSHMMAdaptUnaveraged_Private(ts));
+  PetscFunctionReturn(0);
+}
+
+/* Whether level `level` has a sustained oscillation among its limiting modes: one whose amplitude
+   decays by less than e^kSustainedDecay over a macro step (a damped spiral's transient is a layer,
+   which the comparisons see). */
+static bool SustainedOscillation(const TS_VSHMM *vs, PetscInt level, PetscReal DeltaT)
+{
+  if ((PetscInt)vs->level_limiting.size() <= level) return false;
+  for (const std::complex<double> &lambda : vs->level_limiting[level])
+    if (vshmm::oscillates(lambda) && std::fabs(lambda.real()) * DeltaT < kSustainedDecay) return true;
+  return false;
+}
+
+/* The sampled quantities (the observables, or the state in the TS's weighted norm) that a faster
+   level with a sustained oscillation moves on its own time scale at (t, X): they carry its phase,
+   which VSHMM does not compute with savings below that level (vshmm::fastSwingSquares()). For each
+   such level, the derivative of the quantities along its own splits' field (central differences
+   for observables), and their swing in tolerances (RMS, as the weighted norm). *level: the fastest
+   level whose swing exceeds `allowed` tolerances (-1: none); *which: the observable with the largest
+   swing (-1: the state); *swing: its level's swing; *rate: that quantity's relative rate over the
+   slower level's spectral radius. Split evaluations are the stability checks'. */
+PetscErrorCode TSVSHMMFastQuantities_Private(TS ts, PetscReal t, Vec X, PetscReal allowed, PetscInt *level, PetscInt *which, PetscReal *swing, PetscReal *rate)
+{
+  TS_VSHMM       *vs  = (TS_VSHMM *)ts->data;
+  const PetscInt  K   = (PetscInt)vs->level_end.size() - 1;
+  const PetscReal tol = PetscMax(ts->rtol, ts->atol);
+  Vec             G = nullptr, Xp = nullptr;
+
+  PetscFunctionBegin;
+  *level = -1;
+  *which = -1;
+  *swing = 0;
+  *rate  = 0;
+  if (!(tol > 0)) PetscFunctionReturn(0);
+  const StabilityCounting counting(vs);
+  for (PetscInt l = 1; l <= K; ++l) {
+    if ((PetscInt)vs->level_radius.size() <= l || !(vs->level_radius[l - 1] > 0) || !(vs->level_radius[l] > 0) || !SustainedOscillation(vs, l, ts->time_step)) continue;
+    /* the swing's lower bound takes the fastest level's radius as the frequency: a slower level's
+       own splits can move a quantity with a faster level's phase (the paper's oscillators: the
+       medium term moves I1 at rate 2 x1 y2^2 / eps, x1 turning with the fast level, a ripple of
+       order eps in I1, not a medium oscillation) */
+    const PetscReal minRate = kFastQuantityRate * vs->level_radius[l - 1], rhoK = vs->level_radius.back();
+    if (!G) PetscCall(VecDuplicate(X, &G));
+    PetscCall(TSVSHMMEvaluateOwnSplits_Private(vs, l, t, X, G));
+    PetscReal gmax, xmax;
+    PetscCall(VecNorm(G, NORM_INFINITY, &gmax));
+    PetscCall(VecNorm(X, NORM_INFINITY, &xmax));
+    if (!(gmax > 0) || !std::isfinite(gmax)) continue;
+    PetscReal sum = 0, count, best = 0, bestRate = 0;
+    PetscInt  bestWhich = -1;
+    if (vs->observables) {
+      const PetscInt      n = vs->nobservables;
+      std::vector<double> q0(n), qp(n), qm(n), d(n), w(n);
+      const PetscReal     delta = kDifferenceStep * (1 + xmax) / gmax;
+      if (!Xp) PetscCall(VecDuplicate(X, &Xp));
+      PetscCall(vs->observables(ts, t, X, q0.data(), vs->observables_ctx));
+      PetscCall(VecWAXPY(Xp, delta, G, X));
+      PetscCall(vs->observables(ts, t, Xp, qp.data(), vs->observables_ctx));
+      PetscCall(VecWAXPY(Xp, -delta, G, X));
+      PetscCall(vs->observables(ts, t, Xp, qm.data(), vs->observables_ctx));
+      for (PetscInt i = 0; i < n; ++i) {
+        d[i]             = (qp[i] - qm[i]) / (2 * delta);
+        w[i]             = ts->atol + ts->rtol * PetscAbsReal(q0[i]);
+        const double one = vshmm::fastSwingSquares({d[i]}, {w[i]}, tol, minRate, rhoK);
+        if (w[i] > 0) bestRate = PetscMax(bestRate, PetscAbsReal(d[i]) * tol / w[i] / vs->level_radius[l - 1]);
+        if (one > best) {
+          best      = one;
+          bestWhich = i;
+        }
+      }
+      sum   = vshmm::fastSwingSquares(d, w, tol, minRate, rhoK);
+      count = n;
+    } else {
+      const PetscScalar *x, *g, *va = nullptr, *vr = nullptr;
+      PetscInt           n, N;
+      PetscCall(VecGetLocalSize(X, &n));
+      PetscCall(VecGetSize(X, &N));
+      std::vector<double> d(n), w(n);
+      PetscCall(VecGetArrayRead(X, &x));
+      PetscCall(VecGetArrayRead(G, &g));
+      if (ts->vatol) PetscCall(VecGetArrayRead(ts->vatol, &va));
+      if (ts->vrtol) PetscCall(VecGetArrayRead(ts->vrtol, &vr));
+      for (PetscInt i = 0; i < n; ++i) {
+        d[i]           = PetscRealPart(g[i]);
+        w[i]           = (va ? PetscRealPart(va[i]) : ts->atol) + (vr ? PetscRealPart(vr[i]) : ts->rtol) * PetscAbsScalar(x[i]);
+        const double r = w[i] > 0 ? PetscAbsReal(d[i]) * tol / w[i] : 0;
+        if (r > bestRate) bestRate = r;
+      }
+      if (ts->vrtol) PetscCall(VecRestoreArrayRead(ts->vrtol, &vr));
+      if (ts->vatol) PetscCall(VecRestoreArrayRead(ts->vatol, &va));
+      PetscCall(VecRestoreArrayRead(G, &g));
+      PetscCall(VecRestoreArrayRead(X, &x));
+      sum = vshmm::fastSwingSquares(d, w, tol, minRate, rhoK);
+      PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &sum, 1, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)ts)));
+      PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &bestRate, 1, MPIU_REAL, MPIU_MAX, PetscObjectComm((PetscObject)ts)));
+      bestRate /= vs->level_radius[l - 1];
+      count = N;
+    }
+    const PetscReal sw = count > 0 ? PetscSqrtReal(sum / count) : 0;
+    PetscCall(PetscInfo(ts, "Level %" PetscInt_FMT " at t = %g: the sampled quantities it moves on its own time scale swing by %g tolerances (%s, %g times the slower level's radius)\n", l, (double)t, (double)sw, vs->observables ? "observables" : "the state", (double)bestRate));
+    if (sw > allowed) {
+      *level = l;
+      *which = bestWhich;
+      *swing = sw;
+      *rate  = bestRate;
+    }
+  }
+  PetscCall(VecDestroy(&G));
+  PetscCall(VecDestroy(&Xp));
   PetscFunctionReturn(0);
 }
 

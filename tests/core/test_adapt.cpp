@@ -295,3 +295,24 @@ TEST(Adapt, LevelAmplificationReportsGrowthWithinTheMacroStep)
   EXPECT_EQ(b.largestGrowth, 0.0);
   EXPECT_LT(b.logAmplification, 0.0);
 }
+
+TEST(FastSwing, CountsQuantitiesMovingFasterThanTheSlowerLevel)
+{
+  /* tol 1e-2, weights tol (1 + |q|) at q = 0: a rate of 1 is a relative rate of 1 (and 100
+     tolerances per unit time) */
+  const double tol = 1e-2, minRate = 10, rho = 1000;
+  /* a quantity slaved to the slow ones (relative rate 1) and one turning with the level (1000) */
+  EXPECT_EQ(vshmm::fastSwingSquares({1.0, 1.0}, {1e-2, 1e-2}, tol, minRate, rho), 0.0);
+  const double swing = (1000 / 1e-2) / rho; /* 100 tolerances */
+  EXPECT_DOUBLE_EQ(vshmm::fastSwingSquares({1.0, 1000.0}, {1e-2, 1e-2}, tol, minRate, rho), swing * swing);
+  /* the sign, and a zero weight (nothing to weigh) */
+  EXPECT_DOUBLE_EQ(vshmm::fastSwingSquares({-1000.0, 1000.0}, {1e-2, 0.0}, tol, minRate, rho), swing * swing);
+  /* the relative rate decides: just below and above minRate */
+  EXPECT_EQ(vshmm::fastSwingSquares({9.9}, {1e-2}, tol, minRate, rho), 0.0);
+  EXPECT_DOUBLE_EQ(vshmm::fastSwingSquares({10.1}, {1e-2}, tol, minRate, rho), (1010 / rho) * (1010 / rho));
+  /* the weight is relative to the quantity: the same rate on a quantity of 99 is 100 times slower */
+  EXPECT_EQ(vshmm::fastSwingSquares({1000.0}, {1.0}, tol, minRate, rho), 0.0);
+  /* no radius or no tolerance: nothing */
+  EXPECT_EQ(vshmm::fastSwingSquares({1000.0}, {1e-2}, tol, minRate, 0.0), 0.0);
+  EXPECT_EQ(vshmm::fastSwingSquares({1000.0}, {1e-2}, 0.0, minRate, rho), 0.0);
+}
