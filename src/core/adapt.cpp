@@ -316,15 +316,15 @@ void limitToStableSteps(AdaptParameters &p, double kernelPeak, const std::vector
   }
 }
 
-double fastSwingSquares(const std::vector<double> &rate, const std::vector<double> &weight, double tol, double minRate, double levelRadius)
+double fastSwingSquares(const std::vector<double> &levelRate, const std::vector<double> &totalRate, const std::vector<double> &weight, double tol, double minRate, double fastestRadius)
 {
   double sum = 0.0;
-  if (!(levelRadius > 0) || !(tol > 0)) return 0.0;
-  for (size_t i = 0; i < rate.size() && i < weight.size(); ++i) {
-    if (!(weight[i] > 0) || !std::isfinite(rate[i])) continue;
-    const double r = std::fabs(rate[i]) / weight[i]; /* tolerances per unit time */
-    if (!(r * tol > minRate)) continue;
-    const double swing = r / levelRadius;
+  if (!(fastestRadius > 0) || !(tol > 0)) return 0.0;
+  for (size_t i = 0; i < levelRate.size() && i < totalRate.size() && i < weight.size(); ++i) {
+    if (!(weight[i] > 0) || !std::isfinite(levelRate[i]) || !std::isfinite(totalRate[i])) continue;
+    const double own = std::fabs(levelRate[i]) / weight[i], total = std::fabs(totalRate[i]) / weight[i]; /* tolerances per unit time */
+    if (!(own * tol > minRate) || !(total * tol > minRate)) continue;
+    const double swing = total / fastestRadius;
     sum += swing * swing;
   }
   return sum;

@@ -139,13 +139,15 @@ void limitToStableSteps(AdaptParameters &p, double kernelPeak, const std::vector
 // What a faster level moves of the sampled quantities on its own time scale: an observable that
 // carries the level's phase, which VSHMM does not compute (it samples the level statistically, and
 // with savings its value at a sampled time is one phase of it, not the solution's). For quantities
-// with derivatives rate[i] along the level's own field and weights weight[i] (atol + rtol |q_i|:
-// |rate[i]| / weight[i] tolerances per unit time), quantity i moves on the level's scale where its
-// relative rate |rate[i]| tol / weight[i] (tol the larger of rtol and atol: about
-// |dq/dt| / (1 + |q|)) exceeds minRate (a multiple of the slower level's spectral radius: a
-// quantity slaved to the slow ones moves at their rates), and then swings by at least
-// |rate[i]| / (weight[i] levelRadius) tolerances (its frequency is at most the level's radius).
-// Returns the sum of the squares of those swings (0: none), for the weighted norm's RMS.
-double fastSwingSquares(const std::vector<double> &rate, const std::vector<double> &weight, double tol, double minRate, double levelRadius);
+// with derivatives levelRate[i] along the level's own field, totalRate[i] along the whole field,
+// and weights weight[i] (atol + rtol |q_i|: |rate| / weight[i] tolerances per unit time), quantity
+// i turns with the level where both relative rates |rate| tol / weight[i] (tol the larger of rtol
+// and atol: about |dq/dt| / (1 + |q|)) exceed minRate (a multiple of the slower level's spectral
+// radius: a quantity slaved to the slow ones moves at their rates; and one that the level's splits
+// move fast but the other splits move back, an invariant of the whole oscillation written across
+// splits, does not turn), and then swings by at least |totalRate[i]| / (weight[i] fastestRadius)
+// tolerances (no frequency exceeds the fastest level's spectral radius). Returns the sum of the
+// squares of those swings (0: none), for the weighted norm's RMS.
+double fastSwingSquares(const std::vector<double> &levelRate, const std::vector<double> &totalRate, const std::vector<double> &weight, double tol, double minRate, double fastestRadius);
 
 } // namespace vshmm

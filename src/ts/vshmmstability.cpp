@@ -781,18 +781,21 @@ static bool SustainedOscillation(const TS_VSHMM *vs, PetscInt level, PetscReal D
 
 /* The sampled quantities (the observables, or the state in the TS's weighted norm) that a faster
    level with a sustained oscillation moves on its own time scale at (t, X): they carry its phase,
-   which VSHMM does not compute with savings below that level (vshmm::fastSwingSquares()). For each
-   such level, the derivative of the quantities along its own splits' field (central differences
-   for observables), and their swing in tolerances (RMS, as the weighted norm). *level: the fastest
-   level whose swing exceeds `allowed` tolerances (-1: none); *which: the observable with the largest
-   swing (-1: the state); *swing: its level's swing; *rate: that quantity's relative rate over the
-   slower level's spectral radius. Split evaluations are the stability checks'. */
+   which VSHMM does not compute with savings below that level (vshmm::fastSwingSquares()). The
+   quantities' derivatives along each such level's own splits and along the whole field (central
+   differences for observables; the fields themselves for the state), and their swing in
+   tolerances (RMS, as the weighted norm). *level: the fastest level whose swing exceeds `allowed`
+   tolerances (-1: none); *which: the observable with the largest swing (-1: the state); *swing:
+   its level's swing; *rate: the largest relative rate along that level's splits over the slower
+   level's spectral radius. Split evaluations are the stability checks'. */
 PetscErrorCode TSVSHMMFastQuantities_Private(TS ts, PetscReal t, Vec X, PetscReal allowed, PetscInt *level, PetscInt *which, PetscReal *swing, PetscReal *rate)
 {
-  TS_VSHMM       *vs  = (TS_VSHMM *)ts->data;
-  const PetscInt  K   = (PetscInt)vs->level_end.size() - 1;
-  const PetscReal tol = PetscMax(ts->rtol, ts->atol);
-  Vec             G = nullptr, Xp = nullptr;
+  TS_VSHMM           *vs  = (TS_VSHMM *)ts->data;
+  const PetscInt      K   = (PetscInt)vs->level_end.size() - 1;
+  const PetscReal     tol = PetscMax(ts->rtol, ts->atol);
+  Vec                 G = nullptr, Xp = nullptr;
+  std::vector<double> total, w; /* the quantities' derivatives along the whole field (empty: not yet), their weights */
+  PetscReal           xmax, count = 0;
 
   PetscFunctionBegin;
   *level = -1;
@@ -801,6 +804,55 @@ PetscErrorCode TSVSHMMFastQuantities_Private(TS ts, PetscReal t, Vec X, PetscRea
   *rate  = 0;
   if (!(tol > 0)) PetscFunctionReturn(0);
   const StabilityCounting counting(vs);
+  PetscCall(VecNorm(X, NORM_INFINITY, &xmax));
+  /* the quantities' derivatives along G (and their weights): by central differences of the
+     observables, or G's local entries */
+  const auto derivatives = [&](Vec F, std::vector<double> &d, bool *any) -> PetscErrorCode {
+    PetscReal fmax;
+    PetscFunctionBegin;
+    PetscCall(VecNorm(F, NORM_INFINITY, &fmax));
+    *any = fmax > 0 && std::isfinite(fmax);
+    if (!*any) PetscFunctionReturn(0);
+    if (vs->observables) {
+      const PetscInt      n = vs->nobservables;
+      std::vector<double> q0(n), qp(n), qm(n);
+      const PetscReal     delta = kDifferenceStep * (1 + xmax) / fmax;
+      if (!Xp) PetscCall(VecDuplicate(X, &Xp));
+      PetscCall(vs->observables(ts, t, X, q0.data(), vs->observables_ctx));
+      PetscCall(VecWAXPY(Xp, delta, F, X));
+      PetscCall(vs->observables(ts, t, Xp, qp.data(), vs->observables_ctx));
+      PetscCall(VecWAXPY(Xp, -delta, F, X));
+      PetscCall(vs->observables(ts, t, Xp, qm.data(), vs->observables_ctx));
+      d.resize(n);
+      w.resize(n);
+      for (PetscInt i = 0; i < n; ++i) {
+        d[i] = (qp[i] - qm[i]) / (2 * delta);
+        w[i] = ts->atol + ts->rtol * PetscAbsReal(q0[i]);
+      }
+      count = n;
+    } else {
+      const PetscScalar *x, *f, *va = nullptr, *vr = nullptr;
+      PetscInt           n, N;
+      PetscCall(VecGetLocalSize(X, &n));
+      PetscCall(VecGetSize(X, &N));
+      d.resize(n);
+      w.resize(n);
+      PetscCall(VecGetArrayRead(X, &x));
+      PetscCall(VecGetArrayRead(F, &f));
+      if (ts->vatol) PetscCall(VecGetArrayRead(ts->vatol, &va));
+      if (ts->vrtol) PetscCall(VecGetArrayRead(ts->vrtol, &vr));
+      for (PetscInt i = 0; i < n; ++i) {
+        d[i] = PetscRealPart(f[i]);
+        w[i] = (va ? PetscRealPart(va[i]) : ts->atol) + (vr ? PetscRealPart(vr[i]) : ts->rtol) * PetscAbsScalar(x[i]);
+      }
+      if (ts->vrtol) PetscCall(VecRestoreArrayRead(ts->vrtol, &vr));
+      if (ts->vatol) PetscCall(VecRestoreArrayRead(ts->vatol, &va));
+      PetscCall(VecRestoreArrayRead(F, &f));
+      PetscCall(VecRestoreArrayRead(X, &x));
+      count = N;
+    }
+    PetscFunctionReturn(0);
+  };
   for (PetscInt l = 1; l <= K; ++l) {
     if ((PetscInt)vs->level_radius.size() <= l || !(vs->level_radius[l - 1] > 0) || !(vs->level_radius[l] > 0) || !SustainedOscillation(vs, l, ts->time_step)) continue;
     /* the swing's lower bound takes the fastest level's radius as the frequency: a slower level's
@@ -808,64 +860,33 @@ PetscErrorCode TSVSHMMFastQuantities_Private(TS ts, PetscReal t, Vec X, PetscRea
        medium term moves I1 at rate 2 x1 y2^2 / eps, x1 turning with the fast level, a ripple of
        order eps in I1, not a medium oscillation) */
     const PetscReal minRate = kFastQuantityRate * vs->level_radius[l - 1], rhoK = vs->level_radius.back();
+    bool            any;
     if (!G) PetscCall(VecDuplicate(X, &G));
+    if (total.empty()) { /* the whole field, once: a quantity the level's splits move fast and the others move back (the stiff-spring chain's I, its oscillation written across the splits) does not turn */
+      PetscCall(TSVSHMMEvaluateLevel_Private(vs, K, t, X, G));
+      PetscCall(derivatives(G, total, &any));
+      if (!any) break;
+    }
+    std::vector<double> own;
     PetscCall(TSVSHMMEvaluateOwnSplits_Private(vs, l, t, X, G));
-    PetscReal gmax, xmax;
-    PetscCall(VecNorm(G, NORM_INFINITY, &gmax));
-    PetscCall(VecNorm(X, NORM_INFINITY, &xmax));
-    if (!(gmax > 0) || !std::isfinite(gmax)) continue;
-    PetscReal sum = 0, count, best = 0, bestRate = 0;
+    PetscCall(derivatives(G, own, &any));
+    if (!any) continue;
+    PetscReal sum = vshmm::fastSwingSquares(own, total, w, tol, minRate, rhoK), best = 0, bestRate = 0;
     PetscInt  bestWhich = -1;
-    if (vs->observables) {
-      const PetscInt      n = vs->nobservables;
-      std::vector<double> q0(n), qp(n), qm(n), d(n), w(n);
-      const PetscReal     delta = kDifferenceStep * (1 + xmax) / gmax;
-      if (!Xp) PetscCall(VecDuplicate(X, &Xp));
-      PetscCall(vs->observables(ts, t, X, q0.data(), vs->observables_ctx));
-      PetscCall(VecWAXPY(Xp, delta, G, X));
-      PetscCall(vs->observables(ts, t, Xp, qp.data(), vs->observables_ctx));
-      PetscCall(VecWAXPY(Xp, -delta, G, X));
-      PetscCall(vs->observables(ts, t, Xp, qm.data(), vs->observables_ctx));
-      for (PetscInt i = 0; i < n; ++i) {
-        d[i]             = (qp[i] - qm[i]) / (2 * delta);
-        w[i]             = ts->atol + ts->rtol * PetscAbsReal(q0[i]);
-        const double one = vshmm::fastSwingSquares({d[i]}, {w[i]}, tol, minRate, rhoK);
-        if (w[i] > 0) bestRate = PetscMax(bestRate, PetscAbsReal(d[i]) * tol / w[i] / vs->level_radius[l - 1]);
-        if (one > best) {
-          best      = one;
-          bestWhich = i;
-        }
+    for (size_t i = 0; i < own.size(); ++i) {
+      if (w[i] > 0) bestRate = PetscMax(bestRate, PetscAbsReal(own[i]) * tol / w[i] / vs->level_radius[l - 1]);
+      const double one = vs->observables ? vshmm::fastSwingSquares({own[i]}, {total[i]}, {w[i]}, tol, minRate, rhoK) : 0.0;
+      if (one > best) {
+        best      = one;
+        bestWhich = (PetscInt)i;
       }
-      sum   = vshmm::fastSwingSquares(d, w, tol, minRate, rhoK);
-      count = n;
-    } else {
-      const PetscScalar *x, *g, *va = nullptr, *vr = nullptr;
-      PetscInt           n, N;
-      PetscCall(VecGetLocalSize(X, &n));
-      PetscCall(VecGetSize(X, &N));
-      std::vector<double> d(n), w(n);
-      PetscCall(VecGetArrayRead(X, &x));
-      PetscCall(VecGetArrayRead(G, &g));
-      if (ts->vatol) PetscCall(VecGetArrayRead(ts->vatol, &va));
-      if (ts->vrtol) PetscCall(VecGetArrayRead(ts->vrtol, &vr));
-      for (PetscInt i = 0; i < n; ++i) {
-        d[i]           = PetscRealPart(g[i]);
-        w[i]           = (va ? PetscRealPart(va[i]) : ts->atol) + (vr ? PetscRealPart(vr[i]) : ts->rtol) * PetscAbsScalar(x[i]);
-        const double r = w[i] > 0 ? PetscAbsReal(d[i]) * tol / w[i] : 0;
-        if (r > bestRate) bestRate = r;
-      }
-      if (ts->vrtol) PetscCall(VecRestoreArrayRead(ts->vrtol, &vr));
-      if (ts->vatol) PetscCall(VecRestoreArrayRead(ts->vatol, &va));
-      PetscCall(VecRestoreArrayRead(G, &g));
-      PetscCall(VecRestoreArrayRead(X, &x));
-      sum = vshmm::fastSwingSquares(d, w, tol, minRate, rhoK);
+    }
+    if (!vs->observables) {
       PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &sum, 1, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)ts)));
       PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &bestRate, 1, MPIU_REAL, MPIU_MAX, PetscObjectComm((PetscObject)ts)));
-      bestRate /= vs->level_radius[l - 1];
-      count = N;
     }
     const PetscReal sw = count > 0 ? PetscSqrtReal(sum / count) : 0;
-    PetscCall(PetscInfo(ts, "Level %" PetscInt_FMT " at t = %g: the sampled quantities it moves on its own time scale swing by %g tolerances (%s, %g times the slower level's radius)\n", l, (double)t, (double)sw, vs->observables ? "observables" : "the state", (double)bestRate));
+    PetscCall(PetscInfo(ts, "Level %" PetscInt_FMT " at t = %g: the sampled quantities that turn with it swing by %g tolerances (%s; up to %g times the slower level's radius along its own splits)\n", l, (double)t, (double)sw, vs->observables ? "observables" : "the state", (double)bestRate));
     if (sw > allowed) {
       *level = l;
       *which = bestWhich;
