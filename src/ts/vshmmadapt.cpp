@@ -206,6 +206,27 @@ static PetscErrorCode Schedule(TS ts, const vshmm::AdaptParameters &p, std::uniq
   PetscFunctionReturn(0);
 }
 
+/* The state at t0 + DeltaT inside the last macro step (TSInterpolate()): a macro step of that length
+   from X (the state at t0) with the last accepted step's parameters, its cycles at most
+   DeltaT / kMinCycles (the ratios, then the micro step, shrunk where not set); counted as the steps'
+   work. */
+PetscErrorCode TSVSHMMAdaptSample_Private(TS ts, PetscReal t0, PetscReal DeltaT, Vec X)
+{
+  TS_VSHMM                                  *vs = (TS_VSHMM *)ts->data;
+  std::unique_ptr<vshmm::MesoscopicSchedule> schedule;
+  vshmm::AdaptParameters                     p = vs->adapt_used;
+  vshmm::MacroStepCounts                     counts;
+
+  PetscFunctionBegin;
+  vshmm::fitCycle(p, DeltaT / kMinCycles, !vs->savings.empty(), vs->micro_dt > 0);
+  PetscCall(Schedule(ts, p, schedule));
+  PetscCall(TSVSHMMRunMacroStep_Private(ts, *schedule, t0, DeltaT, X, &counts));
+  vs->micro_cycles += counts.cycles;
+  for (size_t l = 0; l < counts.levelSteps.size(); ++l) vs->level_steps[l] += counts.levelSteps[l];
+  PetscCall(PetscInfo(ts, "Adapt: the state at t = %g sampled by a macro step of %g from t = %g (dt %g, %" PetscInt64_FMT " cycles)\n", (double)(t0 + DeltaT), (double)DeltaT, (double)t0, (double)p.microStep, counts.cycles));
+  PetscFunctionReturn(0);
+}
+
 /* One macro step from X0 with parameters p into X; its work counted as adapt work. A non-finite
    result counts as an infinitely large difference, not as a fault of the solve. */
 static PetscErrorCode TrialStep(TS ts, const vshmm::AdaptParameters &p, PetscReal t0, PetscReal DeltaT, Vec X)

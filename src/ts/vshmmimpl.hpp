@@ -205,4 +205,5 @@ PETSC_INTERN PetscErrorCode TSVSHMMAdaptSetUp_Private(TS);
 PETSC_INTERN PetscErrorCode TSVSHMMAdaptReset_Private(TS);
 PETSC_INTERN PetscReal      TSVSHMMAmplitudeSpan_Private(TS);
 PETSC_INTERN PetscErrorCode TSVSHMMAdaptUnaveraged_Private(TS);
-PETSC_INTERN PetscErrorCode TSVSHMMCheckFastQuantities_Private(TS, PetscReal); /* fixed savings: said where the sampled quantities carry a faster level's phase */
+PETSC_INTERN PetscErrorCode TSVSHMMAdaptSample_Private(TS, PetscReal, PetscReal, Vec); /* the state inside the last macro step, for TSInterpolate() */
+PETSC_INTERN PetscErrorCode TSVSHMMCheckFastQuantities_Private(TS, PetscReal);         /* fixed savings: said where the sampled quantities carry a faster level's phase */

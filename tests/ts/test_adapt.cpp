@@ -1994,6 +1994,29 @@ TEST(VSHMMAdapt, ASolveBoundedByItsStepCountMeetsTheToleranceAtItsEnd)
   EXPECT_EQ(run.evaluations, timed.evaluations);
 }
 
+// A final time inside a macro step with -ts_exact_final_time interpolate: x' = -y + sin 9t (slow
+// {x}), y' = -(y - cos(t) sin x) / 1e-3 (fast {y}) from (1, 0) to t = 1.05, DeltaT = 0.1, at 1e-3.
+// The state at 1.05 is sampled by a macro step of 0.05 from the one at 1.0: x(1.05) within 1 tol
+// of RK4 references (0.43 tol, as with matchstep). The linear interpolant of the samples at 1.0 and
+// 1.1, before, ended 6.8 tol off, silently.
+void NineSlow(const void *, PetscReal t, const PetscScalar *x, PetscScalar *f)
+{
+  f[0] = -x[1] + std::sin(9 * t);
+  f[1] = 0;
+}
+
+TEST(VSHMMAdapt, AFinalTimeInsideAMacroStepIsSampled)
+{
+  const double ref = ConvergedReference({NineSlow, StepCountFast}, nullptr, {1.0, 0.0}, 1.05, 1e-5, 2e-5, 1e-9);
+  SplitProblem p;
+  AdaptRun     interp, match;
+  p.terms = {NineSlow, StepCountFast};
+  ASSERT_EQ(SolveObservingX0("-ts_vshmm_adapt -ts_vshmm_warnings_viewer none -ts_rtol 1e-3 -ts_atol 1e-3 -ts_exact_final_time interpolate", p, {1.0, 0.0}, {"slow", "fast"}, 0.1, 1.05, &interp), 0);
+  EXPECT_LE(std::abs(interp.x[0] - ref), 1e-3 * (1 + std::abs(ref))) << "x(1.05) = " << interp.x[0] << ", reference " << ref;
+  ASSERT_EQ(SolveObservingX0("-ts_vshmm_adapt -ts_vshmm_warnings_viewer none -ts_rtol 1e-3 -ts_atol 1e-3 -ts_exact_final_time matchstep", p, {1.0, 0.0}, {"slow", "fast"}, 0.1, 1.05, &match), 0);
+  EXPECT_LE(std::abs(match.x[0] - ref), 1e-3 * (1 + std::abs(ref))) << "x(1.05) = " << match.x[0] << ", reference " << ref;
+}
+
 // A vector atol (TSSetTolerances()) weighs the slow components per component beside the
 // observables, which take the scalars: atol 1e-1 for the observable x, 1e-3 on the slow
 // components, rtol 1e-3. Before, the slow components took the scalar atol too (x(4) then within
