@@ -91,6 +91,7 @@ static constexpr PetscReal kBlowUpGrowth           = 1e6; /* a comparison this m
 /* The difference to a run that blew up: IEEE infinity, which std::isfinite() rejects (PETSC_INFINITY
    is PETSC_MAX_REAL / 4, a finite number, and was once read as an estimate of 4.5e307 tolerances) */
 static constexpr PetscReal kPhaseSwing = 1; /* tolerances: where a faster level's phase swings the sampled quantities by more, its savings go (NoteFastQuantities(); a ripple below it, as the paper's oscillators' I1 at eps = 5e-3, 0.52 tolerances at 1e-3, is left to the comparisons) */
+static constexpr PetscReal kStiffFirst      = 0.5; /* the slowest level's spectral radius at least this part of the whole field's: the stiff split may have come first */
 static constexpr PetscReal kFixedSwing      = 0.1; /* fixed parameters: a faster level's phase in the sampled quantities is said where it swings them by this much relative to 1 + |q| */
 static constexpr PetscReal kPhaseProjection = 0.5; /* of a step's coherent share where the sampled quantities carry an oscillation's phase: the comparison sees the phase error projected at one phase */
 static constexpr PetscReal kBlownUp         = std::numeric_limits<PetscReal>::infinity();
@@ -933,14 +934,30 @@ PetscErrorCode TSVSHMMCheckSeparation_Private(TS ts)
   PetscCall(PetscInfo(ts, "Separation check at t = %g: %s\n", (double)ts->ptime, figures.c_str()));
   if (!vs->no_separation || vs->check_separation == TSVSHMM_SEPARATION_OFF) PetscFunctionReturn(0);
   const char *what = (vs->separations.empty() && !own) ? "ratio of the spectral radii of consecutive levels" : "separation of consecutive levels";
-  PetscCheck(vs->check_separation != TSVSHMM_SEPARATION_ERROR, comm, PETSC_ERR_ARG_INCOMP, "TSVSHMM separation check at t = %g: the time scales of the RHS splits are not separated (%s, at least %g needed: %s). VSHMM samples the faster scales statistically and would change the answer here; use a single-rate TS type (-ts_type rk) or a multirate one (-ts_type mprk), or -ts_vshmm_check_separation warn to run anyway",
-             (double)ts->ptime, what, (double)kMinSeparation, figures.c_str());
+  /* the slowest level alone as stiff as the whole field: the stiff split may have come first (the
+     scales are taken in creation order; a fast split created before the slow one gave "not
+     separated" with nothing to say why) */
+  std::string order;
+  if (nscales > 1 && vs->level_radius[0] > 0 && vs->level_radius[0] >= kStiffFirst * vs->level_radius.back()) {
+    std::string reversed; /* two scales: the other order */
+    for (PetscInt l = nscales - 1; l >= 0 && nscales == 2; --l) {
+      std::string scale;
+      for (PetscInt k = l > 0 ? vs->level_end[l - 1] : 0; k < vs->level_end[l]; ++k) scale += (scale.empty() ? "" : "+") + vs->splits[k].name;
+      reversed += (reversed.empty() ? "" : ",") + scale;
+    }
+    char radii[64];
+    PetscCall(PetscSNPrintf(radii, sizeof radii, "%.3g of %.3g", (double)vs->level_radius[0], (double)vs->level_radius.back()));
+    order = " The slowest scale alone (the first, split '" + vs->splits[0].name + "') is as stiff as the whole field (spectral radius " + radii + "): the scales are taken slowest first, in the order the RHS splits were created or as -ts_vshmm_splits (TSVSHMMSetSplitOrder()) gives them; if a stiff split came first, give the order (" + (nscales == 2 ? "here: -ts_vshmm_splits " + reversed : std::string("-ts_vshmm_splits with the split names, slowest first")) + ").";
+  }
+  PetscCheck(vs->check_separation != TSVSHMM_SEPARATION_ERROR, comm, PETSC_ERR_ARG_INCOMP, "TSVSHMM separation check at t = %g: the time scales of the RHS splits are not separated (%s, at least %g needed: %s). VSHMM samples the faster scales statistically and would change the answer here; use a single-rate TS type (-ts_type rk) or a multirate one (-ts_type mprk), or -ts_vshmm_check_separation warn to run anyway.%s",
+             (double)ts->ptime, what, (double)kMinSeparation, figures.c_str(), order.c_str());
   const bool tested = vs->adapt && vs->savings.empty() && !SavingsCandidate(ts, SeparatedRatios(ts)).empty(); /* the first time ratios as if separated, tested against a single-rate step */
-  PetscCall(TSVSHMMWarn_Private(ts, "TSVSHMM warning: separation check at t = %g: the time scales of the RHS splits are not separated (%s, at least %g needed: %s). VSHMM samples the faster scales statistically and %s; a single-rate TS type (-ts_type rk) or a multirate one (-ts_type mprk) is the right tool. (-ts_vshmm_check_separation error makes this an error, off silences it.)\n",
+  PetscCall(TSVSHMMWarn_Private(ts, "TSVSHMM warning: separation check at t = %g: the time scales of the RHS splits are not separated (%s, at least %g needed: %s). VSHMM samples the faster scales statistically and %s; a single-rate TS type (-ts_type rk) or a multirate one (-ts_type mprk) is the right tool.%s (-ts_vshmm_check_separation error makes this an error, off silences it.)\n",
                                 (double)ts->ptime, what, (double)kMinSeparation, figures.c_str(),
                                 !(vs->adapt && vs->savings.empty()) ? "its answer will be wrong by an amount it cannot estimate"
                                 : tested                            ? "-ts_vshmm_adapt therefore takes savings only where a comparison with a single-rate macro step admits them (every faster level decays)"
-                                                                    : "-ts_vshmm_adapt therefore takes no savings (every level steps with the micro step) unless the levels' spectra, estimated again with its calibrations, show them separated later"));
+                                                                    : "-ts_vshmm_adapt therefore takes no savings (every level steps with the micro step) unless the levels' spectra, estimated again with its calibrations, show them separated later",
+                                order.c_str()));
   PetscFunctionReturn(0);
 }
 

@@ -288,6 +288,35 @@ TEST(VSHMMSolver, SplitOrderOptionReordersScales)
   e = CaptureError([&]() { return SolveDissipative(PETSC_COMM_WORLD, SplitKind::Additive, 0.5, 0.1, &unordered, "-ts_vshmm_check_stability false", nullptr, {2, 0, 1}); });
   EXPECT_NE(e.code, 0);
   EXPECT_NE(e.message.find("produced Inf or NaN"), std::string::npos) << e.message;
+  // With -ts_vshmm_adapt the separation check finds the scales not separated and says why it may be
+  // (the first scale alone is as stiff as the whole field), an error on request.
+  e = CaptureError([&]() { return SolveDissipative(PETSC_COMM_WORLD, SplitKind::Additive, 0.5, 0.1, &unordered, "-ts_vshmm_adapt -ts_vshmm_check_separation error", nullptr, {2, 0, 1}); });
+  EXPECT_EQ(e.code, PETSC_ERR_ARG_INCOMP);
+  EXPECT_NE(e.message.find("The slowest scale alone (the first, split 'fast') is as stiff as the whole field"), std::string::npos) << e.message;
+  EXPECT_NE(e.message.find("-ts_vshmm_splits with the split names, slowest first"), std::string::npos) << e.message;
+  // two scales, the fast one created first: the order to give is named
+  e = CaptureError([&]() -> PetscErrorCode {
+    DissipativeParams params;
+    SplitProblem      p;
+    TS                ts;
+    Vec               x;
+    PetscFunctionBeginUser;
+    PetscCall(PetscOptionsInsertString(nullptr, "-ts_vshmm_adapt -ts_vshmm_check_separation error"));
+    DissipativeProblem(&p, &params);
+    p.terms.erase(p.terms.begin() + 2); /* slow (xi) and medium (eta) only */
+    p.n = 3;
+    PetscCall(CreateSplitTS(PETSC_COMM_WORLD, &p, SplitKind::Component, {5, -10, 5}, {"slow", "medium"}, &ts, &x, {1, 0}));
+    PetscCall(TSSetTimeStep(ts, 0.1));
+    PetscCall(TSSetMaxTime(ts, 0.2));
+    PetscCall(TSSetFromOptions(ts));
+    PetscErrorCode ierr = TSSolve(ts, x);
+    PetscCall(PetscOptionsClear(nullptr));
+    PetscCall(DestroySplitTS(&p, &ts, &x));
+    PetscCall(ierr);
+    PetscFunctionReturn(0);
+  });
+  EXPECT_EQ(e.code, PETSC_ERR_ARG_INCOMP);
+  EXPECT_NE(e.message.find("if a stiff split came first, give the order (here: -ts_vshmm_splits slow,medium)"), std::string::npos) << e.message;
 }
 
 TEST(VSHMMStabilityCheck, MicroStepBeyondTheStabilityLimitIsAnError)
