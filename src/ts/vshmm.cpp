@@ -341,6 +341,7 @@ static PetscErrorCode TSStep_VSHMM(TS ts)
     DeltaT = ts->max_time - t0;
     last   = PETSC_TRUE;
   }
+  if (vs->adapt) PetscCall(TSVSHMMAdaptRestart_Private(ts, t0, DeltaT)); /* the time set back: a new run */
   const PetscReal dt = vs->micro_dt > 0 ? vs->micro_dt : ts->time_step / kDefaultMicroStepsPerMacroStep;
   PetscCheck(dt > kMinMicroStepFraction * DeltaT || last, comm, PETSC_ERR_ARG_OUTOFRANGE, "-ts_vshmm_micro_dt %g is below the time resolution of the macro step DeltaT = %g: the micro step must exceed %g DeltaT", (double)dt, (double)DeltaT, (double)kMinMicroStepFraction);
   if (vs->stability_interval > 0 && ts->steps > 0 && ts->steps % vs->stability_interval == 0) {

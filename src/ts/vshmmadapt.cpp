@@ -91,9 +91,10 @@ static constexpr PetscReal kBlowUpGrowth           = 1e6; /* a comparison this m
 /* The difference to a run that blew up: IEEE infinity, which std::isfinite() rejects (PETSC_INFINITY
    is PETSC_MAX_REAL / 4, a finite number, and was once read as an estimate of 4.5e307 tolerances) */
 static constexpr PetscReal kPhaseSwing = 1; /* tolerances: where a faster level's phase swings the sampled quantities by more, its savings go (NoteFastQuantities(); a ripple below it, as the paper's oscillators' I1 at eps = 5e-3, 0.52 tolerances at 1e-3, is left to the comparisons) */
-static constexpr PetscReal kStiffFirst      = 0.5; /* the slowest level's spectral radius at least this part of the whole field's: the stiff split may have come first */
-static constexpr PetscReal kFixedSwing      = 0.1; /* fixed parameters: a faster level's phase in the sampled quantities is said where it swings them by this much relative to 1 + |q| */
-static constexpr PetscReal kPhaseProjection = 0.5; /* of a step's coherent share where the sampled quantities carry an oscillation's phase: the comparison sees the phase error projected at one phase */
+static constexpr PetscReal kStiffFirst      = 0.5;  /* the slowest level's spectral radius at least this part of the whole field's: the stiff split may have come first */
+static constexpr PetscReal kTimeBack        = 1e-9; /* of DeltaT: a macro step starting this far before the last one's end starts a new run */
+static constexpr PetscReal kFixedSwing      = 0.1;  /* fixed parameters: a faster level's phase in the sampled quantities is said where it swings them by this much relative to 1 + |q| */
+static constexpr PetscReal kPhaseProjection = 0.5;  /* of a step's coherent share where the sampled quantities carry an oscillation's phase: the comparison sees the phase error projected at one phase */
 static constexpr PetscReal kBlownUp         = std::numeric_limits<PetscReal>::infinity();
 
 const char *const TSVSHMMSeparationChecks[] = {"off", "warn", "error", "TSVSHMMSeparationCheck", "TSVSHMM_SEPARATION_", nullptr};
@@ -994,6 +995,7 @@ PetscErrorCode TSVSHMMAdaptReset_Private(TS ts)
   vs->floor_warned           = PETSC_FALSE;
   vs->adapt_floor_dt         = 0;
   vs->adapt_single_rate_from = -1;
+  vs->adapt_end              = PETSC_MIN_REAL;
   PetscFunctionReturn(0);
 }
 
@@ -1716,6 +1718,32 @@ PetscErrorCode TSVSHMMAdaptCheckSeparation_Private(TS ts)
   PetscFunctionReturn(0);
 }
 
+/* A macro step from t0 before the end of the last accepted one: the time was set back
+   (TSSetTime() before another TSSolve(): an ensemble member, a restart). A new run, checked and
+   started as at set-up from the present state: the accuracy control kept the last run's
+   parameters, error model, running sums and checks (a second solve from t = 0 took other
+   parameters than the first, and its error estimate was the sum of both runs). */
+PetscErrorCode TSVSHMMAdaptRestart_Private(TS ts, PetscReal t0, PetscReal DeltaT)
+{
+  TS_VSHMM *vs = (TS_VSHMM *)ts->data;
+
+  PetscFunctionBegin;
+  if (!vs->adapt_ready || !(t0 < vs->adapt_end - kTimeBack * DeltaT)) PetscFunctionReturn(0);
+  PetscCall(PetscInfo(ts, "Adapt: the time was set back to %g (the last macro step ended at %g): the checks and the accuracy control start again\n", (double)t0, (double)vs->adapt_end));
+  vs->spectra_time       = PETSC_MIN_REAL;
+  vs->own_rates_time     = PETSC_MIN_REAL;
+  vs->time_dependent     = PETSC_FALSE;
+  vs->time_rates_checked = PETSC_FALSE;
+  vs->level_time_rate_max.clear();
+  for (Vec &v : vs->radius_vecs) PetscCall(VecDestroy(&v)); /* the power method's start vectors, as at set-up */
+  vs->radius_vecs.clear();
+  PetscCall(TSVSHMMAdaptReset_Private(ts));
+  if (vs->check_stability) PetscCall(TSVSHMMCheckStability_Private(ts));
+  PetscCall(TSVSHMMCheckSeparation_Private(ts));
+  PetscCall(TSVSHMMAdaptSetUp_Private(ts));
+  PetscFunctionReturn(0);
+}
+
 /* One macro step with accuracy control; the accepted result is left in ts->vec_sol. */
 PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
 {
@@ -2028,6 +2056,7 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
     vs->adapt_since_calibration++;
     vs->savings_used     = vshmm::savingsFromTimeRatios(p.ratios); /* what this step used (for view and getters) */
     vs->adapt_used       = p;
+    vs->adapt_end        = t1;
     vs->adapt_prev_ratio = vs->adapt_last_ratio;
     /* the rules that leave a later step's comparison out (SteadyStep(), a pinned step) compare estimates of one kind: the comparison's */
     vs->adapt_last_ratio = std::isfinite(Ecompared) && Ecompared >= 0 ? Ecompared / budget : PETSC_MAX_REAL;

@@ -116,11 +116,12 @@ struct TS_VSHMM {
   std::vector<PetscReal> adapt_lost;                            // per level pair: the time from which its oscillating faster level is less than kMinSeparation from it, so no savings between them (-1: separated)
   PetscBool              lost_warned = PETSC_FALSE;             // told that a pair lost its separation
   std::vector<PetscReal> adapt_phase; // per level pair: the time from which a faster level with a sustained oscillation moves the sampled quantities on its own scale (they carry its phase), so no savings between them (-1: none)
-  PetscBool              phase_warned           = PETSC_FALSE; // told that the sampled quantities carry a faster level's phase
-  PetscBool              unstable_warned        = PETSC_FALSE; // told that the fastest level sits at an unstable equilibrium
-  PetscBool              floor_warned           = PETSC_FALSE; // told that the estimate does not fall
-  PetscReal              adapt_floor_dt         = 0;           // the micro step of the last step accepted at a floor without savings left: later steps do not refine below it (0: none)
-  PetscReal              adapt_single_rate_from = -1;          // the start of the macro step from which the tolerance left no savings (-1: none)
+  PetscBool              phase_warned           = PETSC_FALSE;    // told that the sampled quantities carry a faster level's phase
+  PetscBool              unstable_warned        = PETSC_FALSE;    // told that the fastest level sits at an unstable equilibrium
+  PetscBool              floor_warned           = PETSC_FALSE;    // told that the estimate does not fall
+  PetscReal              adapt_floor_dt         = 0;              // the micro step of the last step accepted at a floor without savings left: later steps do not refine below it (0: none)
+  PetscReal              adapt_single_rate_from = -1;             // the start of the macro step from which the tolerance left no savings (-1: none)
+  PetscReal              adapt_end              = PETSC_MIN_REAL; // the end of the last accepted macro step (a macro step that starts before it starts a new run)
   Vec                    Xtrial = nullptr, Xbase = nullptr;
   Vec                    slow_mask  = nullptr;     // 1 on the slow components (written by the slowest level's splits only) where they are controlled with the observables
   PetscInt               slow_count = 0;           // their number (global)
@@ -205,5 +206,6 @@ PETSC_INTERN PetscErrorCode TSVSHMMAdaptSetUp_Private(TS);
 PETSC_INTERN PetscErrorCode TSVSHMMAdaptReset_Private(TS);
 PETSC_INTERN PetscReal      TSVSHMMAmplitudeSpan_Private(TS);
 PETSC_INTERN PetscErrorCode TSVSHMMAdaptUnaveraged_Private(TS);
-PETSC_INTERN PetscErrorCode TSVSHMMAdaptSample_Private(TS, PetscReal, PetscReal, Vec); /* the state inside the last macro step, for TSInterpolate() */
-PETSC_INTERN PetscErrorCode TSVSHMMCheckFastQuantities_Private(TS, PetscReal);         /* fixed savings: said where the sampled quantities carry a faster level's phase */
+PETSC_INTERN PetscErrorCode TSVSHMMAdaptSample_Private(TS, PetscReal, PetscReal, Vec);
+PETSC_INTERN PetscErrorCode TSVSHMMAdaptRestart_Private(TS, PetscReal, PetscReal); /* a step before the last one's end: a new run */ /* the state inside the last macro step, for TSInterpolate() */
+PETSC_INTERN PetscErrorCode TSVSHMMCheckFastQuantities_Private(TS, PetscReal);                                                       /* fixed savings: said where the sampled quantities carry a faster level's phase */

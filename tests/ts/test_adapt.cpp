@@ -2017,6 +2017,52 @@ TEST(VSHMMAdapt, AFinalTimeInsideAMacroStepIsSampled)
   EXPECT_LE(std::abs(match.x[0] - ref), 1e-3 * (1 + std::abs(ref))) << "x(1.05) = " << match.x[0] << ", reference " << ref;
 }
 
+// A second solve from the start (an ensemble member: TSSetTime(), TSSetStepNumber() and the initial
+// state again, then TSSolve()): a new run, checked and started as at set-up, the same answer, work
+// and estimate as the first. Before, the accuracy control kept the first run's state: the second
+// solve of x' = -y + sin 3t, y' = -(y - cos(t) sin x) / 1e-3 at 1e-3 ended elsewhere (x(1) 3.1e-4
+// from the first), and its error estimate was the sum of both runs.
+TEST(VSHMMAdapt, ASecondSolveFromTheStartIsANewRun)
+{
+  SplitProblem           p;
+  TS                     ts;
+  Vec                    x;
+  Guard                  guard("-ts_vshmm_adapt -ts_vshmm_warnings_viewer none -ts_rtol 1e-3 -ts_atol 1e-3");
+  std::vector<PetscReal> first, second;
+  TSVSHMMStatistics      s1, s2;
+  p.terms = {StepCountSlow, StepCountFast};
+  p.n     = 2;
+  ASSERT_EQ(CreateSplitTS(PETSC_COMM_WORLD, &p, SplitKind::Component, {1.0, 0.0}, {"slow", "fast"}, &ts, &x), 0);
+  ASSERT_EQ(TSSetTimeStep(ts, 0.1), 0);
+  ASSERT_EQ(TSSetMaxTime(ts, 1), 0);
+  ASSERT_EQ(TSVSHMMSetObservables(ts, 1, X0Observable, &p), 0);
+  ASSERT_EQ(TSSetFromOptions(ts), 0);
+  ASSERT_EQ(TSSolve(ts, x), 0);
+  ASSERT_EQ(GatherState(&p, x, first), 0);
+  ASSERT_EQ(TSVSHMMGetStatistics(ts, &s1), 0);
+  const PetscInt64 work1  = std::accumulate(s1.rhs_evaluations, s1.rhs_evaluations + s1.nsplits, (PetscInt64)0) + s1.adapt_evaluations;
+  const PetscReal  total1 = s1.error_estimate_total;
+  ASSERT_EQ(TSSetTime(ts, 0), 0);
+  ASSERT_EQ(TSSetStepNumber(ts, 0), 0);
+  ASSERT_EQ(TSSetTimeStep(ts, 0.1), 0);
+  {
+    PetscInt     lo, hi;
+    PetscScalar *a;
+    ASSERT_EQ(VecGetOwnershipRange(x, &lo, &hi), 0);
+    ASSERT_EQ(VecGetArray(x, &a), 0);
+    for (PetscInt i = lo; i < hi; ++i) a[i - lo] = i == 0 ? 1.0 : 0.0;
+    ASSERT_EQ(VecRestoreArray(x, &a), 0);
+  }
+  ASSERT_EQ(TSSolve(ts, x), 0);
+  ASSERT_EQ(GatherState(&p, x, second), 0);
+  ASSERT_EQ(TSVSHMMGetStatistics(ts, &s2), 0);
+  const PetscInt64 work2 = std::accumulate(s2.rhs_evaluations, s2.rhs_evaluations + s2.nsplits, (PetscInt64)0) + s2.adapt_evaluations;
+  EXPECT_EQ(first, second);
+  EXPECT_EQ(work2, 2 * work1); /* the statistics count both solves, the second as much as the first */
+  EXPECT_EQ(s2.error_estimate_total, total1);
+  ASSERT_EQ(DestroySplitTS(&p, &ts, &x), 0);
+}
+
 // A vector atol (TSSetTolerances()) weighs the slow components per component beside the
 // observables, which take the scalars: atol 1e-1 for the observable x, 1e-3 on the slow
 // components, rtol 1e-3. Before, the slow components took the scalar atol too (x(4) then within
