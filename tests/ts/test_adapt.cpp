@@ -1024,7 +1024,7 @@ TEST(VSHMMAdapt, APairMergedAtTheInitialStateTakesSavingsOnceSeparated)
 // z' = -1000 (z - g(t, y)), g from 1/2 to cos(3 y) around t = 2 (tanh, width 0.1), DeltaT = 0.1 to
 // t = 4. Once a step can coarsen nothing (micro step and cycle at their bounds) and its last two
 // estimates were far below their shares and the last did not rise (more than 2x), its comparison is
-// left out, at most 3 steps in a row (the model's prediction stands in): 15 and 8 steps at 1e-2 and
+// left out, at most 3 steps in a row (the model's prediction stands in): 16 and 9 steps at 1e-2 and
 // 1e-3, and y(4) is within the tolerance across the change (0.005 and 0.03 of it).
 void SwitchFast(const void *, PetscReal t, const PetscScalar *x, PetscScalar *f)
 {
@@ -1044,10 +1044,11 @@ TEST(VSHMMAdapt, SteadyStepsLeaveOutTheirComparisons)
     AdaptRun          run;
     ASSERT_EQ(SolveObservingX0(options.c_str(), p, {1.0, 0.5}, {"slow", "fast"}, 0.1, T, &run), 0);
     EXPECT_LE(std::abs(run.x[0] - ref), tol * (1 + std::abs(ref))) << options << ": y(4) = " << run.x[0] << ", reference " << ref;
-    /* 15 and 8 steps (13 and 8 while a fall of the estimate by more than 2x forced a comparison
-       too; 12 and 7 while the micro step started at DeltaT / 100, not at the fast level's
-       stability limit); without the limit of 3 in a row 19 and 12 then */
-    EXPECT_EQ(run.stats.adapt_uncompared, tol > 5e-3 ? 15 : 8) << options;
+    /* 16 and 9 steps (15 and 8 while a scheduled calibration of a step with nothing to coarsen
+       was made; 13 and 8 while a fall of the estimate by more than 2x forced a comparison too; 12
+       and 7 while the micro step started at DeltaT / 100, not at the fast level's stability
+       limit); without the limit of 3 in a row 19 and 12 then */
+    EXPECT_EQ(run.stats.adapt_uncompared, tol > 5e-3 ? 16 : 9) << options;
   }
 }
 
