@@ -1896,7 +1896,8 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
         vs->adapt_postponed         = PETSC_FALSE;
       }
     }
-    if (calibrate && attempt == 0 && vs->adapt_calibrated && FasterLevelsDecay(vs) && d > 0 && std::isfinite(E) && E < budget / kUncomparedBelow && vshmm::cycleLength(p) >= 0.999 * bounds.maxCycle && (bounds.fixedMicroStep || p.microStep >= 0.999 * bounds.maxMicroStep)) {
+    if (calibrate && attempt == 0 && vs->adapt_calibrated && FasterLevelsDecay(vs) && d > 0 && std::isfinite(E) && E < budget / kUncomparedBelow && bounds.maxCycle > 0 && vshmm::cycleLength(p) >= 0.999 * bounds.maxCycle &&
+        (bounds.fixedMicroStep || p.microStep >= 0.999 * bounds.maxMicroStep)) {
       /* a scheduled measurement of the split at a step far below its share that nothing can
          coarsen (cycle and micro step at their bounds: the work is the cycle's, and moving error
          between the time ratios does not change it): the split would choose nothing, and is not
