@@ -15,6 +15,8 @@
 
 const char *const TSVSHMMKernelTypes[] = {"cosine", "constant", "polynomial", "exponential", "TSVSHMMKernelType", "TSVSHMM_KERNEL_", nullptr};
 
+static constexpr PetscReal kTimeBack = 1e-9; /* of DeltaT: a macro step starting this far before the last one's end starts a new run */
+
 static vshmm::KernelType CoreKernelType(TSVSHMMKernelType type)
 {
   switch (type) {
@@ -210,6 +212,26 @@ static PetscErrorCode TSVSHMMCheckSupported_Private(TS ts)
   PetscFunctionReturn(0);
 }
 
+/* What a run starts from, at set-up and where the time is set back (TSStep_VSHMM()): the levels'
+   spectra and the checks at the present state, and the accuracy control. */
+static PetscErrorCode StartRun(TS ts)
+{
+  TS_VSHMM *vs = (TS_VSHMM *)ts->data;
+
+  PetscFunctionBegin;
+  vs->spectra_time       = PETSC_MIN_REAL;
+  vs->own_rates_time     = PETSC_MIN_REAL;
+  vs->time_dependent     = PETSC_FALSE;
+  vs->time_rates_checked = PETSC_FALSE;
+  vs->level_time_rate_max.clear();
+  for (Vec &v : vs->radius_vecs) PetscCall(VecDestroy(&v)); /* the power method's start vectors */
+  vs->radius_vecs.clear();
+  if (vs->check_stability) PetscCall(TSVSHMMCheckStability_Private(ts));
+  PetscCall(TSVSHMMCheckSeparation_Private(ts));
+  PetscCall(TSVSHMMAdaptSetUp_Private(ts));
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode TSSetUp_VSHMM(TS ts)
 {
   TS_VSHMM                    *vs   = (TS_VSHMM *)ts->data;
@@ -269,13 +291,7 @@ static PetscErrorCode TSSetUp_VSHMM(TS ts)
   vs->level_events.resize(nscales);
   for (PetscInt l = 0; l < nscales; ++l) PetscCall(TSVSHMMGetLevelEvent_Private(l, &vs->level_events[l]));
   PetscCall(TSVSHMMResetStatistics(ts));
-  vs->spectra_time       = PETSC_MIN_REAL;
-  vs->time_dependent     = PETSC_FALSE;
-  vs->time_rates_checked = PETSC_FALSE;
-  vs->level_time_rate_max.clear();
-  if (vs->check_stability) PetscCall(TSVSHMMCheckStability_Private(ts));
-  PetscCall(TSVSHMMCheckSeparation_Private(ts));
-  PetscCall(TSVSHMMAdaptSetUp_Private(ts));
+  PetscCall(StartRun(ts));
   PetscFunctionReturn(0);
 }
 
@@ -341,7 +357,15 @@ static PetscErrorCode TSStep_VSHMM(TS ts)
     DeltaT = ts->max_time - t0;
     last   = PETSC_TRUE;
   }
-  if (vs->adapt) PetscCall(TSVSHMMAdaptRestart_Private(ts, t0, DeltaT)); /* the time set back: a new run */
+  if (vs->adapt && vs->adapt_ready && t0 < vs->adapt_end - kTimeBack * DeltaT) {
+    /* the time was set back (TSSetTime() before another TSSolve(): an ensemble member, a restart):
+       a new run, started as at set-up from the present state (the accuracy control kept the last
+       run's parameters, error model, running sums and checks: a second solve from t = 0 took other
+       parameters than the first, and its error estimate was the sum of both runs) */
+    PetscCall(PetscInfo(ts, "The time was set back to %g (the last macro step ended at %g): the checks and the accuracy control start again\n", (double)t0, (double)vs->adapt_end));
+    PetscCall(TSVSHMMAdaptReset_Private(ts));
+    PetscCall(StartRun(ts));
+  }
   const PetscReal dt = vs->micro_dt > 0 ? vs->micro_dt : ts->time_step / kDefaultMicroStepsPerMacroStep;
   PetscCheck(dt > kMinMicroStepFraction * DeltaT || last, comm, PETSC_ERR_ARG_OUTOFRANGE, "-ts_vshmm_micro_dt %g is below the time resolution of the macro step DeltaT = %g: the micro step must exceed %g DeltaT", (double)dt, (double)DeltaT, (double)kMinMicroStepFraction);
   if (vs->stability_interval > 0 && ts->steps > 0 && ts->steps % vs->stability_interval == 0) {
@@ -412,16 +436,19 @@ static PetscErrorCode TSInterpolate_VSHMM(TS ts, PetscReal t, Vec X)
     else PetscCall(VecAXPBYPCZ(X, 1.0 - theta, theta, 0.0, vs->X0, ts->vec_sol));
     PetscFunctionReturn(0);
   }
-  Vec Y = X;
+  std::unique_ptr<vshmm::MesoscopicSchedule> fitted; /* -ts_vshmm_adapt: the last step's parameters fitted to t - t0 */
+  const vshmm::MesoscopicSchedule           *schedule = vs->schedule.get();
+  if (vs->adapt) {
+    PetscCall(TSVSHMMAdaptSampleSchedule_Private(ts, t - t0, fitted));
+    schedule = fitted.get();
+  }
+  Vec                    Y = X;
+  vshmm::MacroStepCounts counts;
   if (X == ts->vec_sol) PetscCall(VecDuplicate(X, &Y));
   PetscCall(VecCopy(vs->X0, Y));
-  if (vs->adapt) PetscCall(TSVSHMMAdaptSample_Private(ts, t0, t - t0, Y));
-  else {
-    vshmm::MacroStepCounts counts;
-    PetscCall(TSVSHMMRunMacroStep_Private(ts, *vs->schedule, t0, t - t0, Y, &counts));
-    vs->micro_cycles += counts.cycles;
-    for (size_t l = 0; l < counts.levelSteps.size(); ++l) vs->level_steps[l] += counts.levelSteps[l];
-  }
+  PetscCall(TSVSHMMRunMacroStep_Private(ts, *schedule, t0, t - t0, Y, &counts));
+  vs->micro_cycles += counts.cycles;
+  for (size_t l = 0; l < counts.levelSteps.size(); ++l) vs->level_steps[l] += counts.levelSteps[l];
   if (Y != X) {
     PetscCall(VecCopy(Y, X));
     PetscCall(VecDestroy(&Y));

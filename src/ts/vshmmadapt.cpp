@@ -208,24 +208,17 @@ static PetscErrorCode Schedule(TS ts, const vshmm::AdaptParameters &p, std::uniq
   PetscFunctionReturn(0);
 }
 
-/* The state at t0 + DeltaT inside the last macro step (TSInterpolate()): a macro step of that length
-   from X (the state at t0) with the last accepted step's parameters, its cycles at most
-   DeltaT / kMinCycles (the ratios, then the micro step, shrunk where not set); counted as the steps'
-   work. */
-PetscErrorCode TSVSHMMAdaptSample_Private(TS ts, PetscReal t0, PetscReal DeltaT, Vec X)
+/* The schedule that samples a state DeltaT after the start of the last macro step (TSInterpolate()):
+   the last accepted step's parameters, its cycles at most DeltaT / kMinCycles (the ratios, then
+   the micro step, shrunk where not set). */
+PetscErrorCode TSVSHMMAdaptSampleSchedule_Private(TS ts, PetscReal DeltaT, std::unique_ptr<vshmm::MesoscopicSchedule> &schedule)
 {
-  TS_VSHMM                                  *vs = (TS_VSHMM *)ts->data;
-  std::unique_ptr<vshmm::MesoscopicSchedule> schedule;
-  vshmm::AdaptParameters                     p = vs->adapt_used;
-  vshmm::MacroStepCounts                     counts;
+  TS_VSHMM              *vs = (TS_VSHMM *)ts->data;
+  vshmm::AdaptParameters p  = vs->adapt_used;
 
   PetscFunctionBegin;
   vshmm::fitCycle(p, DeltaT / kMinCycles, !vs->savings.empty(), vs->micro_dt > 0);
   PetscCall(Schedule(ts, p, schedule));
-  PetscCall(TSVSHMMRunMacroStep_Private(ts, *schedule, t0, DeltaT, X, &counts));
-  vs->micro_cycles += counts.cycles;
-  for (size_t l = 0; l < counts.levelSteps.size(); ++l) vs->level_steps[l] += counts.levelSteps[l];
-  PetscCall(PetscInfo(ts, "Adapt: the state at t = %g sampled by a macro step of %g from t = %g (dt %g, %" PetscInt64_FMT " cycles)\n", (double)(t0 + DeltaT), (double)DeltaT, (double)t0, (double)p.microStep, counts.cycles));
   PetscFunctionReturn(0);
 }
 
@@ -1715,32 +1708,6 @@ PetscErrorCode TSVSHMMAdaptCheckSeparation_Private(TS ts)
   PetscFunctionBegin;
   PetscCall(TSVSHMMCheckSeparation_Private(ts));
   PetscCall(SeparationChanged(ts, before, tbefore));
-  PetscFunctionReturn(0);
-}
-
-/* A macro step from t0 before the end of the last accepted one: the time was set back
-   (TSSetTime() before another TSSolve(): an ensemble member, a restart). A new run, checked and
-   started as at set-up from the present state: the accuracy control kept the last run's
-   parameters, error model, running sums and checks (a second solve from t = 0 took other
-   parameters than the first, and its error estimate was the sum of both runs). */
-PetscErrorCode TSVSHMMAdaptRestart_Private(TS ts, PetscReal t0, PetscReal DeltaT)
-{
-  TS_VSHMM *vs = (TS_VSHMM *)ts->data;
-
-  PetscFunctionBegin;
-  if (!vs->adapt_ready || !(t0 < vs->adapt_end - kTimeBack * DeltaT)) PetscFunctionReturn(0);
-  PetscCall(PetscInfo(ts, "Adapt: the time was set back to %g (the last macro step ended at %g): the checks and the accuracy control start again\n", (double)t0, (double)vs->adapt_end));
-  vs->spectra_time       = PETSC_MIN_REAL;
-  vs->own_rates_time     = PETSC_MIN_REAL;
-  vs->time_dependent     = PETSC_FALSE;
-  vs->time_rates_checked = PETSC_FALSE;
-  vs->level_time_rate_max.clear();
-  for (Vec &v : vs->radius_vecs) PetscCall(VecDestroy(&v)); /* the power method's start vectors, as at set-up */
-  vs->radius_vecs.clear();
-  PetscCall(TSVSHMMAdaptReset_Private(ts));
-  if (vs->check_stability) PetscCall(TSVSHMMCheckStability_Private(ts));
-  PetscCall(TSVSHMMCheckSeparation_Private(ts));
-  PetscCall(TSVSHMMAdaptSetUp_Private(ts));
   PetscFunctionReturn(0);
 }
 

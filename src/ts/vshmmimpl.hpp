@@ -206,6 +206,5 @@ PETSC_INTERN PetscErrorCode TSVSHMMAdaptSetUp_Private(TS);
 PETSC_INTERN PetscErrorCode TSVSHMMAdaptReset_Private(TS);
 PETSC_INTERN PetscReal      TSVSHMMAmplitudeSpan_Private(TS);
 PETSC_INTERN PetscErrorCode TSVSHMMAdaptUnaveraged_Private(TS);
-PETSC_INTERN PetscErrorCode TSVSHMMAdaptSample_Private(TS, PetscReal, PetscReal, Vec);
-PETSC_INTERN PetscErrorCode TSVSHMMAdaptRestart_Private(TS, PetscReal, PetscReal); /* a step before the last one's end: a new run */ /* the state inside the last macro step, for TSInterpolate() */
-PETSC_INTERN PetscErrorCode TSVSHMMCheckFastQuantities_Private(TS, PetscReal);                                                       /* fixed savings: said where the sampled quantities carry a faster level's phase */
+PETSC_INTERN PetscErrorCode TSVSHMMAdaptSampleSchedule_Private(TS, PetscReal, std::unique_ptr<vshmm::MesoscopicSchedule> &); /* for a state inside the last macro step (TSInterpolate()) */
+PETSC_INTERN PetscErrorCode TSVSHMMCheckFastQuantities_Private(TS, PetscReal);                                               /* fixed savings: said where the sampled quantities carry a faster level's phase */

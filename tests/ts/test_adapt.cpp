@@ -186,9 +186,9 @@ PetscErrorCode X0Observable(TS, PetscReal, Vec X, PetscReal q[], void *ctx)
   PetscFunctionReturn(0);
 }
 
-// Solves p (component splits `names`) from x0 with the sampling interval DeltaT to T, x[0] the
-// observable of -ts_vshmm_adapt.
-PetscErrorCode SolveObservingX0(const char *options, SplitProblem &p, const std::vector<PetscReal> &x0, const std::vector<std::string> &names, PetscReal DeltaT, PetscReal T, AdaptRun *run, SplitKind kind = SplitKind::Component)
+// Solves p (splits of `kind` named `names`) from x0 with the sampling interval DeltaT to T, with
+// the observables nobs, f, ctx of -ts_vshmm_adapt.
+PetscErrorCode SolveObserving(const char *options, SplitProblem &p, const std::vector<PetscReal> &x0, const std::vector<std::string> &names, PetscReal DeltaT, PetscReal T, AdaptRun *run, SplitKind kind, PetscInt nobs, PetscErrorCode (*f)(TS, PetscReal, Vec, PetscReal[], void *), void *ctx)
 {
   Guard guard(options);
   TS    ts;
@@ -199,7 +199,7 @@ PetscErrorCode SolveObservingX0(const char *options, SplitProblem &p, const std:
   PetscCall(CreateSplitTS(PETSC_COMM_WORLD, &p, kind, x0, names, &ts, &x));
   PetscCall(TSSetTimeStep(ts, DeltaT));
   PetscCall(TSSetMaxTime(ts, T));
-  PetscCall(TSVSHMMSetObservables(ts, 1, X0Observable, &p));
+  PetscCall(TSVSHMMSetObservables(ts, nobs, f, ctx));
   PetscCall(TSSetFromOptions(ts));
   PetscCall(TSSolve(ts, x));
   PetscCall(GatherState(&p, x, run->x));
@@ -213,6 +213,12 @@ PetscErrorCode SolveObservingX0(const char *options, SplitProblem &p, const std:
   }
   PetscCall(DestroySplitTS(&p, &ts, &x));
   PetscFunctionReturn(0);
+}
+
+// The same with x[0] the observable.
+PetscErrorCode SolveObservingX0(const char *options, SplitProblem &p, const std::vector<PetscReal> &x0, const std::vector<std::string> &names, PetscReal DeltaT, PetscReal T, AdaptRun *run, SplitKind kind = SplitKind::Component)
+{
+  return SolveObserving(options, p, x0, names, DeltaT, T, run, kind, 1, X0Observable, &p);
 }
 
 // Solves the two-scale problem `terms` (component splits slow {x[0]}, fast; x[0] observed) from x0
@@ -1236,32 +1242,10 @@ PetscErrorCode PhaseObservables(TS, PetscReal, Vec X, PetscReal q[], void *ctx)
 }
 PetscErrorCode SolvePhase(const char *options, bool phase, PetscReal T, AdaptRun *run, double ripple = 0)
 {
-  Guard         guard(options);
   SplitProblem  p;
   PhaseObserved o{&p, phase, ripple};
-  TS            ts;
-  Vec           x;
-
-  PetscFunctionBeginUser;
   p.terms = {PhaseSlow, PhaseFast};
-  p.n     = 3;
-  PetscCall(CreateSplitTS(PETSC_COMM_WORLD, &p, SplitKind::Component, {0.0, 1.0, 0.0}, {"slow", "fast"}, &ts, &x));
-  PetscCall(TSSetTimeStep(ts, 0.1));
-  PetscCall(TSSetMaxTime(ts, T));
-  PetscCall(TSVSHMMSetObservables(ts, phase ? 2 : 1, PhaseObservables, &o));
-  PetscCall(TSSetFromOptions(ts));
-  PetscCall(TSSolve(ts, x));
-  PetscCall(GatherState(&p, x, run->x));
-  PetscCall(TSVSHMMGetStatistics(ts, &run->stats));
-  run->evaluations = std::accumulate(run->stats.rhs_evaluations, run->stats.rhs_evaluations + run->stats.nsplits, (PetscInt64)0);
-  {
-    PetscInt         n;
-    const PetscReal *alpha;
-    PetscCall(TSVSHMMGetSavingsFactors(ts, &n, &alpha));
-    run->savings.assign(alpha, alpha + n);
-  }
-  PetscCall(DestroySplitTS(&p, &ts, &x));
-  PetscFunctionReturn(0);
+  return SolveObserving(options, p, {0.0, 1.0, 0.0}, {"slow", "fast"}, 0.1, T, run, SplitKind::Component, phase ? 2 : 1, PhaseObservables, &o);
 }
 
 TEST(VSHMMSeparation, ObservablesThatCarryTheFastPhaseTakeNoSavings)
@@ -1343,23 +1327,9 @@ PetscErrorCode MediumPhaseObservables(TS, PetscReal, Vec X, PetscReal q[], void 
 }
 PetscErrorCode SolveMediumPhase(const char *options, AdaptRun *run)
 {
-  Guard        guard(options);
   SplitProblem p;
-  TS           ts;
-  Vec          x;
-
-  PetscFunctionBeginUser;
   p.terms = {MediumPhaseSlow, MediumPhaseMedium, MediumPhaseFast};
-  p.n     = 4;
-  PetscCall(CreateSplitTS(PETSC_COMM_WORLD, &p, SplitKind::Additive, {0.0, 1.0, 0.0, 1.0}, {"slow", "medium", "fast"}, &ts, &x));
-  PetscCall(TSSetTimeStep(ts, 0.1));
-  PetscCall(TSSetMaxTime(ts, 0.9));
-  PetscCall(TSVSHMMSetObservables(ts, 2, MediumPhaseObservables, &p));
-  PetscCall(TSSetFromOptions(ts));
-  PetscCall(TSSolve(ts, x));
-  PetscCall(GatherState(&p, x, run->x));
-  PetscCall(DestroySplitTS(&p, &ts, &x));
-  PetscFunctionReturn(0);
+  return SolveObserving(options, p, {0.0, 1.0, 0.0, 1.0}, {"slow", "medium", "fast"}, 0.1, 0.9, run, SplitKind::Additive, 2, MediumPhaseObservables, &p);
 }
 
 TEST(VSHMMSeparation, AMediumPhaseUnderADecayingFastLevelIsFound)
