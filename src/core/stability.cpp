@@ -163,11 +163,19 @@ double amplitudeError(const StabilityFunction &R, std::complex<double> lambda, d
   return std::fabs(std::log(a) - h * lambda.real());
 }
 
-double largestAccurateStep(const StabilityFunction &R, const std::vector<std::complex<double>> &modes, double hMax, double stepsPerUnitStep, double allowed)
+double phaseError(const StabilityFunction &R, std::complex<double> lambda, double h)
+{
+  const std::complex<double> r = R(h * lambda);
+  if (!(std::abs(r) > 0)) return std::numeric_limits<double>::infinity();
+  const double d = std::remainder(std::arg(r) - h * lambda.imag(), 2 * 3.14159265358979323846); /* in [-pi, pi] */
+  return std::fabs(d);
+}
+
+double largestAccurateStep(const StabilityFunction &R, const std::vector<std::complex<double>> &modes, double hMax, double stepsPerUnitStep, double allowed, double phaseWeight)
 {
   auto error = [&](double h) {
     double e = 0;
-    for (const std::complex<double> &lambda : modes) e = std::max(e, amplitudeError(R, lambda, h));
+    for (const std::complex<double> &lambda : modes) e = std::max(e, amplitudeError(R, lambda, h) + (phaseWeight > 0 ? phaseWeight * phaseError(R, lambda, h) : 0.0));
     return e * stepsPerUnitStep / h;
   };
   if (!(hMax > 0) || modes.empty() || error(hMax) <= allowed) return hMax;

@@ -78,12 +78,20 @@ bool ambiguousAmplitudeRate(const std::vector<std::complex<double>> &modes);
 // (what the step takes from, or adds to, the mode's amplitude beyond the exact flow, relative).
 double amplitudeError(const StabilityFunction &R, std::complex<double> lambda, double h);
 
-// The largest step h <= hMax for which the amplitude error of every mode in `modes`, summed over
-// the stepsPerUnitStep / h steps of a span (a span of length T stepped with steps h c takes
-// T / (h c) of them: stepsPerUnitStep = T / c), is at most `allowed`: where the amplitude of an
-// oscillating mode is lost (or gained) by the steps, no comparison of two such runs sees it, the
-// energy is gone from both. hMax where it already passes; bisection to 1e-3 relative otherwise.
-double largestAccurateStep(const StabilityFunction &R, const std::vector<std::complex<double>> &modes, double hMax, double stepsPerUnitStep, double allowed);
+// The phase error of one step of size h on the mode y' = lambda y: |arg R(h lambda) - h Im lambda|,
+// the difference taken in (-pi, pi] (what the step advances the mode's phase by beyond the exact
+// flow, in radians; RK4 on a rotation lags by y^5 / 120 + O(y^7), y = h |lambda|).
+double phaseError(const StabilityFunction &R, std::complex<double> lambda, double h);
+
+// The largest step h <= hMax for which the error of every mode in `modes`, summed over the
+// stepsPerUnitStep / h steps of a span (a span of length T stepped with steps h c takes T / (h c)
+// of them: stepsPerUnitStep = T / c), is at most `allowed`: the amplitude error, plus phaseWeight
+// times the phase error (0: the amplitude alone). Where the amplitude of an oscillating mode is
+// lost (or gained) by the steps, no comparison of two such runs sees it, the energy is gone from
+// both; where the sampled values hold the mode itself, its phase error adds up step by step as
+// well (a rotation keeps it: the errors add coherently). hMax where it already passes; bisection
+// to 1e-3 relative otherwise.
+double largestAccurateStep(const StabilityFunction &R, const std::vector<std::complex<double>> &modes, double hMax, double stepsPerUnitStep, double allowed, double phaseWeight = 0.0);
 
 // The largest savings factor alpha_j, 0 <= alpha_j <= savings[j-1] (j = 1..K), with which the
 // steps of level j - 1 damp the mode lambda by at least dampingTarget over a macro step

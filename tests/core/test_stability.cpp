@@ -217,6 +217,27 @@ TEST(LargestAccurateStep, KeepsTheAmplitudeOverTheSpan)
   EXPECT_EQ(vshmm::largestAccurateStep(R, {}, 2.5e-3, 2.0, 1e-2), 2.5e-3);
 }
 
+// RK4's phase lag on a rotation, y^5 / 120 + O(y^7) per step (y = h |lambda|), and the step that
+// keeps the amplitude error plus a weighted phase error within a bound: the phase (about 6 / (5 y)
+// times the amplitude error) then sets it.
+TEST(LargestAccurateStep, CountsThePhaseWhereTheValuesHoldTheMode)
+{
+  vshmm::StabilityFunction   R(RK4());
+  const std::complex<double> omega(0, 1e3);
+  EXPECT_NEAR(vshmm::phaseError(R, omega, 1e-4), std::pow(0.1, 5) / 120, 1e-2 * std::pow(0.1, 5) / 120);
+  EXPECT_NEAR(vshmm::phaseError(R, std::conj(omega), 1e-4), std::pow(0.1, 5) / 120, 1e-2 * std::pow(0.1, 5) / 120);
+  EXPECT_EQ(vshmm::phaseError(R, std::complex<double>(-50, 0), 1e-3), 0.0); /* a real decay keeps its sign */
+  /* the difference is taken modulo 2 pi: at y = 2.5 the step is stable and lags by less than pi */
+  EXPECT_LT(vshmm::phaseError(R, omega, 2.5e-3), 3.14159);
+  const double amplitudeOnly = vshmm::largestAccurateStep(R, {omega}, 2.5e-3, 2.0, 1e-2);
+  const double withPhase     = vshmm::largestAccurateStep(R, {omega}, 2.5e-3, 2.0, 1e-2, 0.5);
+  EXPECT_LT(withPhase, 0.8 * amplitudeOnly);
+  const auto error = [&](double h) { return (vshmm::amplitudeError(R, omega, h) + 0.5 * vshmm::phaseError(R, omega, h)) * 2.0 / h; };
+  EXPECT_LE(error(withPhase), 1e-2);
+  EXPECT_GT(error(1.01 * withPhase), 1e-2);
+  EXPECT_EQ(vshmm::largestAccurateStep(R, {omega}, 2.5e-3, 2.0, 1e-2, 0.0), amplitudeOnly);
+}
+
 } // namespace
 
 namespace {
