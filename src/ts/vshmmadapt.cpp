@@ -1751,18 +1751,20 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
     PetscCall(RecheckSeparation(ts));
     if (!vs->adapt_calibrated) calibrate = later;
   }
-  vshmm::AdaptBounds                                        bounds = Bounds(ts, DeltaT);
-  PetscReal                                                 Emin   = PETSC_MAX_REAL; /* the lowest estimate of this macro step's tries */
-  std::vector<std::pair<vshmm::AdaptParameters, PetscReal>> tried;                   /* this macro step's tries with savings and their estimates (a floor's cheapest, below) */
-  PetscInt                                                  stalled    = 0;
-  PetscInt                                                  blown      = 0;              /* tries in a row without a finite estimate */
-  PetscReal                                                 predicted  = PETSC_MAX_REAL; /* the model's error of the try after a rejection */
-  PetscBool                                                 singleRate = PETSC_FALSE;    /* the tries are the savings' limit: none (a floor above the share, below) */
-  vshmm::AdaptParameters                                    beforeSingleRate;            /* the try that found that floor */
-  PetscBool                                                 edgeFound     = PETSC_FALSE; /* a try blew up within the stable steps of this state */
-  PetscBool                                                 edgeMargin    = PETSC_FALSE; /* the micro step was bounded by a blow-up's edge (EdgeMargin()) */
-  PetscInt                                                  radiusChecks  = 0;           /* the fastest radius at the end of a try was checked (FollowRatesAtTryEnd()) */
-  PetscReal                                                 floorEstimate = 0;           /* and its estimate */
+  vshmm::AdaptBounds     bounds     = Bounds(ts, DeltaT);
+  PetscReal              Emin       = PETSC_MAX_REAL; /* the lowest estimate of this macro step's tries */
+  PetscInt               stalled    = 0;
+  PetscInt               blown      = 0;              /* tries in a row without a finite estimate */
+  PetscReal              predicted  = PETSC_MAX_REAL; /* the model's error of the try after a rejection */
+  PetscBool              singleRate = PETSC_FALSE;    /* the tries are the savings' limit: none (a floor above the share, below) */
+  vshmm::AdaptParameters beforeSingleRate;            /* the try that found that floor */
+  PetscBool              edgeFound     = PETSC_FALSE; /* a try blew up within the stable steps of this state */
+  PetscBool              edgeMargin    = PETSC_FALSE; /* the micro step was bounded by a blow-up's edge (EdgeMargin()) */
+  PetscInt               radiusChecks  = 0;           /* the fastest radius at the end of a try was checked (FollowRatesAtTryEnd()) */
+  PetscReal              floorEstimate = 0;           /* and its estimate */
+
+  using Try = std::pair<vshmm::AdaptParameters, PetscReal>;
+  std::vector<Try> tried; /* this macro step's tries with savings and their estimates (a floor's cheapest, below) */
   for (PetscInt attempt = 0;; ++attempt) {
     vshmm::AdaptParameters &p = vs->adapt_params;
     vs->nonfinite_split       = -1;
