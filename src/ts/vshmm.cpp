@@ -382,8 +382,7 @@ static PetscErrorCode TSStep_VSHMM(TS ts)
   } else {
     vshmm::MacroStepCounts counts;
     PetscCall(TSVSHMMRunMacroStep_Private(ts, *vs->schedule, t0, DeltaT, ts->vec_sol, &counts));
-    vs->micro_cycles += counts.cycles;
-    for (size_t l = 0; l < counts.levelSteps.size(); ++l) vs->level_steps[l] += counts.levelSteps[l];
+    TSVSHMMAddCounts_Private(vs, counts);
     if (ts->steps == 0 || (vs->stability_interval > 0 && ts->steps % vs->stability_interval == 0)) PetscCall(TSVSHMMCheckFastQuantities_Private(ts, t0 + DeltaT)); /* after the first macro step and with the periodic checks */
   }
   vs->macro_steps++;
@@ -447,8 +446,7 @@ static PetscErrorCode TSInterpolate_VSHMM(TS ts, PetscReal t, Vec X)
   if (X == ts->vec_sol) PetscCall(VecDuplicate(X, &Y));
   PetscCall(VecCopy(vs->X0, Y));
   PetscCall(TSVSHMMRunMacroStep_Private(ts, *schedule, t0, t - t0, Y, &counts));
-  vs->micro_cycles += counts.cycles;
-  for (size_t l = 0; l < counts.levelSteps.size(); ++l) vs->level_steps[l] += counts.levelSteps[l];
+  TSVSHMMAddCounts_Private(vs, counts);
   if (Y != X) {
     PetscCall(VecCopy(Y, X));
     PetscCall(VecDestroy(&Y));

@@ -91,10 +91,9 @@ static constexpr PetscReal kBlowUpGrowth           = 1e6; /* a comparison this m
 /* The difference to a run that blew up: IEEE infinity, which std::isfinite() rejects (PETSC_INFINITY
    is PETSC_MAX_REAL / 4, a finite number, and was once read as an estimate of 4.5e307 tolerances) */
 static constexpr PetscReal kPhaseSwing = 1; /* tolerances: where a faster level's phase swings the sampled quantities by more, its savings go (NoteFastQuantities(); a ripple below it, as the paper's oscillators' I1 at eps = 5e-3, 0.52 tolerances at 1e-3, is left to the comparisons) */
-static constexpr PetscReal kStiffFirst      = 0.5;  /* the slowest level's spectral radius at least this part of the whole field's: the stiff split may have come first */
-static constexpr PetscReal kTimeBack        = 1e-9; /* of DeltaT: a macro step starting this far before the last one's end starts a new run */
-static constexpr PetscReal kFixedSwing      = 0.1;  /* fixed parameters: a faster level's phase in the sampled quantities is said where it swings them by this much relative to 1 + |q| */
-static constexpr PetscReal kPhaseProjection = 0.5;  /* of a step's coherent share where the sampled quantities carry an oscillation's phase: the comparison sees the phase error projected at one phase */
+static constexpr PetscReal kStiffFirst      = 0.5; /* the slowest level's spectral radius at least this part of the whole field's: the stiff split may have come first */
+static constexpr PetscReal kFixedSwing      = 0.1; /* fixed parameters: a faster level's phase in the sampled quantities is said where it swings them by this much relative to 1 + |q| */
+static constexpr PetscReal kPhaseProjection = 0.5; /* of a step's coherent share where the sampled quantities carry an oscillation's phase: the comparison sees the phase error projected at one phase */
 static constexpr PetscReal kBlownUp         = std::numeric_limits<PetscReal>::infinity();
 
 const char *const TSVSHMMSeparationChecks[] = {"off", "warn", "error", "TSVSHMMSeparationCheck", "TSVSHMM_SEPARATION_", nullptr};
@@ -2051,8 +2050,7 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
       }
     }
     PetscCall(VecCopy(vs->Xbase, ts->vec_sol));
-    vs->micro_cycles += counts.cycles;
-    for (size_t l = 0; l < counts.levelSteps.size(); ++l) vs->level_steps[l] += counts.levelSteps[l];
+    TSVSHMMAddCounts_Private(vs, counts);
     vs->error_estimate = E;
     vs->error_estimate_total += E;
     vs->adapt_accepted++;

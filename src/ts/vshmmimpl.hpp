@@ -189,14 +189,20 @@ PETSC_INTERN PetscErrorCode TSVSHMMAddSplit_Private(TS_VSHMM *, PetscInt, PetscR
 PETSC_INTERN PetscErrorCode TSVSHMMWrittenComponents_Private(TS_VSHMM *, PetscInt, PetscInt, PetscReal, Vec); /* mask = 0, then += 1 on every component splits [first, end) write */
 PETSC_INTERN PetscErrorCode TSVSHMMCreateSchedule_Private(TS, PetscReal, std::unique_ptr<vshmm::MesoscopicSchedule> &);
 PETSC_INTERN PetscErrorCode TSVSHMMRunMacroStep_Private(TS, const vshmm::MesoscopicSchedule &, PetscReal, PetscReal, Vec, vshmm::MacroStepCounts *);
+/* a macro step's micro cycles and level steps added to the statistics */
+static inline void TSVSHMMAddCounts_Private(TS_VSHMM *vs, const vshmm::MacroStepCounts &counts)
+{
+  vs->micro_cycles += counts.cycles;
+  for (size_t l = 0; l < counts.levelSteps.size(); ++l) vs->level_steps[l] += counts.levelSteps[l];
+}
 PETSC_INTERN PetscErrorCode TSVSHMMGetLevelEvent_Private(PetscInt, PetscLogEvent *);
 PETSC_INTERN PetscErrorCode TSVSHMMResetLevelEvents_Private(void);
 /* vshmmstability.cpp: spectra of the levels, the stability check */
 PETSC_INTERN PetscErrorCode TSVSHMMCheckStability_Private(TS);
 PETSC_INTERN PetscErrorCode TSVSHMMLevelSpectra_Private(TS);
 PETSC_INTERN PetscErrorCode TSVSHMMLevelOwnRates_Private(TS);
-PETSC_INTERN PetscErrorCode TSVSHMMLevelOwnSlowest_Private(TS, PetscInt, PetscReal *);
-PETSC_INTERN PetscErrorCode TSVSHMMFastQuantities_Private(TS, PetscReal, Vec, PetscReal, PetscInt *, PetscInt *, PetscReal *, PetscReal *); /* sampled quantities a faster level moves on its own scale */ /* the slowest own rate of a level at ts->vec_sol (component splits; 0 otherwise), not stored */
+PETSC_INTERN PetscErrorCode TSVSHMMLevelOwnSlowest_Private(TS, PetscInt, PetscReal *);                                                      /* the slowest own rate of a level at ts->vec_sol (component splits; 0 otherwise), not stored */
+PETSC_INTERN PetscErrorCode TSVSHMMFastQuantities_Private(TS, PetscReal, Vec, PetscReal, PetscInt *, PetscInt *, PetscReal *, PetscReal *); /* sampled quantities a faster level moves on its own scale */
 /* vshmmadapt.cpp: the separation check, accuracy control */
 PETSC_INTERN PetscErrorCode TSVSHMMCheckSeparation_Private(TS);
 PETSC_INTERN PetscErrorCode TSVSHMMLevelRadius_Private(TS, PetscInt, PetscReal *, PetscReal *, PetscReal *);

@@ -1213,11 +1213,6 @@ TEST(VSHMMSeparation, AFastLevelAtAnUnstableEquilibriumIsSaid)
 // tol off at 1e-1 and 1e-2 with estimates of 0.9 of the tolerance, silently, and took 24 million
 // evaluations at 1e-3. Now the try's end state shows q moving along the fast level's own splits
 // about 500 times faster than the slow radius, swinging by tens of tolerances: no savings, said.
-void PhaseSlow(const void *, PetscReal, const PetscScalar *x, PetscScalar *f)
-{
-  f[0] = -x[0] + x[1] * x[1];
-  f[1] = f[2] = 0;
-}
 void PhaseFast(const void *, PetscReal, const PetscScalar *x, PetscScalar *f)
 {
   f[0] = 0;
@@ -1244,7 +1239,7 @@ PetscErrorCode SolvePhase(const char *options, bool phase, PetscReal T, AdaptRun
 {
   SplitProblem  p;
   PhaseObserved o{&p, phase, ripple};
-  p.terms = {PhaseSlow, PhaseFast};
+  p.terms = {DampedByXSlow, PhaseFast}; /* x' = -x + q^2: the slow split of the damped rotation above */
   return SolveObserving(options, p, {0.0, 1.0, 0.0}, {"slow", "fast"}, 0.1, T, run, SplitKind::Component, phase ? 2 : 1, PhaseObservables, &o);
 }
 
