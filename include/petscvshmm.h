@@ -88,7 +88,9 @@ PETSC_EXTERN const char *const TSVSHMMSeparationChecks[];
 .  adapt_calibrations - macro steps at which every parameter's error term was measured
 .  adapt_uncompared - accepted macro steps whose comparison was left out (nothing left to coarsen, the estimates far below their shares: the model's prediction stood in)
 .  adapt_layer_estimates - tries of the first macro step estimated again from a second comparison (an initial layer, where the error grows faster than the error model's terms)
--  adapt_single_rate_from - the time from which -ts_vshmm_adapt took no savings because the tolerance was out of reach with them (finer savings did not lower the estimate, a single-rate step did), -1 if it did not happen
+.  adapt_single_rate_from - the time from which -ts_vshmm_adapt took no savings because the tolerance was out of reach with them (finer savings did not lower the estimate, a single-rate step did), -1 if it did not happen
+.  global_estimate  - with -ts_vshmm_adapt_global_estimate, the error at the last sampled time estimated from the carried comparison (a second solution with every error term doubled), in the TS's weighted norm (1 = the tolerance); -1 without it
+-  global_estimate_max - the largest global_estimate of the run; -1 without it
 
    Level: intermediate
 
@@ -113,6 +115,8 @@ typedef struct {
   PetscInt64        adapt_uncompared;
   PetscInt64        adapt_layer_estimates;
   PetscReal         adapt_single_rate_from;
+  PetscReal         global_estimate;
+  PetscReal         global_estimate_max;
 } TSVSHMMStatistics;
 
 PETSC_EXTERN PetscErrorCode TSVSHMMInitializePackage(void);
@@ -138,6 +142,8 @@ PETSC_EXTERN PetscErrorCode TSVSHMMSetAdapt(TS, PetscBool);
 PETSC_EXTERN PetscErrorCode TSVSHMMGetAdapt(TS, PetscBool *);
 PETSC_EXTERN PetscErrorCode TSVSHMMSetAdaptSlowComponents(TS, PetscBool);
 PETSC_EXTERN PetscErrorCode TSVSHMMGetAdaptSlowComponents(TS, PetscBool *);
+PETSC_EXTERN PetscErrorCode TSVSHMMSetAdaptGlobalEstimate(TS, PetscBool);
+PETSC_EXTERN PetscErrorCode TSVSHMMGetAdaptGlobalEstimate(TS, PetscBool *);
 PETSC_EXTERN PetscErrorCode TSVSHMMSetObservables(TS, PetscInt, PetscErrorCode (*)(TS, PetscReal, Vec, PetscReal[], void *), void *);
 PETSC_EXTERN PetscErrorCode TSVSHMMSetScaleSeparations(TS, PetscInt, const PetscReal[]);
 PETSC_EXTERN PetscErrorCode TSVSHMMGetScaleSeparations(TS, PetscInt *, const PetscReal *[]);

@@ -260,6 +260,7 @@ static PetscErrorCode TSSetUp_VSHMM(TS ts)
                (int)vs->subintervals.size(), nscales, K);
     vs->subintervals_used = vs->subintervals;
   }
+  PetscCheck(!vs->adapt_global || vs->adapt, comm, PETSC_ERR_ARG_INCOMP, "-ts_vshmm_adapt_global_estimate (TSVSHMMSetAdaptGlobalEstimate()) needs -ts_vshmm_adapt (TSVSHMMSetAdapt()): the carried comparison doubles the error terms of the parameters the accuracy control chooses");
   PetscCheck(std::isfinite(ts->time_step) && ts->time_step > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "TSVSHMM: the TS time step (the sampling interval DeltaT) is %g: set a positive one with TSSetTimeStep() or -ts_dt", (double)ts->time_step);
   PetscCheck(vs->micro_dt == 0.0 || vs->micro_dt > kMinMicroStepFraction * ts->time_step, comm, PETSC_ERR_ARG_OUTOFRANGE, "-ts_vshmm_micro_dt (TSVSHMMSetMicroStep()) is %g, below the time resolution of the sampling interval DeltaT = %g: the micro step must exceed %g DeltaT",
              (double)vs->micro_dt, (double)ts->time_step, (double)kMinMicroStepFraction);
@@ -527,6 +528,9 @@ static PetscErrorCode TSSetFromOptions_VSHMM(TS ts, PetscOptionItems *PetscOptio
     PetscBool slow = vs->adapt_slow_components;
     PetscCall(VSHMMOptionsBool(PetscOptionsObject, obj, "-ts_vshmm_adapt_slow_components", "With observables, control the error of the slow components (written by the slowest splits only) too", "TSVSHMMSetAdaptSlowComponents", &slow, &set));
     if (set) PetscCall(TSVSHMMSetAdaptSlowComponents(ts, slow));
+    PetscBool global = vs->adapt_global;
+    PetscCall(VSHMMOptionsBool(PetscOptionsObject, obj, "-ts_vshmm_adapt_global_estimate", "With -ts_vshmm_adapt, carry a second solution with every error term doubled through the run: an estimate of the error at each sampled time (TSGetTimeError())", "TSVSHMMSetAdaptGlobalEstimate", &global, &set));
+    if (set) PetscCall(TSVSHMMSetAdaptGlobalEstimate(ts, global));
 
     TSVSHMMSeparationCheck sep = vs->check_separation;
     PetscCall(VSHMMOptionsEnum(PetscOptionsObject, obj, "-ts_vshmm_check_separation", "What to do where the scales are not separated", "TSVSHMMSetSeparationCheck", TSVSHMMSeparationChecks, &sep, &set));
@@ -624,6 +628,9 @@ static PetscErrorCode TSView_VSHMM(TS ts, PetscViewer viewer)
     PetscCall(PetscViewerASCIIPrintf(viewer, "  accuracy control (-ts_vshmm_adapt): %s; savings factors %s\n", tols, what.c_str()));
     PetscCall(PetscViewerASCIIPrintf(viewer, "    error estimate: last macro step %g, sum over the run %g (1 = the tolerance); %" PetscInt64_FMT " calibrations, %" PetscInt64_FMT " rejected macro steps, %" PetscInt64_FMT " split RHS evaluations for estimates and rejected steps\n",
                                      (double)vs->error_estimate, (double)vs->error_estimate_total, vs->adapt_calibrations, vs->adapt_rejections, vs->adapt_evaluations));
+    if (vs->adapt_global)
+      PetscCall(PetscViewerASCIIPrintf(viewer, "    global error estimate (-ts_vshmm_adapt_global_estimate, the carried comparison): %g at t = %g, largest %g over the run (1 = the tolerance)%s\n", (double)vs->global_estimate, (double)vs->carried_time,
+                                       (double)vs->global_estimate_max, vs->carried_restarts ? "; the comparison blew up and started again from the solution (the estimate counts the errors since)" : ""));
     if (vs->observables && vs->slow_count > 0)
       PetscCall(PetscViewerASCIIPrintf(viewer, "    with the observables, the %" PetscInt_FMT " slow component%s (written by the slowest splits only, -ts_vshmm_adapt_slow_components): %" PetscInt64_FMT " of the differences led by %s\n", vs->slow_count, vs->slow_count == 1 ? "" : "s", vs->slow_led, vs->slow_count == 1 ? "it" : "them"));
     else if (vs->observables && !vs->adapt_slow_components) PetscCall(PetscViewerASCIIPrintf(viewer, "    the observables only (-ts_vshmm_adapt_slow_components false)\n"));
@@ -902,6 +909,40 @@ static PetscErrorCode TSVSHMMGetAdaptSlowComponents_VSHMM(TS ts, PetscBool *flg)
   PetscFunctionReturn(0);
 }
 
+static PetscErrorCode TSVSHMMSetAdaptGlobalEstimate_VSHMM(TS ts, PetscBool flg)
+{
+  PetscFunctionBegin;
+  ((TS_VSHMM *)ts->data)->adapt_global = flg;
+  PetscCall(TSVSHMMInvalidateSetUp_Private(ts));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode TSVSHMMGetAdaptGlobalEstimate_VSHMM(TS ts, PetscBool *flg)
+{
+  PetscFunctionBegin;
+  *flg = ((TS_VSHMM *)ts->data)->adapt_global;
+  PetscFunctionReturn(0);
+}
+
+/* TSGetTimeError(): the carried comparison's difference from the solution at the last sampled
+   time, converted as its global estimate is (an estimate of the solution's error vector) */
+static PetscErrorCode TSGetTimeError_VSHMM(TS ts, PetscInt n, Vec *X)
+{
+  TS_VSHMM *vs = (TS_VSHMM *)ts->data;
+
+  PetscFunctionBegin;
+  PetscCheck(n == 0, PetscObjectComm((PetscObject)ts), PETSC_ERR_SUP, "TSVSHMM: TSGetTimeError() gives the estimate at the last sampled time only (n = 0), not n = %" PetscInt_FMT, n);
+  PetscCheck(vs->adapt_global, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_WRONGSTATE, "TSVSHMM: TSGetTimeError() needs -ts_vshmm_adapt_global_estimate (TSVSHMMSetAdaptGlobalEstimate()) with -ts_vshmm_adapt");
+  PetscCheck(X && *X, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_NULL, "TSVSHMM: TSGetTimeError() fills a vector the caller created (VecDuplicate() of the solution)");
+  if (!vs->Xcarried || vs->carried_time != ts->ptime) {
+    PetscCall(VecSet(*X, 0.0)); /* no macro step taken yet */
+    PetscFunctionReturn(0);
+  }
+  PetscCall(VecWAXPY(*X, -1.0, ts->vec_sol, vs->Xcarried));
+  PetscCall(VecScale(*X, vs->carried_factor));
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode TSVSHMMSetSeparationCheck_VSHMM(TS ts, TSVSHMMSeparationCheck check)
 {
   PetscFunctionBegin;
@@ -951,6 +992,8 @@ static PetscErrorCode TSVSHMMGetStatistics_VSHMM(TS ts, TSVSHMMStatistics *stats
   stats->adapt_uncompared       = vs->adapt_uncompared_total;
   stats->adapt_layer_estimates  = vs->adapt_layer_fits;
   stats->adapt_single_rate_from = vs->adapt_single_rate_from;
+  stats->global_estimate        = vs->adapt_global ? vs->global_estimate : -1;
+  stats->global_estimate_max    = vs->adapt_global ? vs->global_estimate_max : -1;
   PetscFunctionReturn(0);
 }
 
@@ -1004,6 +1047,8 @@ static PetscErrorCode TSVSHMMResetStatistics_VSHMM(TS ts)
   X(TSVSHMMSetObservables) \
   X(TSVSHMMSetAdaptSlowComponents) \
   X(TSVSHMMGetAdaptSlowComponents) \
+  X(TSVSHMMSetAdaptGlobalEstimate) \
+  X(TSVSHMMGetAdaptGlobalEstimate) \
   X(TSVSHMMSetScaleSeparations) \
   X(TSVSHMMGetScaleSeparations) \
   X(TSVSHMMSetSeparationCheck) \
@@ -1063,6 +1108,8 @@ $    h_j(t) = alpha_j dt K(Theta^{-1}(((t - t_n) mod P_j) / P_j)),   P_j = Delta
 .  -ts_vshmm_check_stability <true,false> - check the steps against the stability region at set-up (default true)
 .  -ts_vshmm_check_stability_interval <N> - also check every N macro steps (default 0: never)
 .  -ts_vshmm_adapt <true,false> - choose the micro step and savings factors not set from -ts_rtol, -ts_atol (default false)
+.  -ts_vshmm_adapt_slow_components <true,false> - with observables, control the slow components too (default true)
+.  -ts_vshmm_adapt_global_estimate <true,false> - with -ts_vshmm_adapt, estimate the error at each sampled time with a carried comparison (default false; `TSGetTimeError()`)
 .  -ts_vshmm_check_separation <off,warn,error> - what to do where the scales are not separated (default warn)
 .  -ts_vshmm_scale_separations <S1,...,SK> - the separation of each pair of consecutive scales where the application knows it (default: from the levels' spectral radii)
 -  -ts_vshmm_warnings_viewer <stderr,none,ascii:file> - where the warnings go (default stderr)
@@ -1082,6 +1129,7 @@ PETSC_INTERN PetscErrorCode TSCreate_VSHMM(TS ts)
   ts->ops->destroy        = TSDestroy_VSHMM;
   ts->ops->setfromoptions = TSSetFromOptions_VSHMM;
   ts->ops->view           = TSView_VSHMM;
+  ts->ops->gettimeerror   = TSGetTimeError_VSHMM;
   ts->default_adapt_type  = TSADAPTNONE;
   ts->usessnes            = PETSC_FALSE;
   ts->data                = new TS_VSHMM();

@@ -971,6 +971,7 @@ PetscErrorCode TSVSHMMAdaptReset_Private(TS ts)
 
   PetscFunctionBegin;
   PetscCall(VecDestroy(&vs->Xtrial));
+  PetscCall(VecDestroy(&vs->Xcarried));
   PetscCall(VecDestroy(&vs->Xbase));
   PetscCall(VecDestroy(&vs->slow_mask));
   vs->slow_count              = 0;
@@ -996,6 +997,11 @@ PetscErrorCode TSVSHMMAdaptReset_Private(TS ts)
   vs->adapt_prev_ratio       = PETSC_MAX_REAL;
   vs->adapt_uncompared       = 0;
   vs->floor_warned           = PETSC_FALSE;
+  vs->global_warned          = PETSC_FALSE;
+  vs->carried_time           = PETSC_MIN_REAL;
+  vs->global_estimate        = 0;
+  vs->global_estimate_max    = 0;
+  vs->carried_restarts       = 0;
   vs->adapt_floor_dt         = 0;
   vs->adapt_single_rate_from = -1;
   vs->adapt_end              = PETSC_MIN_REAL;
@@ -1277,6 +1283,73 @@ static PetscReal Estimate(const vshmm::ErrorModel &model, const vshmm::AdaptPara
   PetscReal changes = 0;
   for (int i = 0; i <= (int)model.c.size(); ++i) changes += PetscAbsReal(model.term(q, i) - model.term(p, i));
   return changes > 0 ? d * before / changes : d;
+}
+
+/* The carried comparison (TSVSHMMSetAdaptGlobalEstimate()): a second solution, started with the
+   run and advanced after each accepted macro step over the same interval with that step's
+   comparison parameters (every error term doubled, as Compare() takes them). Its difference from
+   the solution is what the two runs' errors have become by the sampled time, propagated by the
+   dynamics (damped by a dissipative slow equation, grown by a shear: an amplitude error that shifts
+   a frequency), converted with the error model as a step's comparison is: an estimate of the error
+   at the sampled time, where the steps' own estimates sum local ones. One comparison run per macro
+   step more (8-77% more work on the suite of docs/accuracy.md). */
+static PetscErrorCode CarryComparison(TS ts, const vshmm::AdaptParameters &p, PetscReal t0, PetscReal DeltaT)
+{
+  TS_VSHMM                                  *vs = (TS_VSHMM *)ts->data;
+  std::unique_ptr<vshmm::MesoscopicSchedule> schedule;
+  const PetscInt                             saved_split = vs->nonfinite_split;
+  const PetscReal                            saved_time  = vs->nonfinite_time;
+  PetscReal                                  start, D;
+
+  PetscFunctionBegin;
+  if (!vs->Xcarried) PetscCall(VecDuplicate(ts->vec_sol, &vs->Xcarried));
+  PetscCall(VecNorm(vs->X0, NORM_1, &start));
+  if (vs->carried_time != t0 || start != vs->carried_norm) { /* a new run, or a solution changed between steps: started again from it */
+    PetscCall(VecCopy(vs->X0, vs->Xcarried));
+    vs->global_estimate = 0;
+  }
+  vshmm::AdaptParameters q = Comparison(ts, p, vshmm::termsScaled(p, 2.0, vs->tableau->order));
+  if (!(q.microStep > p.microStep * 1.01 || vshmm::cycleLength(q) > vshmm::cycleLength(p) * 1.01)) q = vshmm::coarsened(p, 0, kFinerComparison);
+  PetscCall(Schedule(ts, q, schedule));
+  vs->counting = TS_VSHMM::COUNT_ADAPT;
+  PetscCall(TSVSHMMRunMacroStep_Private(ts, *schedule, t0, DeltaT, vs->Xcarried, nullptr));
+  vs->counting        = TS_VSHMM::COUNT_STEPS;
+  vs->nonfinite_split = saved_split;
+  vs->nonfinite_time  = saved_time;
+  /* the difference as the steps' comparisons measure it, without touching their record */
+  const std::vector<PetscReal> diff = vs->obs_diff;
+  const PetscBool              last = vs->slow_last;
+  const PetscInt64             led  = vs->slow_led;
+  PetscCall(ObservableDifference(ts, t0 + DeltaT, ts->vec_sol, vs->Xcarried, &D));
+  vs->obs_diff  = diff;
+  vs->slow_last = last;
+  vs->slow_led  = led;
+  PetscReal carried, solution;
+  PetscCall(VecNorm(vs->Xcarried, NORM_1, &carried));
+  PetscCall(VecNorm(ts->vec_sol, NORM_1, &solution));
+  vs->carried_time = t0 + DeltaT;
+  vs->carried_norm = solution;
+  if (!std::isfinite(D) || !(carried <= kBlowUpGrowth * (solution + start))) {
+    /* the doubled terms are unstable here (a comparison's steps at the edge of a stability region
+       the solution's stay inside): no estimate from it; it starts again from the solution, and the
+       estimate counts from there */
+    PetscCall(VecCopy(ts->vec_sol, vs->Xcarried));
+    vs->carried_restarts++;
+    PetscCall(PetscInfo(ts, "Adapt: the carried comparison blew up at t = %g: started again from the solution (the global estimate keeps %g)\n", (double)(t0 + DeltaT), (double)vs->global_estimate));
+    PetscFunctionReturn(0);
+  }
+  const PetscReal factor  = Estimate(vs->adapt_model, p, q, 1.0);
+  vs->carried_factor      = std::isfinite(factor) && factor > 0 ? factor : 1.0;
+  vs->global_estimate     = D * vs->carried_factor;
+  vs->global_estimate_max = PetscMax(vs->global_estimate_max, vs->global_estimate);
+  PetscCall(
+    PetscInfo(ts, "Adapt: the carried comparison at t = %g: global estimate %g (difference %g, factor %g); the macro steps' estimates sum to %g\n", (double)(t0 + DeltaT), (double)vs->global_estimate, (double)D, (double)vs->carried_factor, (double)vs->error_estimate_total));
+  if (!vs->global_warned && !(vs->global_estimate <= kWarn)) {
+    vs->global_warned = PETSC_TRUE;
+    PetscCall(TSVSHMMWarn_Private(ts, "TSVSHMM warning (-ts_vshmm_adapt_global_estimate): at t = %g the carried comparison estimates the error of the sampled %s at %g times the tolerance (the macro steps' own estimates sum to %g): errors made in earlier macro steps grew in later ones (an amplitude error that shifts a frequency, an unstable slow equation), or the savings move what the comparisons do not measure. The tolerance is not met. Tighten -ts_rtol/-ts_atol, put the tolerance on slow quantities (TSVSHMMSetObservables()), or use a single-rate TS type. This warning is given once per solve.\n", (double)(t0 + DeltaT), vs->observables ? "observables" : "state",
+                                  (double)vs->global_estimate, (double)vs->error_estimate_total));
+  }
+  PetscFunctionReturn(0);
 }
 
 /* The error model's split between the terms: one comparison run per parameter, the micro step
@@ -2059,6 +2132,7 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
       vs->adapt_signed.resize(vs->nobservables, 0.0);
       for (PetscInt i = 0; i < vs->nobservables; ++i) vs->adapt_signed[i] += vs->step_signed[i] * E / d;
     }
+    if (vs->adapt_global) PetscCall(CarryComparison(ts, p, t0, DeltaT));
     vs->adapt_since_calibration++;
     vs->savings_used     = vshmm::savingsFromTimeRatios(p.ratios); /* what this step used (for view and getters) */
     vs->adapt_used       = p;

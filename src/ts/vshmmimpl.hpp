@@ -52,6 +52,7 @@ struct TS_VSHMM {
   PetscErrorCode (*observables)(TS, PetscReal, Vec, PetscReal[], void *) = nullptr;
   void       *observables_ctx                                            = nullptr;
   PetscBool   adapt_slow_components                                      = PETSC_TRUE;  // with observables, the components only the slowest level's splits write are controlled too
+  PetscBool   adapt_global                                               = PETSC_FALSE; // carry a comparison through the run: an estimate of the global error (TSVSHMMSetAdaptGlobalEstimate())
   PetscViewer warnings                                                   = nullptr;     // where the warnings go (NULL: PETSC_STDERR)
   PetscBool   warnings_none                                              = PETSC_FALSE; // no warnings at all (TSVSHMMSetWarningsViewer(ts, NULL))
 
@@ -123,15 +124,22 @@ struct TS_VSHMM {
   PetscReal              adapt_single_rate_from = -1;             // the start of the macro step from which the tolerance left no savings (-1: none)
   PetscReal              adapt_end              = PETSC_MIN_REAL; // the end of the last accepted macro step (a macro step that starts before it starts a new run)
   Vec                    Xtrial = nullptr, Xbase = nullptr;
-  Vec                    slow_mask  = nullptr;     // 1 on the slow components (written by the slowest level's splits only) where they are controlled with the observables
-  PetscInt               slow_count = 0;           // their number (global)
-  PetscInt64             slow_led   = 0;           // differences in which they led (statistics)
-  PetscBool              slow_last  = PETSC_FALSE; // they led the last difference
-  PetscBool              step_slow  = PETSC_FALSE; // they led the last comparison of the step being taken
-  PetscReal              finer_term = 0;           // the last calibration's micro step term measured from the finer side and counted (0: none)
-  std::vector<Vec>       radius_vecs;              // the power method's vector of each level (TSVSHMMLevelRadius_Private())
-  PetscReal              radius_baseline = 0;      // its radius at the levels' last full spectra (adapt)
-  PetscInt               slow_steps      = 0;      // accepted steps whose estimate they led
+  Vec                    Xcarried        = nullptr;                    // the carried comparison: a second solution, every error term doubled, from the run's start (adapt_global)
+  PetscReal              carried_time    = PETSC_MIN_REAL;             // the time it has reached (a macro step from another time, or from a changed state, starts it again)
+  PetscReal              carried_norm    = 0;                          // the 1-norm of the solution it was compared with there
+  PetscReal              carried_factor  = 1;                          // the error model's conversion of its difference into an error estimate
+  PetscReal              global_estimate = 0, global_estimate_max = 0; // that estimate at the last sampled time, the largest of the run (tolerance units)
+  PetscBool              global_warned    = PETSC_FALSE;               // told that it exceeds the tolerance
+  PetscInt               carried_restarts = 0;                         // times it blew up and started again from the solution
+  Vec                    slow_mask        = nullptr;                   // 1 on the slow components (written by the slowest level's splits only) where they are controlled with the observables
+  PetscInt               slow_count       = 0;                         // their number (global)
+  PetscInt64             slow_led         = 0;                         // differences in which they led (statistics)
+  PetscBool              slow_last        = PETSC_FALSE;               // they led the last difference
+  PetscBool              step_slow        = PETSC_FALSE;               // they led the last comparison of the step being taken
+  PetscReal              finer_term       = 0;                         // the last calibration's micro step term measured from the finer side and counted (0: none)
+  std::vector<Vec>       radius_vecs;                                  // the power method's vector of each level (TSVSHMMLevelRadius_Private())
+  PetscReal              radius_baseline = 0;                          // its radius at the levels' last full spectra (adapt)
+  PetscInt               slow_steps      = 0;                          // accepted steps whose estimate they led
   std::vector<PetscReal> obs_a, obs_b;
   std::vector<PetscReal> obs_diff;                 // the last ObservableDifference, signed and weighted, per observable
   std::vector<PetscReal> step_signed;              // that of the last comparison of the step being taken

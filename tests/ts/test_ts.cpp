@@ -784,6 +784,8 @@ TEST(VSHMMBadInput, EachBadSettingIsAClearError)
     {"-ts_vshmm_splits ,slow,medium,fast", 3, "-ts_vshmm_splits ,slow,medium,fast has an empty item"},
     {"-ts_vshmm_splits fast", 3, "-ts_vshmm_splits needs at least two scales"},
     {"-ts_vshmm_splits SLOW,medium,fast", 3, "Unknown split 'SLOW'"},
+    {"-ts_vshmm_adapt_global_estimate", 3, "-ts_vshmm_adapt_global_estimate (TSVSHMMSetAdaptGlobalEstimate()) needs -ts_vshmm_adapt (TSVSHMMSetAdapt())"},
+    {"-ts_vshmm_adapt_global_estimate maybe -ts_vshmm_adapt", 3, "-ts_vshmm_adapt_global_estimate maybe: Unknown logical value: maybe; the option takes true or false"},
     {"-ts_vshmm_check_stability maybe", 3, "-ts_vshmm_check_stability maybe: Unknown logical value: maybe; the option takes true or false"},
     {"-ts_vshmm_check_stability_interval -1", 3, "-ts_vshmm_check_stability_interval takes 0 (never) or a number of macro steps >= 1"},
     {"-ts_vshmm_check_stability_interval two", 3, "-ts_vshmm_check_stability_interval two: Input string two has no integer value"},
