@@ -701,9 +701,8 @@ PetscErrorCode TSVSHMMGetAdaptSlowComponents(TS ts, PetscBool *flg)
    run per macro step (5-77% more split evaluations on the measured problems). Its reliability is
    measured in docs/accuracy.md (section 21): it saw a phase drift the steps' estimates missed
    (5.6 tolerances off, estimated 6.9, the steps' sum 0.34) and follows the error over time where
-   their sum only grows, but it is not a bound: below half the true error at 5 of 102 sampled
-   times of the measured suite and in 11 of 39 outside runs (their sum: 7 and 2); both miss a slow
-   passage through a bifurcation.
+   their sum only grows, but it is not a bound: below half the true error at 10 of 102 sampled
+   times of the measured suite and in 11 of 39 outside runs (their sum: 7 and 2).
 
    Needs `TSVSHMMSetAdapt()`: the comparison doubles the error terms of the parameters the accuracy
    control chooses (an error at set-up otherwise).

@@ -124,10 +124,11 @@ struct TS_VSHMM {
   PetscReal              adapt_single_rate_from = -1;             // the start of the macro step from which the tolerance left no savings (-1: none)
   PetscReal              adapt_end              = PETSC_MIN_REAL; // the end of the last accepted macro step (a macro step that starts before it starts a new run)
   Vec                    Xtrial = nullptr, Xbase = nullptr;
-  Vec                    Xcarried        = nullptr;                    // the carried comparison: a second solution, every error term doubled, from the run's start (adapt_global)
-  PetscReal              carried_time    = PETSC_MIN_REAL;             // the time it has reached (a macro step from another time, or from a changed state, starts it again)
-  PetscReal              carried_norm    = 0;                          // the 1-norm of the solution it was compared with there
-  PetscReal              carried_factor  = 1;                          // the error model's conversion of its difference into an error estimate
+  Vec                    Xcarried       = nullptr;                     // the carried comparison: a second solution, every error term doubled, from the run's start (adapt_global)
+  PetscReal              carried_time   = PETSC_MIN_REAL;              // the time it has reached (a macro step from another time, or from a changed state, starts it again)
+  PetscReal              carried_norm   = 0;                           // the 1-norm of the solution it was compared with there
+  PetscReal              carried_factor = 1;                           // the error model's conversion of its difference into an error estimate
+  PetscReal              carried_fsum = 0, carried_weight = 0;         // the steps' conversion factors weighed by their estimates, and the weights' sum
   PetscReal              global_estimate = 0, global_estimate_max = 0; // that estimate at the last sampled time, the largest of the run (tolerance units)
   PetscBool              global_warned    = PETSC_FALSE;               // told that it exceeds the tolerance
   PetscInt               carried_restarts = 0;                         // times it blew up and started again from the solution

@@ -2168,6 +2168,31 @@ TEST(VSHMMAdapt, ASolveBoundedByItsStepCountMeetsTheToleranceAtItsEnd)
   EXPECT_EQ(run.evaluations, timed.evaluations);
 }
 
+// The carried comparison converts each macro step's contribution as that step's own comparison
+// was: on x' = -y + sin 3t, y' = -(y - cos(t) sin x) / 1e-3 from (1, 0) at 1e-3 (x
+// observed) to t = 4, the step at t = 2 has a model that expects almost no change (its conversion
+// factor 14.6); applied to the whole carried difference (0.9) it read 13 tolerances and warned,
+// for a true error of 0.8. Weighed by the steps' estimates: within 2x of the true error at t = 4,
+// no warning.
+TEST(VSHMMAdapt, TheCarriedComparisonConvertsEachStepAsItsOwn)
+{
+  const double ref = ConvergedReference({StepCountSlow, StepCountFast}, nullptr, {1.0, 0.0}, 4, 1e-5, 2e-5, 1e-9);
+  SplitProblem p;
+  AdaptRun     run;
+  PetscMPIInt  rank;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  p.terms = {StepCountSlow, StepCountFast};
+  testing::internal::CaptureStderr();
+  const PetscErrorCode ierr = SolveObservingX0("-ts_vshmm_adapt -ts_vshmm_adapt_global_estimate -ts_rtol 1e-3 -ts_atol 1e-3", p, {1.0, 0.0}, {"slow", "fast"}, 0.1, 4, &run);
+  const std::string    err  = testing::internal::GetCapturedStderr();
+  ASSERT_EQ(ierr, 0);
+  const double error = std::abs(run.x[0] - ref) / (1e-3 * (1 + std::max(std::abs(ref), std::abs(run.x[0]))));
+  EXPECT_GT(run.stats.global_estimate, error / 2) << "true error " << error;
+  EXPECT_LT(run.stats.global_estimate, 2 * error) << "true error " << error;
+  EXPECT_LT(run.stats.global_estimate_max, 2) << "true error at 4 " << error;
+  if (rank == 0) EXPECT_EQ(err.find("-ts_vshmm_adapt_global_estimate"), std::string::npos) << err;
+}
+
 // A final time inside a macro step with -ts_exact_final_time interpolate: x' = -y + sin 9t (slow
 // {x}), y' = -(y - cos(t) sin x) / 1e-3 (fast {y}) from (1, 0) to t = 1.05, DeltaT = 0.1, at 1e-3.
 // The state at 1.05 is sampled by a macro step of 0.05 from the one at 1.0: x(1.05) within 1 tol
