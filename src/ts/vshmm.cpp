@@ -628,7 +628,8 @@ static PetscErrorCode TSView_VSHMM(TS ts, PetscViewer viewer)
     PetscCall(PetscViewerASCIIPrintf(viewer, "  accuracy control (-ts_vshmm_adapt): %s; savings factors %s\n", tols, what.c_str()));
     PetscCall(PetscViewerASCIIPrintf(viewer, "    error estimate: last macro step %g, sum over the run %g (1 = the tolerance); %" PetscInt64_FMT " calibrations, %" PetscInt64_FMT " rejected macro steps, %" PetscInt64_FMT " split RHS evaluations for estimates and rejected steps\n",
                                      (double)vs->error_estimate, (double)vs->error_estimate_total, vs->adapt_calibrations, vs->adapt_rejections, vs->adapt_evaluations));
-    if (vs->adapt_global)
+    if (vs->adapt_global && vs->carried_time == PETSC_MIN_REAL) PetscCall(PetscViewerASCIIPrintf(viewer, "    global error estimate (-ts_vshmm_adapt_global_estimate, the carried comparison): no macro step yet\n"));
+    else if (vs->adapt_global)
       PetscCall(PetscViewerASCIIPrintf(viewer, "    global error estimate (-ts_vshmm_adapt_global_estimate, the carried comparison): %g at t = %g, largest %g over the run (1 = the tolerance)%s\n", (double)vs->global_estimate, (double)vs->carried_time,
                                        (double)vs->global_estimate_max, vs->carried_restarts ? "; the comparison blew up and started again from the solution (the estimate counts the errors since)" : ""));
     if (vs->observables && vs->slow_count > 0)
@@ -1010,6 +1011,7 @@ static PetscErrorCode TSVSHMMResetStatistics_VSHMM(TS ts)
   vs->stability_warnings     = 0;
   vs->error_estimate         = 0;
   vs->error_estimate_total   = 0;
+  vs->global_estimate_max    = 0;
   vs->adapt_evaluations      = 0;
   vs->adapt_rejections       = 0;
   vs->adapt_calibrations     = 0;
