@@ -842,9 +842,9 @@ void LorenzFast(const void *, PetscReal, const PetscScalar *x, PetscScalar *f)
 // step's small amplitude error shifts the frequency (q^3), and the phase drifts by it for the rest
 // of the run: at tol 1e-1 the state ends 3.0 tolerances off at t = 2 while the steps' estimates
 // sum to 0.38 (docs/accuracy.md section 21). The carried comparison
-// (-ts_vshmm_adapt_global_estimate) sees it: its estimate is within 2x of the true error, the
-// warning says the tolerance is not met, TSGetTimeError() gives an error vector of the true error's
-// size, and the option changes nothing else in the run.
+// (-ts_vshmm_adapt_global_estimate) sees it: far above 4 times the steps' sum, it shrinks the later
+// steps' shares (1.8 tolerances off), its estimate is within 2x of that error, the warning says the
+// tolerance is not met, and TSGetTimeError() gives an error vector of the true error's size.
 void DuffingSlow(const void *, PetscReal, const PetscScalar *x, PetscScalar *f)
 {
   f[0] = -x[0] + x[1] * x[1];
@@ -909,28 +909,32 @@ TEST(VSHMMAdapt, TheCarriedComparisonSeesAPhaseDriftTheStepsDoNot)
   ASSERT_EQ(ierr, 0);
   ASSERT_EQ(carried.x.size(), 3u);
   ASSERT_EQ(carried.error.size(), 3u);
-  // the weighted error of the state, as TSErrorWeightedNorm() weighs it (2-norm, rtol = atol = tol)
-  double sum = 0, dot = 0, n1 = 0, n2 = 0;
-  for (int i = 0; i < 3; ++i) {
-    const double w = tol + tol * std::max(std::abs(carried.x[i]), std::abs(ref[i])), e = carried.x[i] - ref[i];
-    sum += (e / w) * (e / w);
-    dot += e * carried.error[i], n1 += e * e, n2 += carried.error[i] * carried.error[i];
-  }
-  const double error = std::sqrt(sum / 3);
-  EXPECT_GT(error, 2.0) << "the drift this test is about is gone: the steps' estimates sum to " << carried.stats.error_estimate_total;
-  EXPECT_LT(carried.stats.error_estimate_total, error / 3);
+  // the weighted error of a state, as TSErrorWeightedNorm() weighs it (2-norm, rtol = atol = tol)
+  const auto weighted = [&](const std::vector<PetscReal> &x) {
+    double sum = 0;
+    for (int i = 0; i < 3; ++i) {
+      const double w = tol + tol * std::max(std::abs(x[i]), std::abs(ref[i])), e = x[i] - ref[i];
+      sum += (e / w) * (e / w);
+    }
+    return std::sqrt(sum / 3);
+  };
+  const double before = weighted(plain.x), error = weighted(carried.x);
+  EXPECT_GT(before, 2.0) << "the drift this test is about is gone: the steps' estimates sum to " << plain.stats.error_estimate_total;
+  EXPECT_LT(plain.stats.error_estimate_total, before / 3);
+  EXPECT_LT(error, 0.75 * before) << "the later steps were not tightened";
   EXPECT_GT(carried.stats.global_estimate, error / 2) << "true error " << error;
   EXPECT_LT(carried.stats.global_estimate, 2 * error) << "true error " << error;
   EXPECT_GE(carried.stats.global_estimate_max, carried.stats.global_estimate);
-  /* the vector's size; its direction is rough at a phase error this large (0.8 rad: the doubled
-     drift's chord turns with it; cosine 0.46 here) */
+  double dot = 0, n1 = 0, n2 = 0;
+  for (int i = 0; i < 3; ++i) {
+    const double e = carried.x[i] - ref[i];
+    dot += e * carried.error[i], n1 += e * e, n2 += carried.error[i] * carried.error[i];
+  }
+  /* the vector's size; its direction is rough at a phase error this large */
   EXPECT_GT(std::sqrt(n2), 0.5 * std::sqrt(n1)) << "TSGetTimeError() " << carried.error[0] << " " << carried.error[1] << " " << carried.error[2] << ", true error " << carried.x[0] - ref[0] << " " << carried.x[1] - ref[1] << " " << carried.x[2] - ref[2];
   EXPECT_LT(std::sqrt(n2), 2 * std::sqrt(n1));
   EXPECT_GT(dot, 0);
   if (rank == 0) EXPECT_NE(err.find("TSVSHMM warning (-ts_vshmm_adapt_global_estimate): at t = "), std::string::npos) << err;
-  // the option only adds the carried comparison's work
-  for (int i = 0; i < 3; ++i) EXPECT_EQ(plain.x[i], carried.x[i]);
-  EXPECT_EQ(plain.stats.error_estimate_total, carried.stats.error_estimate_total);
   EXPECT_GT(carried.evaluations, plain.evaluations);
   EXPECT_EQ(plain.stats.global_estimate, -1);
 }
@@ -2191,6 +2195,10 @@ TEST(VSHMMAdapt, TheCarriedComparisonConvertsEachStepAsItsOwn)
   EXPECT_LT(run.stats.global_estimate, 2 * error) << "true error " << error;
   EXPECT_LT(run.stats.global_estimate_max, 2) << "true error at 4 " << error;
   if (rank == 0) EXPECT_EQ(err.find("-ts_vshmm_adapt_global_estimate"), std::string::npos) << err;
+  AdaptRun plain; /* its estimate within 4 times the steps' sum: the option only measures, the run is the same */
+  ASSERT_EQ(SolveObservingX0("-ts_vshmm_adapt -ts_rtol 1e-3 -ts_atol 1e-3 -ts_vshmm_warnings_viewer none", p, {1.0, 0.0}, {"slow", "fast"}, 0.1, 4, &plain), 0);
+  EXPECT_EQ(plain.x[0], run.x[0]);
+  EXPECT_EQ(plain.evaluations, run.evaluations);
 }
 
 // A final time inside a macro step with -ts_exact_final_time interpolate: x' = -y + sin 9t (slow
