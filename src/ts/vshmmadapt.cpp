@@ -1129,7 +1129,8 @@ static PetscReal OwnStepBudget(TS, PetscReal);
 
 /* A macro step's share of the tolerance (OwnStepBudget()), shrunk where the carried comparison
    (CarryComparison()) shows the errors grown by the dynamics far beyond the steps' own: its
-   estimate above kAmplified times the sum of the steps' estimates (not the estimate's noise: on the
+   estimate above kAmplified times the sum of the steps' estimates since it started (carried_weight;
+   not the statistics' sum, which TSVSHMMResetStatistics() zeroes) (not the estimate's noise: on the
    oscillators and every problem of docs/accuracy.md it stays within 4 times it) and above the part
    of the tolerance a drift growing as the square of the time allows by the step's end (a phase
    driven by accumulated amplitude errors: the Duffing oscillator's state). The share shrinks by
@@ -1141,7 +1142,7 @@ static PetscReal StepBudget(TS ts, PetscReal DeltaT)
   TS_VSHMM       *vs  = (TS_VSHMM *)ts->data;
   const PetscReal own = OwnStepBudget(ts, DeltaT), span = RunSpan(ts);
 
-  if (vs->adapt_global && vs->carried_time == ts->ptime && span > 0 && vs->global_estimate > kAmplified * vs->error_estimate_total) {
+  if (vs->adapt_global && vs->carried_time == ts->ptime && span > 0 && vs->global_estimate > kAmplified * vs->carried_weight) {
     const PetscReal done = PetscMin(1.0, (ts->ptime + DeltaT - vs->adapt_tstart) / span), allowed = kSafety * done * done;
     if (vs->global_estimate > allowed) return PetscMax(own * allowed / vs->global_estimate, kMinGlobalScale * own);
   }
@@ -1361,6 +1362,8 @@ static PetscErrorCode CarryComparison(TS ts, const vshmm::AdaptParameters &p, Pe
        the solution's stay inside): no estimate from it; it starts again from the solution, and the
        estimate counts from there */
     PetscCall(VecCopy(ts->vec_sol, vs->Xcarried));
+    vs->carried_weight = 0;
+    vs->carried_fsum   = 0;
     vs->carried_restarts++;
     PetscCall(PetscInfo(ts, "Adapt: the carried comparison blew up at t = %g: started again from the solution (the global estimate keeps %g)\n", (double)(t0 + DeltaT), (double)vs->global_estimate));
     PetscFunctionReturn(0);
