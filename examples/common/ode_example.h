@@ -411,8 +411,11 @@ static PetscErrorCode OdeExampleReport(OdeExample *ex, TS ts, const PetscReal v[
       PetscCall(PetscPrintf(PETSC_COMM_WORLD, "note: statistics count %lld split evaluations (%lld for checks, %lld for accuracy control), the split functions counted %lld\n", (long long)nevals, (long long)stats.stability_evaluations,
                             (long long)stats.adapt_evaluations, (long long)ex->nsplit));
     PetscCall(TSVSHMMGetAdapt(ts, &adapt));
-    if (adapt)
+    if (adapt) {
       PetscCall(PetscPrintf(PETSC_COMM_WORLD, "adapt: error_estimate %.3e (sum over the run; 1 = the tolerance) estimation_evaluations %lld rejections %lld\n", (double)stats.error_estimate_total, (long long)stats.adapt_evaluations, (long long)stats.adapt_rejections));
+      if (stats.global_estimate >= 0) /* -ts_vshmm_adapt_global_estimate */
+        PetscCall(PetscPrintf(PETSC_COMM_WORLD, "adapt: global_estimate %.3e (the carried comparison at the last sampled time; largest %.3e)\n", (double)stats.global_estimate, (double)stats.global_estimate_max));
+    }
   } else {
     /* full-field evaluations, plus the split calls of types that use the splits (e.g. mprk) */
     nevals = ex->nrhs + ex->nsplit;
