@@ -7,9 +7,14 @@ tolerance met), and the work (split evaluations of the accepted steps plus estim
 rejected tries).
 
     python3 tools/adapt_suite.py BUILD_DIR [--only SUBSTRING ...] [--jobs N] [--sweep] [--states]
-                                           [--tols T1,T2,...] [-- extra options]
+                                           [--tols T1,T2,...] [--global] [-- extra options]
 
 --tols replaces the three tolerances (e.g. 3e-2,5e-3,2e-3 for the ones between them).
+
+--global runs every problem with -ts_vshmm_adapt_global_estimate and prints, at each sampled time,
+the weighted error against the reference, the carried comparison's global estimate and the sum of
+the steps' estimates so far (from -info), then how the two estimates compare with the error over
+all sampled times (docs/accuracy.md section 21).
 
 Options after `--` are passed to every run (to try a variant of the control). With --sweep, each
 problem is also run with fixed parameters over a grid (hand tuning: micro step and savings
@@ -103,6 +108,49 @@ def run(build, prob, tol, extra):
     return prob[0], tol, r[0] / tol, r[1], 'steps %d + estimates %d' % (r[2], r[3])
 
 
+def global_rows(build, prob, tol, extra):
+    """(t, weighted error, global estimate, sum of the steps' estimates) at the sampled times of a
+    run with -ts_vshmm_adapt_global_estimate, or a reason."""
+    name, exe, args, names, ref = prob
+    cmd = ['%s/%s' % (build, exe), '-ts_type', 'vshmm', '-no_timing', '-ts_vshmm_warnings_viewer', 'none'] + args + [
+        '-ts_vshmm_adapt', '-ts_rtol', '%g' % tol, '-ts_atol', '%g' % tol, '-ts_vshmm_adapt_global_estimate', '-info'] + extra
+    p = subprocess.run(cmd, capture_output=True, text=True)
+    if p.returncode:
+        return 'failed: ' + (p.stderr.strip().splitlines() or ['?'])[-1][:120]
+    est = {round(float(m.group(1)), 6): (float(m.group(2)), float(m.group(3)))
+           for m in re.finditer(r'carried comparison at t = (\S+): global estimate (\S+) .*sum to (\S+)', p.stdout)}
+    rows = []
+    for m in re.finditer(r'^t (\S+)' + ''.join(r' %s (\S+)' % q for q in names), p.stdout, re.M):
+        t = float(m.group(1))
+        for tr, r in ref.items():
+            if abs(t - tr) < 1e-9 and round(t, 6) in est:
+                e = math.sqrt(sum(((float(m.group(2 + i)) - r[i]) / (tol * (1 + abs(r[i])))) ** 2 for i in range(len(r))) / len(r))
+                rows.append((t, e) + est[round(t, 6)])
+    return rows
+
+
+def print_global(results):
+    print('| problem | tol | sampled times: t: true / global / sum of the steps\' estimates |')
+    print('|---|---|---|')
+    ratios = {'global': [], 'sum': []}
+    runs = {'global': [], 'sum': []}
+    for name, tol, rows in results:
+        if isinstance(rows, str) or not rows:
+            print('| %s | %g | %s |' % (name, tol, rows or 'no sampled time'))
+            continue
+        print('| %s | %g | %s |' % (name, tol, ', '.join('%g: %.2g / %.2g / %.2g' % r for r in rows)))
+        for k, i in (('global', 2), ('sum', 3)):
+            ratios[k] += [r[i] / r[1] for r in rows if r[1] > 0]
+            if max(r[1] for r in rows) > 0:
+                runs[k].append(max(r[i] for r in rows) / max(r[1] for r in rows))
+    for k in ('global', 'sum'):
+        v, w = sorted(ratios[k]), sorted(runs[k])
+        if not v:
+            continue
+        print('%s / true error at %d sampled times: median %.2f, within [1/2, 2] at %d, below 1/2 at %d; largest over a run below half the largest true error in %d of %d runs'
+              % (k, len(v), v[len(v) // 2], sum(0.5 <= x <= 2 for x in v), sum(x < 0.5 for x in v), sum(x < 0.5 for x in w), len(w)))
+
+
 def grid(prob):
     """Fixed configurations (label, options) of the hand-tuning sweep of a problem."""
     name = prob[0]
@@ -144,7 +192,7 @@ def main():
     if '--' in argv:
         i = argv.index('--')
         argv, extra = argv[:i], argv[i + 1:]
-    build, only, jobs, sweep, states, tols = argv[0], [], 2, False, False, (1e-1, 1e-2, 1e-3)
+    build, only, jobs, sweep, states, tols, glob = argv[0], [], 2, False, False, (1e-1, 1e-2, 1e-3), False
     i = 1
     while i < len(argv):
         if argv[i] == '--only':
@@ -159,6 +207,9 @@ def main():
         elif argv[i] == '--tols':
             tols = tuple(float(t) for t in argv[i + 1].split(','))
             i += 2
+        elif argv[i] == '--global':
+            glob = True
+            i += 1
         elif argv[i] == '--jobs':
             jobs = int(argv[i + 1])
             i += 2
@@ -166,6 +217,10 @@ def main():
             sys.exit('unknown argument ' + argv[i])
     probs = [p for p in problems(build, states) if not only or any(o in p[0] for o in only)]
     tasks = [(p, tol) for p in probs for tol in tols]
+    if glob:
+        with ThreadPoolExecutor(jobs) as pool:
+            print_global(list(pool.map(lambda a: (a[0][0], a[1], global_rows(build, a[0], a[1], extra)), tasks)))
+        return
     with ThreadPoolExecutor(jobs) as pool:
         results = list(pool.map(lambda a: run(build, a[0], a[1], extra), tasks))
     fixed = {}
