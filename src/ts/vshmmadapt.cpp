@@ -100,8 +100,11 @@ static constexpr PetscReal kMinGlobalScale  = 1e-3; /* a step's share shrinks by
 
 const char *const TSVSHMMSeparationChecks[] = {"off", "warn", "error", "TSVSHMMSeparationCheck", "TSVSHMM_SEPARATION_", nullptr};
 
-/* The difference of the observables (or of the states) of Xa and Xb in the TS's weighted norm. */
-static PetscErrorCode ObservableDifference(TS ts, PetscReal t, Vec Xa, Vec Xb, PetscReal *norm)
+/* The difference of the observables (or of the states) of Xa and Xb in the TS's weighted norm.
+   record: it is a comparison's, and its signs (vs->obs_diff) and which part led (vs->slow_last,
+   vs->slow_led) are kept for the step; PETSC_FALSE for measures that are no comparison (the
+   unaveraged field, the carried comparison), which leave that record alone. */
+static PetscErrorCode ObservableDifference(TS ts, PetscReal t, Vec Xa, Vec Xb, PetscReal *norm, PetscBool record = PETSC_TRUE)
 {
   TS_VSHMM *vs = (TS_VSHMM *)ts->data;
 
@@ -123,12 +126,12 @@ static PetscErrorCode ObservableDifference(TS ts, PetscReal t, Vec Xa, Vec Xb, P
   PetscCall(vs->observables(ts, t, Xa, vs->obs_a.data(), vs->observables_ctx));
   PetscCall(vs->observables(ts, t, Xb, vs->obs_b.data(), vs->observables_ctx));
   PetscReal sum = 0;
-  vs->obs_diff.assign(vs->nobservables, 0.0);
+  if (record) vs->obs_diff.assign(vs->nobservables, 0.0);
   for (PetscInt i = 0; i < vs->nobservables; ++i) {
     const PetscReal a = vs->obs_a[i], b = vs->obs_b[i];
     const PetscReal w = ts->atol + ts->rtol * PetscMax(PetscAbsReal(a), PetscAbsReal(b));
     const PetscReal e = (b - a) / w;
-    vs->obs_diff[i]   = std::isfinite(e) ? e : 0.0;
+    if (record) vs->obs_diff[i] = std::isfinite(e) ? e : 0.0;
     sum += std::isfinite(e) ? e * e : kBlownUp;
   }
   *norm = std::sqrt(sum / vs->nobservables);
@@ -157,10 +160,10 @@ static PetscErrorCode ObservableDifference(TS ts, PetscReal t, Vec Xa, Vec Xb, P
     PetscCall(VecRestoreArrayRead(Xa, &a));
     PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &ssum, 1, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)ts)));
     const PetscReal slow = std::sqrt(ssum / vs->slow_count);
-    vs->slow_last        = slow > *norm ? PETSC_TRUE : PETSC_FALSE;
+    if (record) vs->slow_last = slow > *norm ? PETSC_TRUE : PETSC_FALSE;
     if (slow > *norm) {
       *norm = slow;
-      vs->slow_led++;
+      if (record) vs->slow_led++;
     }
   }
   PetscFunctionReturn(0);
@@ -225,7 +228,9 @@ PetscErrorCode TSVSHMMAdaptSampleSchedule_Private(TS ts, PetscReal DeltaT, std::
 
 /* One macro step from X0 with parameters p into X; its work counted as adapt work. A non-finite
    result counts as an infinitely large difference, not as a fault of the solve. */
-static PetscErrorCode TrialStep(TS ts, const vshmm::AdaptParameters &p, PetscReal t0, PetscReal DeltaT, Vec X)
+/* A macro step with p from the state in X, in place, counted as estimation work; the solve's record
+   of a non-finite split output is left as it was (a run that only measures does not stop the solve). */
+static PetscErrorCode EstimationStep(TS ts, const vshmm::AdaptParameters &p, PetscReal t0, PetscReal DeltaT, Vec X)
 {
   TS_VSHMM                                  *vs = (TS_VSHMM *)ts->data;
   std::unique_ptr<vshmm::MesoscopicSchedule> schedule;
@@ -234,12 +239,20 @@ static PetscErrorCode TrialStep(TS ts, const vshmm::AdaptParameters &p, PetscRea
 
   PetscFunctionBegin;
   PetscCall(Schedule(ts, p, schedule));
-  PetscCall(VecCopy(vs->X0, X));
   vs->counting = TS_VSHMM::COUNT_ADAPT;
   PetscCall(TSVSHMMRunMacroStep_Private(ts, *schedule, t0, DeltaT, X, nullptr));
   vs->counting        = TS_VSHMM::COUNT_STEPS;
   vs->nonfinite_split = saved_split;
   vs->nonfinite_time  = saved_time;
+  PetscFunctionReturn(0);
+}
+
+/* A try or a comparison: the macro step with p from the step's start (vs->X0) into X. */
+static PetscErrorCode TrialStep(TS ts, const vshmm::AdaptParameters &p, PetscReal t0, PetscReal DeltaT, Vec X)
+{
+  PetscFunctionBegin;
+  PetscCall(VecCopy(((TS_VSHMM *)ts->data)->X0, X));
+  PetscCall(EstimationStep(ts, p, t0, DeltaT, X));
   PetscFunctionReturn(0);
 }
 
@@ -332,20 +345,14 @@ PetscErrorCode TSVSHMMAdaptUnaveraged_Private(TS ts)
     PetscCall(PetscInfo(ts, "Adapt: the fastest level oscillates (slowest frequency %g) but holds no part of the state to measure its unaveraged field with: it turns at least once per macro step\n", (double)omega));
     PetscFunctionReturn(0);
   }
-  const std::vector<PetscReal> diff = vs->obs_diff; /* ObservableDifference() records the comparisons' signs and which part led */
-  const PetscBool              last = vs->slow_last;
-  const PetscInt64             led  = vs->slow_led;
   PetscCall(VecDuplicate(ts->vec_sol, &Xs));
   for (Vec phase : vs->fastest_phase) {
     PetscReal d;
     PetscCall(VecWAXPY(Xs, ts->time_step, phase, ts->vec_sol));
-    PetscCall(ObservableDifference(ts, ts->ptime, ts->vec_sol, Xs, &d));
+    PetscCall(ObservableDifference(ts, ts->ptime, ts->vec_sol, Xs, &d, PETSC_FALSE));
     if (std::isfinite(d)) worst = PetscMax(worst, d);
   }
   PetscCall(VecDestroy(&Xs));
-  vs->obs_diff       = diff;
-  vs->slow_last      = last;
-  vs->slow_led       = led;
   vs->unaveraged     = worst;
   vs->unaveraged_max = PetscMax(vs->unaveraged_max, worst);
   PetscCall(PetscInfo(ts, "Adapt: a macro step that leaves the fastest level's oscillation (slowest frequency %g) unaveraged moves the observables by %g of the tolerance\n", (double)omega, (double)worst));
@@ -1201,6 +1208,13 @@ static vshmm::AdaptParameters Comparison(TS ts, const vshmm::AdaptParameters &p,
   return q;
 }
 
+/* Whether a comparison q of p is coarser in some parameter (its micro step or its cycle), not the
+   same run at every stability bound. */
+static bool Coarser(const vshmm::AdaptParameters &p, const vshmm::AdaptParameters &q)
+{
+  return q.microStep > p.microStep * 1.01 || vshmm::cycleLength(q) > vshmm::cycleLength(p) * 1.01;
+}
+
 /* Whether the comparison run (vs->Xtrial) blew up: not finite, or kBlowUpGrowth times larger than
    the step it is compared with (vs->Xbase) and its start (vs->X0). Both started from X0 with
    parameters that differ by a factor 2 in each error term; a finite but astronomically large
@@ -1229,7 +1243,7 @@ static PetscErrorCode Compare(TS ts, const vshmm::AdaptParameters &p, PetscReal 
   TS_VSHMM *vs = (TS_VSHMM *)ts->data;
   PetscFunctionBegin;
   *q = Comparison(ts, p, vshmm::termsScaled(p, 2.0, vs->tableau->order));
-  if (!(q->microStep > p.microStep * 1.01 || vshmm::cycleLength(*q) > vshmm::cycleLength(p) * 1.01)) {
+  if (!Coarser(p, *q)) {
     /* every parameter at its stability bound: no coarser run exists, and the same run would differ
        by nothing (an estimate of 0 that the choice would read as room to coarsen). Where the model
        has been measured the estimate is its prediction (no run: *d < 0); otherwise the comparison
@@ -1321,11 +1335,8 @@ static PetscReal Estimate(const vshmm::ErrorModel &model, const vshmm::AdaptPara
    step more (5-77% more work on the suite of docs/accuracy.md). */
 static PetscErrorCode CarryComparison(TS ts, const vshmm::AdaptParameters &p, PetscReal t0, PetscReal DeltaT, PetscReal E, PetscReal d)
 {
-  TS_VSHMM                                  *vs = (TS_VSHMM *)ts->data;
-  std::unique_ptr<vshmm::MesoscopicSchedule> schedule;
-  const PetscInt                             saved_split = vs->nonfinite_split;
-  const PetscReal                            saved_time  = vs->nonfinite_time;
-  PetscReal                                  start, D;
+  TS_VSHMM *vs = (TS_VSHMM *)ts->data;
+  PetscReal start, D;
 
   PetscFunctionBegin;
   if (!vs->Xcarried) PetscCall(VecDuplicate(ts->vec_sol, &vs->Xcarried));
@@ -1337,21 +1348,9 @@ static PetscErrorCode CarryComparison(TS ts, const vshmm::AdaptParameters &p, Pe
     vs->carried_fsum    = 0;
   }
   vshmm::AdaptParameters q = Comparison(ts, p, vshmm::termsScaled(p, 2.0, vs->tableau->order));
-  if (!(q.microStep > p.microStep * 1.01 || vshmm::cycleLength(q) > vshmm::cycleLength(p) * 1.01)) q = vshmm::coarsened(p, 0, kFinerComparison);
-  PetscCall(Schedule(ts, q, schedule));
-  vs->counting = TS_VSHMM::COUNT_ADAPT;
-  PetscCall(TSVSHMMRunMacroStep_Private(ts, *schedule, t0, DeltaT, vs->Xcarried, nullptr));
-  vs->counting        = TS_VSHMM::COUNT_STEPS;
-  vs->nonfinite_split = saved_split;
-  vs->nonfinite_time  = saved_time;
-  /* the difference as the steps' comparisons measure it, without touching their record */
-  const std::vector<PetscReal> diff = vs->obs_diff;
-  const PetscBool              last = vs->slow_last;
-  const PetscInt64             led  = vs->slow_led;
-  PetscCall(ObservableDifference(ts, t0 + DeltaT, ts->vec_sol, vs->Xcarried, &D));
-  vs->obs_diff  = diff;
-  vs->slow_last = last;
-  vs->slow_led  = led;
+  if (!Coarser(p, q)) q = vshmm::coarsened(p, 0, kFinerComparison);
+  PetscCall(EstimationStep(ts, q, t0, DeltaT, vs->Xcarried));
+  PetscCall(ObservableDifference(ts, t0 + DeltaT, ts->vec_sol, vs->Xcarried, &D, PETSC_FALSE)); /* measured as the comparisons are, outside their record */
   PetscReal carried, solution;
   PetscCall(VecNorm(vs->Xcarried, NORM_1, &carried));
   PetscCall(VecNorm(ts->vec_sol, NORM_1, &solution));
