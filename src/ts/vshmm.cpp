@@ -635,6 +635,8 @@ static PetscErrorCode TSView_VSHMM(TS ts, PetscViewer viewer)
     if (vs->observables && vs->slow_count > 0)
       PetscCall(PetscViewerASCIIPrintf(viewer, "    with the observables, the %" PetscInt_FMT " slow component%s (written by the slowest splits only, -ts_vshmm_adapt_slow_components): %" PetscInt64_FMT " of the differences led by %s\n", vs->slow_count, vs->slow_count == 1 ? "" : "s", vs->slow_led, vs->slow_count == 1 ? "it" : "them"));
     else if (vs->observables && !vs->adapt_slow_components) PetscCall(PetscViewerASCIIPrintf(viewer, "    the observables only (-ts_vshmm_adapt_slow_components false)\n"));
+    if (vs->lag_mask)
+      PetscCall(PetscViewerASCIIPrintf(viewer, "    a macro step's first comparison starts from the last one's end state on the %" PetscInt_FMT " component%s only faster levels write (%s; the lag of decaying faster levels): %" PetscInt64_FMT " so far\n", vs->lag_count, vs->lag_count == 1 ? "" : "s", vs->lag_by_values ? "seen from the fields' values" : "their index sets", vs->lag_inherited));
     for (size_t l = 0; l < vs->adapt_merged.size(); ++l)
       if (vs->adapt_merged[l] > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "    levels %d/%d: no savings between them (they are %.3g apart, less than 2, and the faster only decays)\n", (int)l, (int)l + 1, (double)vs->adapt_merged[l]));
     for (size_t l = 0; l < vs->adapt_phase.size(); ++l)

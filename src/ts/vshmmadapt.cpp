@@ -202,6 +202,109 @@ static PetscErrorCode SlowComponentsSetUp(TS ts)
   PetscFunctionReturn(0);
 }
 
+static bool FasterLevelsDecay(TS_VSHMM *);
+
+/* mask = 1 where faster != 0 and slowest == 0, else 0 (in place of faster); the global count of ones */
+static PetscErrorCode OnlyFaster(TS ts, Vec slowest, Vec faster, PetscInt *total)
+{
+  PetscScalar       *m;
+  const PetscScalar *w;
+  PetscInt           n, count = 0;
+
+  PetscFunctionBegin;
+  PetscCall(VecGetLocalSize(slowest, &n));
+  PetscCall(VecGetArray(faster, &m));
+  PetscCall(VecGetArrayRead(slowest, &w));
+  for (PetscInt i = 0; i < n; ++i) {
+    m[i] = (PetscRealPart(m[i]) != 0 && PetscRealPart(w[i]) == 0) ? 1.0 : 0.0;
+    count += PetscRealPart(m[i]) != 0 ? 1 : 0;
+  }
+  PetscCall(VecRestoreArrayRead(slowest, &w));
+  PetscCall(VecRestoreArray(faster, &m));
+  PetscCall(MPIU_Allreduce(&count, total, 1, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)ts)));
+  PetscFunctionReturn(0);
+}
+
+/* The components a comparison's end state is carried from into the next step's comparison
+   (ComparisonStart()): those the faster levels' splits write and no slowest split does (their
+   index sets). Where a slowest split is additive, every component is in its index set, and the
+   fields' values tell instead (LagComponentsFromValues(), where an end state is first carried in; the
+   dissipative example's -split_kind additive: each split returns a full-size term with its own
+   component only); only where the faster levels decay at the initial state (nothing is carried
+   where one oscillates). None with a single level. */
+static PetscErrorCode LagComponentsSetUp(TS ts)
+{
+  TS_VSHMM *vs = (TS_VSHMM *)ts->data;
+  Vec       slowest;
+  PetscInt  total = 0;
+
+  PetscFunctionBegin;
+  PetscCall(VecDestroy(&vs->lag_mask));
+  PetscCall(VecDestroy(&vs->lag_carried));
+  PetscCall(VecDestroy(&vs->lag_next));
+  vs->lag_valid = vs->lag_next_valid = vs->lag_by_values = PETSC_FALSE;
+  vs->lag_count                                          = 0;
+  vs->lag_inherited                                      = 0;
+  if (vs->level_end.size() < 2) PetscFunctionReturn(0);
+  PetscCall(VecDuplicate(ts->vec_sol, &vs->lag_mask));
+  PetscCall(VecDuplicate(ts->vec_sol, &slowest));
+  PetscCall(TSVSHMMWrittenComponents_Private(vs, 0, vs->level_end[0], ts->ptime, slowest));
+  PetscCall(TSVSHMMWrittenComponents_Private(vs, vs->level_end[0], (PetscInt)vs->splits.size(), ts->ptime, vs->lag_mask));
+  PetscCall(OnlyFaster(ts, slowest, vs->lag_mask, &total));
+  PetscCall(VecDestroy(&slowest));
+  vs->lag_count = total;
+  if (total == 0) {
+    PetscCall(VecDestroy(&vs->lag_mask));
+    vs->lag_by_values = FasterLevelsDecay(vs) ? PETSC_TRUE : PETSC_FALSE; /* the mask from the values, when first needed */
+  }
+  if (vs->lag_mask || vs->lag_by_values) {
+    PetscCall(VecDuplicate(ts->vec_sol, &vs->lag_carried));
+    PetscCall(VecDuplicate(ts->vec_sol, &vs->lag_next));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The components only faster levels write, from the fields' values at X (t): a faster level's own
+   splits nonzero, the slowest field zero; into lag_mask (created here), and the components where
+   lag_mask already was 0 stay 0. A component the slowest field writes at a later state leaves the
+   mask there (ComparisonStart()). Its evaluations count as -ts_vshmm_adapt's. */
+static PetscErrorCode LagComponentsFromValues(TS ts, PetscReal t, Vec X)
+{
+  TS_VSHMM               *vs       = (TS_VSHMM *)ts->data;
+  const TS_VSHMM::Counter counting = vs->counting;
+  Vec                     slowest, own, faster;
+
+  PetscFunctionBegin;
+  vs->counting = TS_VSHMM::COUNT_ADAPT;
+  PetscCall(VecDuplicate(X, &slowest));
+  PetscCall(TSVSHMMEvaluateLevel_Private(vs, 0, t, X, slowest));
+  if (!vs->lag_mask) {
+    PetscCall(VecDuplicate(X, &vs->lag_mask));
+    PetscCall(VecDuplicate(X, &own));
+    PetscCall(VecDuplicate(X, &faster));
+    PetscCall(VecSet(faster, 0.0));
+    for (PetscInt l = 1; l < (PetscInt)vs->level_end.size(); ++l) {
+      PetscCall(TSVSHMMEvaluateOwnSplits_Private(vs, l, t, X, own));
+      PetscCall(VecAbs(own));
+      PetscCall(VecAXPY(faster, 1.0, own));
+    }
+    PetscCall(VecCopy(faster, vs->lag_mask));
+    PetscCall(VecDestroy(&own));
+    PetscCall(VecDestroy(&faster));
+  }
+  vs->counting = counting;
+  PetscCall(OnlyFaster(ts, slowest, vs->lag_mask, &vs->lag_count));
+  PetscCall(VecDestroy(&slowest));
+  if (vs->lag_count == 0) { /* nothing to carry: none from now on */
+    PetscCall(VecDestroy(&vs->lag_mask));
+    PetscCall(VecDestroy(&vs->lag_carried));
+    PetscCall(VecDestroy(&vs->lag_next));
+    vs->lag_by_values = PETSC_FALSE;
+    vs->lag_valid     = PETSC_FALSE;
+  }
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode Schedule(TS ts, const vshmm::AdaptParameters &p, std::unique_ptr<vshmm::MesoscopicSchedule> &schedule)
 {
   TS_VSHMM *vs = (TS_VSHMM *)ts->data;
@@ -983,15 +1086,19 @@ PetscErrorCode TSVSHMMAdaptReset_Private(TS ts)
   PetscCall(VecDestroy(&vs->Xcarried));
   PetscCall(VecDestroy(&vs->Xbase));
   PetscCall(VecDestroy(&vs->slow_mask));
-  vs->slow_count              = 0;
-  vs->slow_steps              = 0;
-  vs->adapt_ready             = PETSC_FALSE;
-  vs->adapt_since_calibration = 0;
-  vs->adapt_calibrated        = PETSC_FALSE;
-  vs->adapt_calibrated_times  = 0;
-  vs->adapt_postponed         = PETSC_FALSE;
-  vs->no_separation           = PETSC_FALSE;
-  vs->separated_from          = -1;
+  PetscCall(VecDestroy(&vs->lag_mask));
+  PetscCall(VecDestroy(&vs->lag_carried));
+  PetscCall(VecDestroy(&vs->lag_next));
+  vs->lag_valid = vs->lag_next_valid = PETSC_FALSE;
+  vs->slow_count                     = 0;
+  vs->slow_steps                     = 0;
+  vs->adapt_ready                    = PETSC_FALSE;
+  vs->adapt_since_calibration        = 0;
+  vs->adapt_calibrated               = PETSC_FALSE;
+  vs->adapt_calibrated_times         = 0;
+  vs->adapt_postponed                = PETSC_FALSE;
+  vs->no_separation                  = PETSC_FALSE;
+  vs->separated_from                 = -1;
   vs->adapt_lost.clear();
   vs->lost_warned = PETSC_FALSE;
   vs->adapt_phase.clear();
@@ -1100,6 +1207,7 @@ PetscErrorCode TSVSHMMAdaptSetUp_Private(TS ts)
   PetscCall(VecDuplicate(ts->vec_sol, &vs->Xbase));
   PetscCall(SlowComponentsSetUp(ts));
   if (vs->spectra_time != ts->ptime || (PetscInt)vs->level_radius.size() != nscales) PetscCall(TSVSHMMLevelSpectra_Private(ts));
+  PetscCall(LagComponentsSetUp(ts));
   PetscCall(RadiusBaseline(ts));
   const PetscReal DeltaT = ts->time_step, tol = PetscMax(PetscMax(ts->rtol, ts->atol), 1e-12);
   vs->adapt_tstart = ts->ptime; /* the error budget and the micro step's amplitude bound run from here */
@@ -1232,13 +1340,51 @@ static PetscErrorCode ComparisonBlewUp(TS ts, PetscBool *blown)
   PetscFunctionReturn(0);
 }
 
-/* The comparison of the macro step just taken from X0 into Xbase with p: the same step with every
+/* The comparison's start: the step's start, and on the components only faster levels write
+   (LagComponentsSetUp()) the end state of the last accepted step's comparison carried in, as far as
+   this comparison's parameters change the error model's terms (|M(q) - M(p)| over that one's, at most
+   1). Where the faster levels only decay, savings slow their relaxation by the time ratios, and the
+   faster variables end a macro step behind their slow manifold by a lag that grows with the
+   ratios; the next step starts from it. Where that relaxation, slowed, lasts about a macro step
+   (the dissipative example at eps = 3e-3: the medium level's rate 2 xi / eps over r_0 = 80 against
+   DeltaT = 0.1), the step's error comes from the lag it inherits, which a comparison from the same
+   start shares: its estimates were 10 to 200 times below the steps' errors (2.1-3.0 tol, silently;
+   docs/accuracy.md section 22). A comparison that inherits its own lag measures it.
+   Only a step's first try inherits (`inherit`): a retry's finer parameters cannot change the lag
+   the solution starts from, and a comparison that kept inheriting the last step's found no
+   parameters that lowered its estimate (the dissipative example at eps = 1e-2, tol 1e-2: three
+   tries at one estimate, then a floor); the next step's first try measures the lag the retry left.
+   An oscillating faster level keeps a phase, not a lag: nothing is carried there. */
+static PetscErrorCode ComparisonStart(TS ts, const vshmm::AdaptParameters &p, const vshmm::AdaptParameters &q, PetscReal t0, PetscBool inherit, Vec X)
+{
+  TS_VSHMM *vs = (TS_VSHMM *)ts->data;
+  PetscReal norm;
+
+  PetscFunctionBegin;
+  PetscCall(VecCopy(vs->X0, X));
+  if (!inherit || !vs->lag_valid || !vs->lag_carried || vs->lag_time != t0 || !FasterLevelsDecay(vs)) PetscFunctionReturn(0);
+  PetscCall(VecNorm(vs->X0, NORM_1, &norm));
+  if (norm != vs->lag_norm) PetscFunctionReturn(0); /* the solution changed between the steps */
+  if (vs->lag_by_values) {                          /* the components from the values where first needed; one the slowest field writes here leaves them */
+    PetscCall(LagComponentsFromValues(ts, t0, vs->X0));
+    if (!vs->lag_mask) PetscFunctionReturn(0);
+    PetscCall(VecPointwiseMult(vs->lag_carried, vs->lag_carried, vs->lag_mask));
+  }
+  const PetscReal now = PetscAbsReal(vs->adapt_model.total(q) - vs->adapt_model.total(p)), then = PetscAbsReal(vs->adapt_model.total(vs->lag_q) - vs->adapt_model.total(vs->lag_p));
+  const PetscReal scale = (std::isfinite(now) && std::isfinite(then) && then > 0) ? PetscMin(1.0, now / then) : 1.0;
+  PetscCall(VecAXPY(X, scale, vs->lag_carried));
+  vs->lag_inherited++;
+  PetscCall(PetscInfo(ts, "Adapt: the comparison starts from the last one's end state on the %" PetscInt_FMT " components only faster levels write (scaled by %g)\n", vs->lag_count, (double)scale));
+  PetscFunctionReturn(0);
+}
+
+/* The comparison of the macro step just taken from X0 (ComparisonStart()) into Xbase with p: the same step with every
    error term doubled (vshmm::termsScaled). Under the model its difference d is the error of p
    (Estimate); the faster levels' phase at the sampling time makes it noisy (a factor 3 either way
    on the oscillators). A comparison that blew up (ComparisonBlewUp()) is tried again with the micro step
    of p; if that blew up too, d is infinite (no estimate: the step is redone with every parameter
    finer). */
-static PetscErrorCode Compare(TS ts, const vshmm::AdaptParameters &p, PetscReal t0, PetscReal DeltaT, PetscBool predict, vshmm::AdaptParameters *q, PetscReal *d)
+static PetscErrorCode Compare(TS ts, const vshmm::AdaptParameters &p, PetscReal t0, PetscReal DeltaT, PetscBool predict, PetscBool inherit, vshmm::AdaptParameters *q, PetscReal *d)
 {
   TS_VSHMM *vs = (TS_VSHMM *)ts->data;
   PetscFunctionBegin;
@@ -1257,7 +1403,9 @@ static PetscErrorCode Compare(TS ts, const vshmm::AdaptParameters &p, PetscReal 
     *q = vshmm::coarsened(p, 0, kFinerComparison);
   }
   PetscBool blown;
-  PetscCall(TrialStep(ts, *q, t0, DeltaT, vs->Xtrial));
+  vs->lag_next_valid = PETSC_FALSE;
+  PetscCall(ComparisonStart(ts, p, *q, t0, inherit, vs->Xtrial));
+  PetscCall(EstimationStep(ts, *q, t0, DeltaT, vs->Xtrial));
   PetscCall(ComparisonBlewUp(ts, &blown));
   if (blown && q->microStep > p.microStep) {
     /* the coarser micro step is unstable: the comparison takes p's micro step with the other
@@ -1267,7 +1415,8 @@ static PetscErrorCode Compare(TS ts, const vshmm::AdaptParameters &p, PetscReal 
     q->microStep = p.microStep;
     if (!(vshmm::cycleLength(*q) > vshmm::cycleLength(p) * 1.01)) *q = vshmm::coarsened(p, 0, kFinerComparison);
     PetscCall(PetscInfo(ts, "Adapt: the comparison with a coarser micro step blew up; comparing with dt %g, cycle %g\n", (double)q->microStep, (double)vshmm::cycleLength(*q)));
-    PetscCall(TrialStep(ts, *q, t0, DeltaT, vs->Xtrial));
+    PetscCall(ComparisonStart(ts, p, *q, t0, inherit, vs->Xtrial));
+    PetscCall(EstimationStep(ts, *q, t0, DeltaT, vs->Xtrial));
     PetscCall(ComparisonBlewUp(ts, &blown));
   }
   if (blown) {
@@ -1283,6 +1432,13 @@ static PetscErrorCode Compare(TS ts, const vshmm::AdaptParameters &p, PetscReal 
   }
   PetscCall(ObservableDifference(ts, t0 + DeltaT, vs->Xbase, vs->Xtrial, d));
   PetscCall(PetscInfo(ts, "Adapt: comparison dt %g, cycle %g: difference %g\n", (double)q->microStep, (double)vshmm::cycleLength(*q), (double)*d));
+  if (vs->lag_next) { /* its end state less the step's (on the faster levels' components once known), for the next step's comparison */
+    PetscCall(VecWAXPY(vs->lag_next, -1.0, vs->Xbase, vs->Xtrial));
+    if (vs->lag_mask) PetscCall(VecPointwiseMult(vs->lag_next, vs->lag_next, vs->lag_mask));
+    vs->lag_next_valid = PETSC_TRUE;
+    vs->lag_next_p     = p;
+    vs->lag_next_q     = *q;
+  }
   vs->step_signed = vs->obs_diff;
   vs->step_slow   = vs->slow_last; /* the calibrations and the layer's second comparison that may follow do not change it */
   PetscFunctionReturn(0);
@@ -1968,8 +2124,9 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
       PetscCall(PetscInfo(ts, "Adapt: macro step [%g, %g]: the fast variables ended it off their slow manifold (the field would move the state by more than %g times its norm and change in a macro step): compared\n", (double)t0, (double)t1, (double)kOffManifold));
     if (steady && !pinned)
       PetscCall(PetscInfo(ts, "Adapt: macro step [%g, %g]: at the cycle and micro step bounds, the last two estimates %g and %g of their shares: no comparison\n", (double)t0, (double)t1, (double)vs->adapt_prev_ratio, (double)vs->adapt_last_ratio));
+    vs->lag_next_valid = PETSC_FALSE;
     if (pinned || steady) d = -1;
-    else PetscCall(Compare(ts, p, t0, DeltaT, (modelled && vs->adapt_calibrated && !vs->adapt_off_manifold) ? PETSC_TRUE : PETSC_FALSE, &q, &d));
+    else PetscCall(Compare(ts, p, t0, DeltaT, (modelled && vs->adapt_calibrated && !vs->adapt_off_manifold) ? PETSC_TRUE : PETSC_FALSE, attempt == 0 ? PETSC_TRUE : PETSC_FALSE, &q, &d));
     PetscReal E = d < 0 ? vs->adapt_model.total(p) : Estimate(vs->adapt_model, p, q, d);
     if (calibrate && FasterLevelsDecay(vs) && attempt == 0 && vs->adapt_calibrated_times >= kTrustedCalibrations && d > 0 && std::isfinite(E) && E > 0) {
       /* a scheduled measurement of the split that the model has just predicted: it predicted this
@@ -2171,6 +2328,22 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
       for (PetscInt i = 0; i < vs->nobservables; ++i) vs->adapt_signed[i] += vs->step_signed[i] * E / d;
     }
     if (vs->adapt_global) PetscCall(CarryComparison(ts, p, t0, DeltaT, E, d));
+    if (vs->lag_next) {
+      /* the comparison's end state carried into the next step's (ComparisonStart()); a step without
+         a comparison keeps the last one, a comparison that blew up drops it. Not from a run's first
+         macro step: it holds the initial layer, and its comparison's faster variables end off their
+         manifold by the layer's own transient, not by a lag (carried, it charged the second step
+         with it: the chains 6-19% dearer at the same errors) */
+      if (d >= 0 && std::isfinite(d) && vs->lag_next_valid && vs->adapt_accepted > 1) {
+        std::swap(vs->lag_carried, vs->lag_next);
+        vs->lag_p     = vs->lag_next_p;
+        vs->lag_q     = vs->lag_next_q;
+        vs->lag_valid = PETSC_TRUE;
+      } else if (!(d < 0)) vs->lag_valid = PETSC_FALSE;
+      vs->lag_next_valid = PETSC_FALSE;
+      vs->lag_time       = t1;
+      PetscCall(VecNorm(ts->vec_sol, NORM_1, &vs->lag_norm));
+    }
     vs->adapt_since_calibration++;
     vs->savings_used     = vshmm::savingsFromTimeRatios(p.ratios); /* what this step used (for view and getters) */
     vs->adapt_used       = p;

@@ -133,14 +133,22 @@ struct TS_VSHMM {
   PetscBool              global_warned    = PETSC_FALSE;               // told that it exceeds the tolerance
   PetscInt               carried_restarts = 0;                         // times it blew up and started again from the solution
   Vec                    slow_mask        = nullptr;                   // 1 on the slow components (written by the slowest level's splits only) where they are controlled with the observables
-  PetscInt               slow_count       = 0;                         // their number (global)
-  PetscInt64             slow_led         = 0;                         // differences in which they led (statistics)
-  PetscBool              slow_last        = PETSC_FALSE;               // they led the last difference
-  PetscBool              step_slow        = PETSC_FALSE;               // they led the last comparison of the step being taken
-  PetscReal              finer_term       = 0;                         // the last calibration's micro step term measured from the finer side and counted (0: none)
-  std::vector<Vec>       radius_vecs;                                  // the power method's vector of each level (TSVSHMMLevelRadius_Private())
-  PetscReal              radius_baseline = 0;                          // its radius at the levels' last full spectra (adapt)
-  PetscInt               slow_steps      = 0;                          // accepted steps whose estimate they led
+  Vec                    lag_mask         = nullptr;                   // 1 on the components only faster levels' splits write (none where a slowest split is additive): where a comparison's end state is carried into the next one's start
+  PetscBool              lag_by_values    = PETSC_FALSE;               // lag_mask from the fields' values (additive splits): a component the slowest field is seen to write leaves it
+  PetscInt               lag_count        = 0;                         // the components on lag_mask (global)
+  PetscInt64             lag_inherited    = 0;                         // comparisons that started from the last one's end state on them (-ts_view)
+  Vec                    lag_carried = nullptr, lag_next = nullptr;    // the last accepted step's comparison end state less the solution's there, on lag_mask; the candidate from the latest comparison
+  PetscBool              lag_valid = PETSC_FALSE, lag_next_valid = PETSC_FALSE;
+  vshmm::AdaptParameters lag_p, lag_q, lag_next_p, lag_next_q;    // the step's and its comparison's parameters that made them
+  PetscReal              lag_time = PETSC_MIN_REAL, lag_norm = 0; // where lag_carried was taken and the solution's 1-norm there (another time or a changed solution drops it)
+  PetscInt               slow_count = 0;                          // their number (global)
+  PetscInt64             slow_led   = 0;                          // differences in which they led (statistics)
+  PetscBool              slow_last  = PETSC_FALSE;                // they led the last difference
+  PetscBool              step_slow  = PETSC_FALSE;                // they led the last comparison of the step being taken
+  PetscReal              finer_term = 0;                          // the last calibration's micro step term measured from the finer side and counted (0: none)
+  std::vector<Vec>       radius_vecs;                             // the power method's vector of each level (TSVSHMMLevelRadius_Private())
+  PetscReal              radius_baseline = 0;                     // its radius at the levels' last full spectra (adapt)
+  PetscInt               slow_steps      = 0;                     // accepted steps whose estimate they led
   std::vector<PetscReal> obs_a, obs_b;
   std::vector<PetscReal> obs_diff;                 // the last ObservableDifference, signed and weighted, per observable
   std::vector<PetscReal> step_signed;              // that of the last comparison of the step being taken

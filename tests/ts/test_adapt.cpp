@@ -44,7 +44,7 @@ PetscErrorCode XiObservable(TS, PetscReal, Vec X, PetscReal q[], void *ctx)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SolveDissipativeAdapt(const char *options, PetscReal tfinal, AdaptRun *run, bool observeXi = false, PetscReal eps = 1e-2)
+PetscErrorCode SolveDissipativeAdapt(const char *options, PetscReal tfinal, AdaptRun *run, bool observeXi = false, PetscReal eps = 1e-2, SplitKind kind = SplitKind::Component)
 {
   Guard             guard(options);
   DissipativeParams params;
@@ -57,7 +57,7 @@ PetscErrorCode SolveDissipativeAdapt(const char *options, PetscReal tfinal, Adap
   PetscFunctionBeginUser;
   params.eps = eps;
   DissipativeProblem(&p, &params);
-  PetscCall(CreateSplitTS(PETSC_COMM_WORLD, &p, SplitKind::Component, {5, -10, 5}, {"slow", "medium", "fast"}, &ts, &x));
+  PetscCall(CreateSplitTS(PETSC_COMM_WORLD, &p, kind, {5, -10, 5}, {"slow", "medium", "fast"}, &ts, &x));
   PetscCall(TSSetTimeStep(ts, 0.1));
   PetscCall(TSSetMaxTime(ts, tfinal));
   PetscCall(TSSetMaxSteps(ts, 100000));
@@ -399,7 +399,8 @@ TEST(VSHMMSeparation, AFineTransportRegionIsNotSeparated)
 // limit (not 0.9): 0.77 tol with 7,396 + 7,108, and with the separation 1.05 tol with 6,388 + 7,096.
 // The first macro step's calibration measures the micro step's term from the finer side (the micro
 // step at its stability bound; docs/accuracy.md section 12): the same errors with 7,396 + 7,956 and
-// 6,388 + 7,168.
+// 6,388 + 7,168. A macro step's first comparison inherits the faster levels' lag (section 22):
+// 0.61 and 0.80 tol with 8,704 + 10,672 and 7,744 + 7,976.
 TEST(VSHMMAdapt, ABandOfFastRatesIsSeen)
 {
   const double T = 4, ref = BandReference(T, 1e-4), tol = 1e-2;
@@ -407,7 +408,7 @@ TEST(VSHMMAdapt, ABandOfFastRatesIsSeen)
   const struct {
     const char *options;
     PetscInt64  work;
-  } cases[] = {{"-ts_vshmm_adapt -ts_rtol 1e-2 -ts_atol 1e-2", 15352}, {"-ts_vshmm_adapt -ts_rtol 1e-2 -ts_atol 1e-2 -ts_vshmm_scale_separations 10", 13556}};
+  } cases[] = {{"-ts_vshmm_adapt -ts_rtol 1e-2 -ts_atol 1e-2", 19376}, {"-ts_vshmm_adapt -ts_rtol 1e-2 -ts_atol 1e-2 -ts_vshmm_scale_separations 10", 15720}};
   for (const auto &c : cases) {
     AdaptRun run;
     ASSERT_EQ(SolveBand(c.options, 0.5, T, &run), 0);
@@ -1197,11 +1198,12 @@ TEST(VSHMMAdapt, SteadyStepsLeaveOutTheirComparisons)
     AdaptRun          run;
     ASSERT_EQ(SolveObservingX0(options.c_str(), p, {1.0, 0.5}, {"slow", "fast"}, 0.1, T, &run), 0);
     EXPECT_LE(std::abs(run.x[0] - ref), tol * (1 + std::abs(ref))) << options << ": y(4) = " << run.x[0] << ", reference " << ref;
-    /* 16 and 9 steps (15 and 8 while a scheduled calibration of a step with nothing to coarsen
+    /* 15 and 9 steps (16 and 9 before a macro step's first comparison inherited the faster
+       levels' lag; 15 and 8 while a scheduled calibration of a step with nothing to coarsen
        was made; 13 and 8 while a fall of the estimate by more than 2x forced a comparison too; 12
        and 7 while the micro step started at DeltaT / 100, not at the fast level's stability
        limit); without the limit of 3 in a row 19 and 12 then */
-    EXPECT_EQ(run.stats.adapt_uncompared, tol > 5e-3 ? 16 : 9) << options;
+    EXPECT_EQ(run.stats.adapt_uncompared, tol > 5e-3 ? 15 : 9) << options;
   }
 }
 
@@ -1598,6 +1600,25 @@ TEST(VSHMMAdapt, DissipativeExampleMeetsTheTolerance)
   EXPECT_NEAR(savings.savings[1], 5, 1e-9);
 }
 
+// The faster levels' lag is measured (ComparisonStart()): at eps = 3e-3 the medium level's rate
+// 2 xi / eps, slowed by a time ratio of about 80, relaxes over most of a macro step, so each step
+// starts from the lag the last one left, and a comparison from that same start measured 10 to 200
+// times less than the steps' errors: xi(1.7) was 2.45 tolerances off at 3e-3, silently (2.38 with
+// additive splits). A macro step's first comparison now starts from the end state of the last one
+// on the components only faster levels write: those outside the slowest splits' index sets, or,
+// with additive splits, where the slowest field is zero and a faster one is not.
+// Reference: RK4 with dt = eps^2 / 8 and eps^2 / 16, which agree to 1e-10.
+TEST(VSHMMAdapt, TheComparisonInheritsItsOwnLagOfTheFasterLevels)
+{
+  constexpr double kXiAt17 = 1.6005408968, tol = 3e-3;
+  for (const SplitKind kind : {SplitKind::Component, SplitKind::Additive}) {
+    AdaptRun run;
+    ASSERT_EQ(SolveDissipativeAdapt(AdaptOptions(tol).c_str(), 1.7, &run, true, 3e-3, kind), 0);
+    EXPECT_LE(std::abs(run.x[0] - kXiAt17), tol * (1 + kXiAt17)) << (kind == SplitKind::Additive ? "additive" : "component") << " splits";
+    EXPECT_EQ(run.stats.macro_steps, 17);
+  }
+}
+
 // The -info output of one adaptive run of the dissipative example (xi observed, to t = 2), and
 // whether this rank has it (PetscInfo() on a TS writes from its first rank; the others get an
 // empty string).
@@ -1722,18 +1743,19 @@ TEST(VSHMMAdapt, AnOscillatingFasterLevelIsNotSlowedBelowTheSlowerOne)
 }
 
 // A comparison that blows up is no estimate. On the dissipative example with the savings factors
-// set (20, 20: adapt keeps them and chooses the micro step; with 20, 5 until the stable steps were
-// also estimated at the end of a step whose fast rate grew, accuracy.md section 13) the comparison
-// of the first try doubles the savings' terms (a comparison may coarsen what the user set: it only measures), which the
-// medium level's steps do not keep stable, also with the step's own micro step: it is taken as "no
-// estimate" (the step is redone with every parameter finer), not as an error of 1e307 tolerances
-// scaled into the error model.
+// set (10, 50: adapt keeps them and chooses the micro step; 20, 20 until a macro step's first
+// comparison inherited the faster levels' lag, accuracy.md section 22, and 20, 5 until the stable
+// steps were also estimated at the end of a step whose fast rate grew, section 13) the comparison
+// of a later step's first try coarsens the micro step beyond what the medium level's steps keep
+// stable with the savings set (a comparison may coarsen what the user set: it only measures): it
+// is taken as "no estimate" (the step is redone with every parameter finer), not as an error of
+// 1e307 tolerances scaled into the error model.
 TEST(VSHMMAdapt, AComparisonThatBlowsUpIsNoEstimate)
 {
   AdaptRun    run;
   std::string info;
   bool        written;
-  ASSERT_EQ(DissipativeAdaptInfo("-ts_vshmm_adapt -ts_rtol 1e-2 -ts_atol 1e-2 -ts_vshmm_savings_factors 20,20", 1e-2, &run, &info, &written), 0);
+  ASSERT_EQ(DissipativeAdaptInfo("-ts_vshmm_adapt -ts_rtol 1e-2 -ts_atol 1e-2 -ts_vshmm_savings_factors 10,50", 1e-2, &run, &info, &written), 0);
   if (written) {
     EXPECT_NE(info.find("blew up: no estimate"), std::string::npos);
     EXPECT_EQ(info.find("e+307"), std::string::npos); // PETSC_INFINITY (finite) is not an estimate
@@ -1763,7 +1785,7 @@ TEST(VSHMMAdapt, TheStableStepsAreEstimatedAgainAfterTheFirstStep)
     ASSERT_NE(later, std::string::npos);
     size_t n = 0;
     for (size_t at = info.find("Adapt: comparison dt ", later); at != std::string::npos; at = info.find("Adapt: comparison dt ", at + 1), ++n) EXPECT_LE(std::stod(info.substr(at + 21)), 0.8 * 2.785 / 1.0e4 * 1.01);
-    EXPECT_GT(n, 20u);
+    EXPECT_GE(n, 19u); // every later macro step compared at least once
   }
   constexpr double kXiAt2 = 1.4816640204; // docs/dissipative.md (converged DNS)
   EXPECT_LE(std::abs(run.x[0] - kXiAt2), 2e-3 * (1 + kXiAt2));
@@ -1787,17 +1809,21 @@ TEST(VSHMMAdapt, ADecayingFastestLevelKeepsAMarginToItsStabilityLimit)
 // retry of the step at t = 1.1 refined r_1 2.4x and coarsened r_2 from 307 into its stability bound
 // 502, where the comparison left it as it was; the medium level's transient after the change of
 // r_1, followed late by the fast level, put an error of 5 shares into xi against an estimate of
-// 0.06: xi was 3.5 tol off at t = 1.5 and 1.32 at t = 2 (0.41 and 0.17 with r_2 kept). Reference:
-// the averaged equation (its error is O(eps)).
+// 0.06: xi was 3.5 tol off at t = 1.5 and 1.32 at t = 2 (0.41 and 0.17 with r_2 kept). Since a
+// macro step's first comparison inherits the faster levels' lag (docs/accuracy.md section 22) that
+// run takes another path, and the rule acts at tol 4e-3 (the step at t = 1, r_2 kept at 203).
+// Reference: the averaged equation (its error is O(eps)).
 TEST(VSHMMAdapt, ARetryDoesNotCoarsenARatioItsComparisonCannotMeasure)
 {
   constexpr double kAveragedXiAt2 = 1.48172016; // tools/adapt_suite.py (averaged equation, RK4)
   AdaptRun         run;
   std::string      info;
   bool             written;
-  ASSERT_EQ(DissipativeAdaptInfo(AdaptOptions(2e-3).c_str(), 1e-4, &run, &info, &written), 0);
-  if (written) EXPECT_NE(info.find("the retry keeps time ratio 2"), std::string::npos);
-  EXPECT_LE(std::abs(run.x[0] - kAveragedXiAt2), 0.5 * 2e-3 * (1 + kAveragedXiAt2));
+  for (const double tol : {2e-3, 4e-3}) {
+    ASSERT_EQ(DissipativeAdaptInfo(AdaptOptions(tol).c_str(), 1e-4, &run, &info, &written), 0);
+    if (written && tol > 3e-3) EXPECT_NE(info.find("the retry keeps time ratio 2"), std::string::npos);
+    EXPECT_LE(std::abs(run.x[0] - kAveragedXiAt2), 0.5 * tol * (1 + kAveragedXiAt2)) << "tol " << tol;
+  }
 }
 
 // A decaying pair of levels less than 2 apart, among separated ones, takes no savings. The
@@ -1826,8 +1852,9 @@ TEST(VSHMMAdapt, ADecayingPairLessThanTwoApartTakesNoSavings)
 // 1e-3 (xi observed, to t = 2): a try of the first macro step is accepted on it, within its share
 // where the comparison alone read it above (measured with the micro step at 0.9 of its stability
 // limit: the sixth try, true error 0.207 tol against a share of 0.224); xi(2) stays within the
-// tolerance. 10 rejections (8 before the first macro step measured the micro step's term from the
-// finer side, docs/accuracy.md section 12).
+// tolerance. 7 rejections (10 before a macro step's first comparison inherited the faster levels'
+// lag, docs/accuracy.md section 22; 8 before the first macro step measured the micro step's term
+// from the finer side, section 12).
 TEST(VSHMMAdapt, AnInitialLayerIsEstimatedFromTwoComparisons)
 {
   AdaptRun run;
@@ -1835,7 +1862,7 @@ TEST(VSHMMAdapt, AnInitialLayerIsEstimatedFromTwoComparisons)
   constexpr double kXiAt2 = 1.4816640204; // docs/dissipative.md (converged DNS)
   EXPECT_LE(std::abs(run.x[0] - kXiAt2), 1e-3 * (1 + kXiAt2));
   EXPECT_EQ(run.stats.adapt_layer_estimates, 1);
-  EXPECT_EQ(run.stats.adapt_rejections, 10);
+  EXPECT_EQ(run.stats.adapt_rejections, 7);
   // at 1e-2 the micro step's term, measured from the finer side in the first step, is above the
   // share: the tries refine the micro step below its stability bound, where the second comparison
   // can scale every term, and it is made once (none while that term was left at 0: the tries ran at
