@@ -1859,7 +1859,7 @@ static PetscErrorCode NoteLostSeparation(TS ts, PetscReal tseen)
   for (PetscInt l = 0; l < K; ++l) {
     const bool now = LostSeparation(vs, l);
     if (!now && vs->adapt_lost[l] >= 0 && l < (PetscInt)vs->adapt_params.ratios.size() && vs->adapt_params.ratios[l] == 1.0) {
-      vs->adapt_params.ratios[l] = SeparatedRatios(ts)[l];
+      vs->adapt_params.ratios[l] = vs->savings.empty() ? SeparatedRatios(ts)[l] : vshmm::timeRatiosFromSavings(vs->savings)[l]; /* savings the user set stay */
       regained                   = true;
       PetscCall(PetscInfo(ts, "Adapt: levels %" PetscInt_FMT "/%" PetscInt_FMT " are separated again at t = %g (%g apart): savings between them from their separated start\n", l, l + 1, (double)tseen, (double)Separation(vs, l)));
     }
