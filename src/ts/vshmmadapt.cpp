@@ -170,6 +170,28 @@ static PetscErrorCode ObservableDifference(TS ts, PetscReal t, Vec Xa, Vec Xb, P
   PetscFunctionReturn(0);
 }
 
+/* mask = 1 where mask != 0 and other == 0, else 0; the global count of ones (the components one
+   group of splits writes and another does not) */
+static PetscErrorCode OnlyIn(TS ts, Vec other, Vec mask, PetscInt *total)
+{
+  PetscScalar       *m;
+  const PetscScalar *w;
+  PetscInt           n, count = 0;
+
+  PetscFunctionBegin;
+  PetscCall(VecGetLocalSize(other, &n));
+  PetscCall(VecGetArray(mask, &m));
+  PetscCall(VecGetArrayRead(other, &w));
+  for (PetscInt i = 0; i < n; ++i) {
+    m[i] = (PetscRealPart(m[i]) != 0 && PetscRealPart(w[i]) == 0) ? 1.0 : 0.0;
+    count += PetscRealPart(m[i]) != 0 ? 1 : 0;
+  }
+  PetscCall(VecRestoreArrayRead(other, &w));
+  PetscCall(VecRestoreArray(mask, &m));
+  PetscCall(MPIU_Allreduce(&count, total, 1, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)ts)));
+  PetscFunctionReturn(0);
+}
+
 /* The slow components controlled with the observables (TSVSHMMSetAdaptSlowComponents()): those
    the slowest level's splits write and no faster split does. None where every split is additive. */
 static PetscErrorCode SlowComponentsSetUp(TS ts)
@@ -185,46 +207,13 @@ static PetscErrorCode SlowComponentsSetUp(TS ts)
   PetscCall(VecDuplicate(ts->vec_sol, &faster));
   PetscCall(TSVSHMMWrittenComponents_Private(vs, 0, vs->level_end[0], ts->ptime, vs->slow_mask));
   PetscCall(TSVSHMMWrittenComponents_Private(vs, vs->level_end[0], (PetscInt)vs->splits.size(), ts->ptime, faster));
-  PetscScalar       *m;
-  const PetscScalar *f;
-  PetscInt           n, count = 0;
-  PetscCall(VecGetLocalSize(faster, &n));
-  PetscCall(VecGetArray(vs->slow_mask, &m));
-  PetscCall(VecGetArrayRead(faster, &f));
-  for (PetscInt i = 0; i < n; ++i) {
-    m[i] = (PetscRealPart(m[i]) != 0 && PetscRealPart(f[i]) == 0) ? 1.0 : 0.0;
-    count += PetscRealPart(m[i]) != 0 ? 1 : 0;
-  }
-  PetscCall(VecRestoreArrayRead(faster, &f));
-  PetscCall(VecRestoreArray(vs->slow_mask, &m));
+  PetscCall(OnlyIn(ts, faster, vs->slow_mask, &vs->slow_count));
   PetscCall(VecDestroy(&faster));
-  PetscCall(MPIU_Allreduce(&count, &vs->slow_count, 1, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)ts)));
   if (vs->slow_count == 0) PetscCall(VecDestroy(&vs->slow_mask));
   PetscFunctionReturn(0);
 }
 
 static bool FasterLevelsDecay(TS_VSHMM *);
-
-/* mask = 1 where faster != 0 and slowest == 0, else 0 (in place of faster); the global count of ones */
-static PetscErrorCode OnlyFaster(TS ts, Vec slowest, Vec faster, PetscInt *total)
-{
-  PetscScalar       *m;
-  const PetscScalar *w;
-  PetscInt           n, count = 0;
-
-  PetscFunctionBegin;
-  PetscCall(VecGetLocalSize(slowest, &n));
-  PetscCall(VecGetArray(faster, &m));
-  PetscCall(VecGetArrayRead(slowest, &w));
-  for (PetscInt i = 0; i < n; ++i) {
-    m[i] = (PetscRealPart(m[i]) != 0 && PetscRealPart(w[i]) == 0) ? 1.0 : 0.0;
-    count += PetscRealPart(m[i]) != 0 ? 1 : 0;
-  }
-  PetscCall(VecRestoreArrayRead(slowest, &w));
-  PetscCall(VecRestoreArray(faster, &m));
-  PetscCall(MPIU_Allreduce(&count, total, 1, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)ts)));
-  PetscFunctionReturn(0);
-}
 
 /* The components a comparison's end state is carried from into the next step's comparison
    (ComparisonStart()): those the faster levels' splits write and no slowest split does (their
@@ -251,7 +240,7 @@ static PetscErrorCode LagComponentsSetUp(TS ts)
   PetscCall(VecDuplicate(ts->vec_sol, &slowest));
   PetscCall(TSVSHMMWrittenComponents_Private(vs, 0, vs->level_end[0], ts->ptime, slowest));
   PetscCall(TSVSHMMWrittenComponents_Private(vs, vs->level_end[0], (PetscInt)vs->splits.size(), ts->ptime, vs->lag_mask));
-  PetscCall(OnlyFaster(ts, slowest, vs->lag_mask, &total));
+  PetscCall(OnlyIn(ts, slowest, vs->lag_mask, &total));
   PetscCall(VecDestroy(&slowest));
   vs->lag_count = total;
   if (total == 0) {
@@ -273,28 +262,25 @@ static PetscErrorCode LagComponentsFromValues(TS ts, PetscReal t, Vec X)
 {
   TS_VSHMM               *vs       = (TS_VSHMM *)ts->data;
   const TS_VSHMM::Counter counting = vs->counting;
-  Vec                     slowest, own, faster;
+  Vec                     slowest, own;
 
   PetscFunctionBegin;
   vs->counting = TS_VSHMM::COUNT_ADAPT;
   PetscCall(VecDuplicate(X, &slowest));
   PetscCall(TSVSHMMEvaluateLevel_Private(vs, 0, t, X, slowest));
-  if (!vs->lag_mask) {
+  if (!vs->lag_mask) { /* the faster levels' own splits, |f| summed */
     PetscCall(VecDuplicate(X, &vs->lag_mask));
     PetscCall(VecDuplicate(X, &own));
-    PetscCall(VecDuplicate(X, &faster));
-    PetscCall(VecSet(faster, 0.0));
+    PetscCall(VecSet(vs->lag_mask, 0.0));
     for (PetscInt l = 1; l < (PetscInt)vs->level_end.size(); ++l) {
       PetscCall(TSVSHMMEvaluateOwnSplits_Private(vs, l, t, X, own));
       PetscCall(VecAbs(own));
-      PetscCall(VecAXPY(faster, 1.0, own));
+      PetscCall(VecAXPY(vs->lag_mask, 1.0, own));
     }
-    PetscCall(VecCopy(faster, vs->lag_mask));
     PetscCall(VecDestroy(&own));
-    PetscCall(VecDestroy(&faster));
   }
   vs->counting = counting;
-  PetscCall(OnlyFaster(ts, slowest, vs->lag_mask, &vs->lag_count));
+  PetscCall(OnlyIn(ts, slowest, vs->lag_mask, &vs->lag_count));
   PetscCall(VecDestroy(&slowest));
   if (vs->lag_count == 0) { /* nothing to carry: none from now on */
     PetscCall(VecDestroy(&vs->lag_mask));
@@ -330,10 +316,9 @@ PetscErrorCode TSVSHMMAdaptSampleSchedule_Private(TS ts, PetscReal DeltaT, std::
   PetscFunctionReturn(0);
 }
 
-/* One macro step from X0 with parameters p into X; its work counted as adapt work. A non-finite
-   result counts as an infinitely large difference, not as a fault of the solve. */
 /* A macro step with p from the state in X, in place, counted as estimation work; the solve's record
-   of a non-finite split output is left as it was (a run that only measures does not stop the solve). */
+   of a non-finite split output is left as it was (a run that only measures does not stop the solve:
+   a non-finite result counts as an infinitely large difference). */
 static PetscErrorCode EstimationStep(TS ts, const vshmm::AdaptParameters &p, PetscReal t0, PetscReal DeltaT, Vec X)
 {
   TS_VSHMM                                  *vs = (TS_VSHMM *)ts->data;
@@ -1122,6 +1107,7 @@ PetscErrorCode TSVSHMMAdaptReset_Private(TS ts)
   vs->adapt_floor_dt         = 0;
   vs->adapt_single_rate_from = -1;
   vs->adapt_end              = PETSC_MIN_REAL;
+  vs->adapt_end_norm         = 0;
   PetscFunctionReturn(0);
 }
 
@@ -1365,10 +1351,10 @@ static PetscErrorCode ComparisonStart(TS ts, const vshmm::AdaptParameters &p, co
 
   PetscFunctionBegin;
   PetscCall(VecCopy(vs->X0, X));
-  if (!inherit || !vs->lag_valid || !vs->lag_carried || vs->lag_time != t0 || !FasterLevelsDecay(vs)) PetscFunctionReturn(0);
+  if (!inherit || !vs->lag_valid || !vs->lag_carried || vs->adapt_end != t0 || !FasterLevelsDecay(vs)) PetscFunctionReturn(0);
   PetscCall(VecNorm(vs->X0, NORM_1, &norm));
-  if (norm != vs->lag_norm) PetscFunctionReturn(0); /* the solution changed between the steps */
-  if (vs->lag_by_values) {                          /* the components from the values where first needed; one the slowest field writes here leaves them */
+  if (norm != vs->adapt_end_norm) PetscFunctionReturn(0); /* the solution changed between the steps */
+  if (vs->lag_by_values) {                                /* the components from the values where first needed; one the slowest field writes here leaves them */
     PetscCall(LagComponentsFromValues(ts, t0, vs->X0));
     if (!vs->lag_mask) PetscFunctionReturn(0);
     PetscCall(VecPointwiseMult(vs->lag_carried, vs->lag_carried, vs->lag_mask));
@@ -1507,7 +1493,7 @@ static PetscErrorCode CarryComparison(TS ts, const vshmm::AdaptParameters &p, Pe
   PetscFunctionBegin;
   if (!vs->Xcarried) PetscCall(VecDuplicate(ts->vec_sol, &vs->Xcarried));
   PetscCall(VecNorm(vs->X0, NORM_1, &start));
-  if (vs->carried_time != t0 || start != vs->carried_norm) { /* a new run, or a solution changed between steps: started again from it */
+  if (vs->carried_time != t0 || start != vs->adapt_end_norm) { /* a new run, or a solution changed between steps: started again from it */
     PetscCall(VecCopy(vs->X0, vs->Xcarried));
     vs->global_estimate = 0;
     vs->carried_weight  = 0;
@@ -1521,7 +1507,6 @@ static PetscErrorCode CarryComparison(TS ts, const vshmm::AdaptParameters &p, Pe
   PetscCall(VecNorm(vs->Xcarried, NORM_1, &carried));
   PetscCall(VecNorm(ts->vec_sol, NORM_1, &solution));
   vs->carried_time = t0 + DeltaT;
-  vs->carried_norm = solution;
   if (!std::isfinite(D) || !(carried <= kBlowUpGrowth * (solution + start))) {
     /* the doubled terms are unstable here (a comparison's steps at the edge of a stability region
        the solution's stay inside): no estimate from it; it starts again from the solution, and the
@@ -2147,7 +2132,6 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
       PetscCall(PetscInfo(ts, "Adapt: macro step [%g, %g]: the fast variables ended it off their slow manifold (the field would move the state by more than %g times its norm and change in a macro step): compared\n", (double)t0, (double)t1, (double)kOffManifold));
     if (steady && !pinned)
       PetscCall(PetscInfo(ts, "Adapt: macro step [%g, %g]: at the cycle and micro step bounds, the last two estimates %g and %g of their shares: no comparison\n", (double)t0, (double)t1, (double)vs->adapt_prev_ratio, (double)vs->adapt_last_ratio));
-    vs->lag_next_valid = PETSC_FALSE;
     if (pinned || steady) d = -1;
     else PetscCall(Compare(ts, p, t0, DeltaT, (modelled && vs->adapt_calibrated && !vs->adapt_off_manifold) ? PETSC_TRUE : PETSC_FALSE, attempt == 0 ? PETSC_TRUE : PETSC_FALSE, &q, &d));
     PetscReal E = d < 0 ? vs->adapt_model.total(p) : Estimate(vs->adapt_model, p, q, d);
@@ -2364,13 +2348,12 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
         vs->lag_valid = PETSC_TRUE;
       } else if (!(d < 0)) vs->lag_valid = PETSC_FALSE;
       vs->lag_next_valid = PETSC_FALSE;
-      vs->lag_time       = t1;
-      PetscCall(VecNorm(ts->vec_sol, NORM_1, &vs->lag_norm));
     }
     vs->adapt_since_calibration++;
-    vs->savings_used     = vshmm::savingsFromTimeRatios(p.ratios); /* what this step used (for view and getters) */
-    vs->adapt_used       = p;
-    vs->adapt_end        = t1;
+    vs->savings_used = vshmm::savingsFromTimeRatios(p.ratios); /* what this step used (for view and getters) */
+    vs->adapt_used   = p;
+    vs->adapt_end    = t1;
+    PetscCall(VecNorm(ts->vec_sol, NORM_1, &vs->adapt_end_norm));
     vs->adapt_prev_ratio = vs->adapt_last_ratio;
     /* the rules that leave a later step's comparison out (SteadyStep(), a pinned step) compare estimates of one kind: the comparison's */
     vs->adapt_last_ratio = std::isfinite(Ecompared) && Ecompared >= 0 ? Ecompared / budget : PETSC_MAX_REAL;

@@ -123,10 +123,10 @@ struct TS_VSHMM {
   PetscReal              adapt_floor_dt         = 0;              // the micro step of the last step accepted at a floor without savings left: later steps do not refine below it (0: none)
   PetscReal              adapt_single_rate_from = -1;             // the start of the macro step from which the tolerance left no savings (-1: none)
   PetscReal              adapt_end              = PETSC_MIN_REAL; // the end of the last accepted macro step (a macro step that starts before it starts a new run)
+  PetscReal              adapt_end_norm         = 0;              // the solution's 1-norm there (a later step from another state: the solution was changed between the steps)
   Vec                    Xtrial = nullptr, Xbase = nullptr;
   Vec                    Xcarried       = nullptr;                     // the carried comparison: a second solution, every error term doubled, from the run's start (adapt_global)
   PetscReal              carried_time   = PETSC_MIN_REAL;              // the time it has reached (a macro step from another time, or from a changed state, starts it again)
-  PetscReal              carried_norm   = 0;                           // the 1-norm of the solution it was compared with there
   PetscReal              carried_factor = 1;                           // the error model's conversion of its difference into an error estimate
   PetscReal              carried_fsum = 0, carried_weight = 0;         // the steps' conversion factors weighed by their estimates, and the weights' sum
   PetscReal              global_estimate = 0, global_estimate_max = 0; // that estimate at the last sampled time, the largest of the run (tolerance units)
@@ -139,16 +139,15 @@ struct TS_VSHMM {
   PetscInt64             lag_inherited    = 0;                         // comparisons that started from the last one's end state on them (-ts_view)
   Vec                    lag_carried = nullptr, lag_next = nullptr;    // the last accepted step's comparison end state less the solution's there, on lag_mask; the candidate from the latest comparison
   PetscBool              lag_valid = PETSC_FALSE, lag_next_valid = PETSC_FALSE;
-  vshmm::AdaptParameters lag_p, lag_q, lag_next_p, lag_next_q;    // the step's and its comparison's parameters that made them
-  PetscReal              lag_time = PETSC_MIN_REAL, lag_norm = 0; // where lag_carried was taken and the solution's 1-norm there (another time or a changed solution drops it)
-  PetscInt               slow_count = 0;                          // their number (global)
-  PetscInt64             slow_led   = 0;                          // differences in which they led (statistics)
-  PetscBool              slow_last  = PETSC_FALSE;                // they led the last difference
-  PetscBool              step_slow  = PETSC_FALSE;                // they led the last comparison of the step being taken
-  PetscReal              finer_term = 0;                          // the last calibration's micro step term measured from the finer side and counted (0: none)
-  std::vector<Vec>       radius_vecs;                             // the power method's vector of each level (TSVSHMMLevelRadius_Private())
-  PetscReal              radius_baseline = 0;                     // its radius at the levels' last full spectra (adapt)
-  PetscInt               slow_steps      = 0;                     // accepted steps whose estimate they led
+  vshmm::AdaptParameters lag_p, lag_q, lag_next_p, lag_next_q; // the step's and its comparison's parameters that made them
+  PetscInt               slow_count = 0;                       // their number (global)
+  PetscInt64             slow_led   = 0;                       // differences in which they led (statistics)
+  PetscBool              slow_last  = PETSC_FALSE;             // they led the last difference
+  PetscBool              step_slow  = PETSC_FALSE;             // they led the last comparison of the step being taken
+  PetscReal              finer_term = 0;                       // the last calibration's micro step term measured from the finer side and counted (0: none)
+  std::vector<Vec>       radius_vecs;                          // the power method's vector of each level (TSVSHMMLevelRadius_Private())
+  PetscReal              radius_baseline = 0;                  // its radius at the levels' last full spectra (adapt)
+  PetscInt               slow_steps      = 0;                  // accepted steps whose estimate they led
   std::vector<PetscReal> obs_a, obs_b;
   std::vector<PetscReal> obs_diff;                 // the last ObservableDifference, signed and weighted, per observable
   std::vector<PetscReal> step_signed;              // that of the last comparison of the step being taken
