@@ -2238,9 +2238,9 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
     const PetscReal Ecompared = E; /* the comparison's estimate, the measure of every later step */
     if (savings && !singleRate && std::isfinite(E)) tried.emplace_back(p, E);
     if (Elayer >= 0 && Elayer <= budget) {
-      /* the layer's own estimate accepts the step; the next step's parameters are chosen from the
-         model scaled by it, not by the comparison's estimate (2.5-4 times the layer's error, which
-         would refine them for a layer that is over), and cost at most this step's: they kept this
+      /* the layer's own estimate accepts the step, and the next step's parameters are chosen from
+         it as from any step's estimate (the model scaled by it), not from the comparison's (2.5-4
+         times the layer's error, which would refine them for a layer that is over): they kept this
          step's parameters before, and the dissipative example's second macro step at eps = 1e-2,
          tol 1e-2 took 146 micro cycles with an estimate of a twelfth of its share (64 now) */
       PetscCall(PetscInfo(ts, "Adapt: macro step [%g, %g] try %" PetscInt_FMT " accepted on the layer's estimate %g (the comparison's %g)\n", (double)t0, (double)t1, attempt, (double)Elayer, (double)E));
@@ -2249,7 +2249,7 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
       if (Elayer > 0) {
         vshmm::ErrorModel layer = vs->adapt_model;
         layer.scale(Elayer / layer.total(p));
-        next = Choose(layer, Elayer, 1.0);
+        next = Choose(layer, Elayer, kMaxDearer);
         LimitToStableSteps(ts, next);
       }
     }
