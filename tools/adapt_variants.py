@@ -7,7 +7,10 @@ largest difference is printed beside it ("ref refine diff"). Per tolerance: the 
 error over the sampled times |q - q*| / (tol (1 + |q*|)) (2-norm over the observables), the work
 (split evaluations with the estimates).
 
-    python3 tools/adapt_variants.py BUILD_DIR [TOLS (default 1e-1,3e-2,1e-2,3e-3,1e-3)] [SUBSTRING]
+    python3 tools/adapt_variants.py BUILD_DIR [TOLS (default 1e-1,3e-2,1e-2,3e-3,1e-3)] [SUBSTRING] [-- extra options]
+
+Options after `--` are passed to every adaptive run (not to the references), e.g. `-- -ts_vshmm_kernel
+constant` for another kernel or `-- -ts_vshmm_rk_type 3` for another inner method.
 
 About 10 minutes in all (the oscillators' references most of it).
 """
@@ -52,9 +55,12 @@ def cases():
 def main():
     if len(sys.argv) < 2:
         sys.exit(__doc__)
-    build = sys.argv[1]
-    tols = [float(t) for t in (sys.argv[2] if len(sys.argv) > 2 else '1e-1,3e-2,1e-2,3e-3,1e-3').split(',')]
-    only = sys.argv[3] if len(sys.argv) > 3 else ''
+    argv, extra = sys.argv, []
+    if '--' in argv:
+        argv, extra = argv[:argv.index('--')], argv[argv.index('--') + 1:]
+    build = argv[1]
+    tols = [float(t) for t in (argv[2] if len(argv) > 2 else '1e-1,3e-2,1e-2,3e-3,1e-3').split(',')]
+    only = argv[3] if len(argv) > 3 else ''
     for name, exe, args, names, how in cases():
         if only and only not in name:
             continue
@@ -65,7 +71,7 @@ def main():
             ref = dns_reference(build, exe, args, names, how[1], refinement)
         prob = (name, exe, args, names, ref)
         with ThreadPoolExecutor(2) as pool:
-            res = list(pool.map(lambda tol: measure(build, prob, ['-ts_vshmm_adapt', '-ts_rtol', '%g' % tol, '-ts_atol', '%g' % tol]), tols))
+            res = list(pool.map(lambda tol: measure(build, prob, ['-ts_vshmm_adapt', '-ts_rtol', '%g' % tol, '-ts_atol', '%g' % tol] + extra), tols))
         print('%-28s ref refine diff %.1e | ' % (name, refinement[0]) + ' | '.join(
             '%g: %s' % (tol, r if isinstance(r, str) else '%.2f %.2g' % (r[0] / tol, r[1])) for tol, r in zip(tols, res)), flush=True)
 

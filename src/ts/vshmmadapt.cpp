@@ -1211,6 +1211,13 @@ PetscErrorCode TSVSHMMAdaptSetUp_Private(TS ts)
       PetscCall(TSVSHMMWarn_Private(ts, "TSVSHMM warning (-ts_vshmm_adapt): the micro step set (-ts_vshmm_micro_dt %g) loses more than the tolerance %g of the amplitude of the fastest scale's oscillation (frequency %g) over the run, and the error estimate cannot see that loss (the energy leaves every comparison too). A micro step of at most %g keeps it; leave the micro step to -ts_vshmm_adapt.\n",
                                     (double)vs->micro_dt, (double)(kOscillationShare * tol), (double)vs->level_radius[K], (double)dtOk));
   }
+  if (vs->kernel_type == TSVSHMM_KERNEL_CONSTANT && K > 0)
+    /* measured with each kernel on the suite of docs/accuracy.md (section 23): only the constant
+       kernel, which weighs the faster levels' state right after each slow step fully, missed */
+    PetscCall(TSVSHMMWarn_Private(ts, "TSVSHMM warning (-ts_vshmm_adapt): the constant kernel (-ts_vshmm_kernel constant) does not vanish at the ends of its period, and the error estimate of -ts_vshmm_adapt is not reliable with it: where the faster "
+                                      "scales start off their slow manifold (an initial layer) its averaging error saturates as the savings grow, and the comparison with every error term doubled sees a fraction of it (measured: a 4-scale relaxation "
+                                      "chain at tol 1e-3 ended 3.7 tolerances off, its first macro step estimated 18 times too low); where they oscillate it costs up to 1,600 times the work. Use a kernel that vanishes at the ends of its period: "
+                                      "cosine (the default), polynomial or exponential.\n"));
   vs->savings_used   = vshmm::savingsFromTimeRatios(p.ratios);
   vs->adapt_model    = vshmm::ErrorModel();
   vs->adapt_ready    = PETSC_TRUE;
