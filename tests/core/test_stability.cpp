@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 #include "stability.hpp"
 
@@ -52,6 +53,36 @@ TEST(StabilityFunction, KnownRealAndImaginaryLimits)
   // Euler and Heun amplify every purely imaginary mode: (almost) no interval.
   EXPECT_LT(vshmm::StabilityFunction(Euler()).imaginaryLimit(), 1e-5);
   EXPECT_LT(vshmm::StabilityFunction(Heun()).imaginaryLimit(), 3e-3);
+}
+
+// rayLimit() leaps over the part of a ray where the polynomial |R(x d)|^2 stays below its bound by
+// a margin its Taylor coefficients cannot close within the leap, and scans in steps of 1e-3 only
+// near the crossing. Its limits are those of the plain scan in steps of 1e-3 (then bisected) on
+// rays all around the left half plane (finer near the imaginary axis), for methods with short and long stability intervals: no
+// leap passes a crossing the scan finds (a leap of the whole cap, not bounded by the margin, ends
+// on the far side of the boundary).
+TEST(StabilityFunction, RayLimitsAreThoseOfAFineScan)
+{
+  // a 12-stage first-order method with a long real interval (each stage a damped Euler step)
+  std::vector<double> a(144, 0.0), b(12, 0.0), c(12, 0.0);
+  for (int i = 1; i < 12; ++i) a[i * 12 + i - 1] = 0.9 / (13 - i);
+  b[11]                = 1;
+  const Tableau tabs[] = {Heun(), Kutta3(), RK4(), Tableau("chain12", 1, 12, a, b, c)};
+  for (const Tableau &t : tabs) {
+    const vshmm::StabilityFunction R(t);
+    std::vector<double>            angles; // every 3 degrees, and every 0.01 within 0.1 of the imaginary axis (where a stability region's boundary bends most)
+    for (int k = 0; k <= 60; ++k) angles.push_back(M_PI / 2 + M_PI * k / 60.0);
+    for (int k = 1; k <= 10; ++k) angles.insert(angles.end(), {M_PI / 2 + 0.01 * k, 1.5 * M_PI - 0.01 * k});
+    for (const double angle : angles) {
+      const cd d      = std::polar(1.0, angle);
+      auto     stable = [&](double x) { return std::abs(R(x * d)) <= 1.0 + 1e-12; };
+      double   x      = 0;
+      while (x < 100 && stable(x + 1e-3)) x += 1e-3;
+      double lo = x, hi = x + 1e-3;
+      for (int it = 0; it < 60; ++it) (stable(0.5 * (lo + hi)) ? lo : hi) = 0.5 * (lo + hi);
+      EXPECT_NEAR(R.rayLimit(d), lo, 1e-9 * (1 + lo)) << t.name << " direction " << d;
+    }
+  }
 }
 
 TEST(StabilityFunction, LargestStableStepScalesWithTheEigenvalue)
