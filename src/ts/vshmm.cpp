@@ -643,8 +643,7 @@ static PetscErrorCode TSView_VSHMM(TS ts, PetscViewer viewer)
       if (vs->adapt_phase[l] >= 0)
         PetscCall(PetscViewerASCIIPrintf(viewer, "    levels %d/%d: no savings between them from t = %g on (the sampled quantities carry a faster level's phase: separation check)\n", (int)l, (int)l + 1, (double)vs->adapt_phase[l]));
     for (size_t l = 0; l < vs->adapt_lost.size(); ++l)
-      if (vs->adapt_lost[l] >= 0)
-        PetscCall(PetscViewerASCIIPrintf(viewer, "    levels %d/%d: no savings between them from t = %g on (the faster is less than 10 from the slower level: separation check)\n", (int)l, (int)l + 1, (double)vs->adapt_lost[l]));
+      if (vs->adapt_lost[l] >= 0) PetscCall(PetscViewerASCIIPrintf(viewer, "    levels %d/%d: no savings between them from t = %g on (no longer separated from the slower level: separation check)\n", (int)l, (int)l + 1, (double)vs->adapt_lost[l]));
     if (vs->adapt_uncompared_total > 0)
       PetscCall(PetscViewerASCIIPrintf(viewer, "    %" PetscInt64_FMT " macro steps without a comparison (nothing left to coarsen and the estimates far below their shares: the model's prediction stood in)\n", vs->adapt_uncompared_total));
     if (vs->adapt_layer_fits > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "    first macro step (an initial layer): tries estimated again from a second comparison %" PetscInt64_FMT "\n", vs->adapt_layer_fits));

@@ -40,10 +40,10 @@
 #include <limits>
 #include <string>
 
-static constexpr PetscReal kZeroEstimate        = 1e-3; /* of the share: the model's error after a comparison that changed nothing */
-static constexpr PetscReal kMinSeparation       = 10;   /* a pair of levels this far apart in spectral radius is separated */
-static constexpr PetscReal kLostDecaySeparation = 8; /* a decaying pair separated at set-up is no longer separated below this (LostSeparation(); below kMinSeparation, so that a pair at that threshold is not judged lost and found again by rounding) */
-static constexpr PetscReal kInitialSeparation   = 10;      /* effective separation sigma_l of the first parameters */
+static constexpr PetscReal kZeroEstimate           = 1e-3; /* of the share: the model's error after a comparison that changed nothing */
+static constexpr PetscReal kMinSeparation          = 10;   /* a pair of levels this far apart in spectral radius is separated */
+static constexpr PetscReal kLostDecaySeparation    = 8;    /* a decaying pair separated at set-up has lost its separation below this (LostSeparation()) */
+static constexpr PetscReal kInitialSeparation      = 10;   /* effective separation sigma_l of the first parameters */
 static constexpr PetscReal kInitialDecaySeparation = 2;    /* the same where the faster level only decays */
 static constexpr PetscReal kSafety                 = 0.8;  /* the parameters aim at this fraction of a step's share */
 static constexpr PetscInt  kRecalibrate            = 10;   /* macro steps between full measurements of the model */
@@ -876,12 +876,14 @@ static PetscBool LevelDecays(TS_VSHMM *vs, PetscInt l)
    application set), where its faster level oscillates (a process inside it as slow as the slower
    level, which savings would slow with it), or only decays, was separated at the accuracy
    control's set-up and is now less than kLostDecaySeparation apart (a relaxation that slows as it
-   nears its manifold: z' = -(z - x)^3 /
-   eps relaxes at 3 (z - x)^2 / eps, below the slow rate by t = 0.8 from (1, 0) at eps = 1e-3, and
-   the error its savings left in z drove x for the rest of the run, 7.4 tol off at 1e-4 with
-   estimates of 0.6: docs/accuracy.md section 23). A decaying pair that starts less than
-   kMinSeparation apart (2 to 10: the dissipative example's medium and fast levels, 4.55) keeps the
-   savings adapt gives it (NoteLostSeparation(); Bounds() takes none). */
+   nears its manifold: z' = -(z - x)^3 / eps relaxes at 3 (z - x)^2 / eps, below the slow rate by
+   t = 0.8 from (1, 0) at eps = 1e-3, and the error its savings left in z drove x for the rest of
+   the run, 7.4 tol off at 1e-4 with estimates of 0.6: docs/accuracy.md section 23). Below 8, not
+   10, so that a pair at the threshold is not judged lost and found again by rounding (a band of
+   rates whose slowest is 10 times the slower radius did so, with other counts on one and on two
+   ranks). A decaying pair that starts less than kMinSeparation apart (2 to 10: the dissipative
+   example's medium and fast levels, 4.55) keeps the savings adapt gives it (NoteLostSeparation();
+   Bounds() takes none). */
 static bool LostSeparation(TS_VSHMM *vs, PetscInt l)
 {
   const PetscReal S = Separation(vs, l);

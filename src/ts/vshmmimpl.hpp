@@ -114,7 +114,7 @@ struct TS_VSHMM {
   PetscBool              no_separation   = PETSC_FALSE;         // no pair of levels is separated
   PetscReal              separation_time = 0.0;                 // the time of the check that gave that verdict
   PetscReal              separated_from  = -1;                  // adapt: the time a later check found the scales separated (-1: not so)
-  std::vector<PetscReal> adapt_lost;                            // per level pair: the time from which its oscillating faster level is less than kMinSeparation from it, so no savings between them (-1: separated)
+  std::vector<PetscReal> adapt_lost;                            // per level pair: the time from which its faster level (oscillating, or decaying and separated at set-up) is no longer separated from it, so no savings between them (-1: separated)
   std::vector<bool>      adapt_separated_start;                 // per level pair: separated (kMinSeparation) at the accuracy control's set-up
   PetscBool              lost_warned = PETSC_FALSE;             // told that a pair lost its separation
   std::vector<PetscReal> adapt_phase; // per level pair: the time from which a faster level with a sustained oscillation moves the sampled quantities on its own scale (they carry its phase), so no savings between them (-1: none)
