@@ -14,6 +14,7 @@
 #include <petscvshmm.h>
 #include <string.h>
 #include <stdio.h>
+#include <vector>
 
 typedef struct {
   PetscInt  prob, n, nobs;
@@ -221,77 +222,30 @@ static PetscErrorCode Full(TS ts, PetscReal t, Vec U, Vec F, void *ctx)
 
 static void Obs(Ctx *c, PetscReal t, const PetscScalar *u, PetscReal *q)
 {
+  q[0] = u[0]; /* the slow variable, and a second observable where the problem has two (kSetups) */
   switch (c->prob) {
-  case 0:
-    q[0] = u[0];
-    break;
-  case 1:
-    q[0] = u[0];
+  case 1: /* and the Duffing oscillator's energy */
     q[1] = 0.5 * (u[2] * u[2] + u[1] * u[1] + 0.5 * c->a * PetscPowReal(u[1], 4));
     break;
-  case 2: {
-    PetscReal w = 1 + 0.5 * PetscSinReal(u[0]);
-    q[0]        = 0.5 * (u[1] * u[1] + u[2] * u[2]) * w;
-    q[1]        = u[3];
-  } break;
-  case 3:
-    q[0] = u[0];
+  case 2: /* the adiabatic oscillator's energy scaled by its frequency, and y */
+    q[0] = 0.5 * (u[1] * u[1] + u[2] * u[2]) * (1 + 0.5 * PetscSinReal(u[0]));
+    q[1] = u[3];
     break;
   case 4:
-    q[0] = u[0];
+  case 13:
+  case 15:
     q[1] = u[1];
-    break;
-  case 5:
-    q[0] = u[0];
-    break;
-  case 6:
-    q[0] = u[0];
     break;
   case 7:
-    q[0] = u[1];
-    break;
-  case 8:
-    q[0] = u[0];
-    break;
-  case 10:
-    q[0] = u[0];
-    break;
-  case 9:
-    q[0] = u[0];
-    break;
-  case 11:
-  case 12:
-  case 14:
-  case 16:
-  case 17:
-  case 18:
-  case 19:
-  case 20:
-  case 21:
-  case 22:
-  case 23:
-  case 24:
-  case 25:
-  case 26:
-    q[0] = u[0];
-    break;
-  case 13:
-    q[0] = u[0];
-    q[1] = u[1];
-    break;
   case 28:
     q[0] = u[1];
     break;
-  case 27:
-    q[0] = u[0];
+  case 27: /* and the rotation's energy */
     q[1] = 0.5 * (u[1] * u[1] + u[2] * u[2]);
-    break;
-  case 15:
-    q[0] = u[0];
-    q[1] = u[1];
     break;
   }
 }
+
 static PetscErrorCode ObsFn(TS ts, PetscReal t, Vec X, PetscReal q[], void *ctx)
 {
   const PetscScalar *u;
@@ -319,6 +273,45 @@ static PetscErrorCode Mon(TS ts, PetscInt step, PetscReal t, Vec X, void *ctx)
   PetscFunctionReturn(0);
 }
 
+/* Each problem's observables' count, the components each split writes (slowest first) and its
+   initial state (-x0 replaces it); its number of components is the state's length. */
+struct Setup {
+  PetscInt                           prob, nobs;
+  std::vector<std::vector<PetscInt>> splits;
+  std::vector<PetscReal>             u0;
+};
+static const Setup kSetups[] = {
+  {0, 1, {{0}, {1}}, {1, 0}},
+  {1, 2, {{0}, {1, 2}}, {0, 1, 0}},
+  {2, 2, {{0, 3}, {1, 2}}, {0, 1, 0, 0}},
+  {3, 1, {{0}, {1}, {2, 3}}, {0.5, 0.5, 1, 0}},
+  {4, 2, {{0, 1}, {2}}, {0.5, 0, 0}},
+  {5, 1, {{0}, {1}}, {1, 1}},
+  {6, 1, {{0}, {1, 2}}, {1, 0, 0}},
+  {7, 1, {{0, 1}, {2, 3}}, {-0.5, 0, 0.5, 0}},
+  {8, 1, {{0}, {1}}, {1, 0}},
+  {9, 1, {{0}, {1, 2}}, {0, 0.5, 0}},
+  {10, 1, {{0}, {1}}, {0, 0}},
+  {11, 1, {{0}, {1}}, {1, 0.5}},
+  {12, 1, {{0}, {1, 2}}, {1, 0, 0}},
+  {13, 2, {{0}, {1, 2}}, {0, 1, 0}},
+  {14, 1, {{0}, {1}}, {1, 0}},
+  {15, 2, {{0}, {1, 2}, {3}}, {0, 1, 0, 1}},
+  {16, 1, {{0}, {1}}, {1, 0}},
+  {17, 1, {{0}, {1}, {2}}, {2, 0, 0}},
+  {18, 1, {{0}, {1}}, {0.5, 0.125}},
+  {19, 1, {{0}, {1}, {2}}, {2, 0, 0}},
+  {20, 1, {{0}, {1}}, {1, 0}},
+  {21, 1, {{0}, {1, 2}}, {1, 0, 1}},
+  {22, 1, {{0}, {1}}, {0, 0}},
+  {23, 1, {{0, 1}, {2}}, {1, 0, 1.5}},
+  {24, 1, {{0}, {1}}, {1, 0}},
+  {25, 1, {{0}, {1}, {2}}, {1, 0, 0}},
+  {26, 1, {{0}, {1}}, {1, 0}},
+  {27, 2, {{0}, {1, 2}}, {1, 1, 0}},
+  {28, 1, {{0, 1}, {2, 3}}, {1, 0, 1, 0}},
+};
+
 int main(int argc, char **argv)
 {
   Ctx          c;
@@ -345,338 +338,19 @@ int main(int argc, char **argv)
   PetscCall(PetscOptionsGetReal(NULL, NULL, "-a", &c.a, NULL));
   PetscCall(PetscOptionsGetBool(NULL, NULL, "-noobs", &noobs, NULL));
   PetscCall(PetscOptionsGetBool(NULL, NULL, "-additive", &c.additive, NULL));
-  PetscReal u0[8] = {0};
-  switch (c.prob) {
-  case 0:
-    c.n          = 2;
-    c.nobs       = 1;
-    c.nsplit     = 2;
-    c.ncomp[0]   = 1;
-    c.comp[0][0] = 0;
-    c.ncomp[1]   = 1;
-    c.comp[1][0] = 1;
-    u0[0]        = 1;
-    u0[1]        = 0;
-    break;
-  case 1:
-    c.n          = 3;
-    c.nobs       = 2;
-    c.nsplit     = 2;
-    c.ncomp[0]   = 1;
-    c.comp[0][0] = 0;
-    c.ncomp[1]   = 2;
-    c.comp[1][0] = 1;
-    c.comp[1][1] = 2;
-    u0[0]        = 0;
-    u0[1]        = 1;
-    u0[2]        = 0;
-    break;
-  case 2:
-    c.n          = 4;
-    c.nobs       = 2;
-    c.nsplit     = 2;
-    c.ncomp[0]   = 2;
-    c.comp[0][0] = 0;
-    c.comp[0][1] = 3;
-    c.ncomp[1]   = 2;
-    c.comp[1][0] = 1;
-    c.comp[1][1] = 2;
-    u0[1]        = 1;
-    break;
-  case 3:
-    c.n          = 4;
-    c.nobs       = 1;
-    c.nsplit     = 3;
-    c.ncomp[0]   = 1;
-    c.comp[0][0] = 0;
-    c.ncomp[1]   = 1;
-    c.comp[1][0] = 1;
-    c.ncomp[2]   = 2;
-    c.comp[2][0] = 2;
-    c.comp[2][1] = 3;
-    u0[0]        = 0.5;
-    u0[1]        = 0.5;
-    u0[2]        = 1;
-    break;
-  case 4:
-    c.n          = 3;
-    c.nobs       = 2;
-    c.nsplit     = 2;
-    c.ncomp[0]   = 2;
-    c.comp[0][0] = 0;
-    c.comp[0][1] = 1;
-    c.ncomp[1]   = 1;
-    c.comp[1][0] = 2;
-    u0[0]        = 0.5;
-    break;
-  case 5:
-    c.n          = 2;
-    c.nobs       = 1;
-    c.nsplit     = 2;
-    c.ncomp[0]   = 1;
-    c.comp[0][0] = 0;
-    c.ncomp[1]   = 1;
-    c.comp[1][0] = 1;
-    u0[0]        = 1;
-    u0[1]        = 1;
-    break;
-  case 6:
-    c.n          = 3;
-    c.nobs       = 1;
-    c.nsplit     = 2;
-    c.ncomp[0]   = 1;
-    c.comp[0][0] = 0;
-    c.ncomp[1]   = 2;
-    c.comp[1][0] = 1;
-    c.comp[1][1] = 2;
-    u0[0]        = 1;
-    break;
-  case 7:
-    c.n          = 4;
-    c.nobs       = 1;
-    c.nsplit     = 2;
-    c.ncomp[0]   = 2;
-    c.comp[0][0] = 0;
-    c.comp[0][1] = 1;
-    c.ncomp[1]   = 2;
-    c.comp[1][0] = 2;
-    c.comp[1][1] = 3;
-    u0[0]        = -0.5;
-    u0[2]        = 0.5;
-    break;
-  case 9:
-    c.n          = 3;
-    c.nobs       = 1;
-    c.nsplit     = 2;
-    c.ncomp[0]   = 1;
-    c.comp[0][0] = 0;
-    c.ncomp[1]   = 2;
-    c.comp[1][0] = 1;
-    c.comp[1][1] = 2;
-    u0[1]        = 0.5;
-    break;
-  case 10:
-    c.n          = 2;
-    c.nobs       = 1;
-    c.nsplit     = 2;
-    c.ncomp[0]   = 1;
-    c.comp[0][0] = 0;
-    c.ncomp[1]   = 1;
-    c.comp[1][0] = 1;
-    break;
-  case 11:
-    c.n          = 2;
-    c.nobs       = 1;
-    c.nsplit     = 2;
-    c.ncomp[0]   = 1;
-    c.comp[0][0] = 0;
-    c.ncomp[1]   = 1;
-    c.comp[1][0] = 1;
-    u0[0]        = 1;
-    u0[1]        = 0.5;
-    break;
-  case 12:
-    c.n          = 3;
-    c.nobs       = 1;
-    c.nsplit     = 2;
-    c.ncomp[0]   = 1;
-    c.comp[0][0] = 0;
-    c.ncomp[1]   = 2;
-    c.comp[1][0] = 1;
-    c.comp[1][1] = 2;
-    u0[0]        = 1;
-    break;
-  case 13:
-    c.n          = 3;
-    c.nobs       = 2;
-    c.nsplit     = 2;
-    c.ncomp[0]   = 1;
-    c.comp[0][0] = 0;
-    c.ncomp[1]   = 2;
-    c.comp[1][0] = 1;
-    c.comp[1][1] = 2;
-    u0[1]        = 1;
-    break;
-  case 15:
-    c.n          = 4;
-    c.nobs       = 2;
-    c.nsplit     = 3;
-    c.ncomp[0]   = 1;
-    c.comp[0][0] = 0;
-    c.ncomp[1]   = 2;
-    c.comp[1][0] = 1;
-    c.comp[1][1] = 2;
-    c.ncomp[2]   = 1;
-    c.comp[2][0] = 3;
-    u0[1]        = 1;
-    u0[3]        = 1;
-    break;
-  case 14:
-    c.n          = 2;
-    c.nobs       = 1;
-    c.nsplit     = 2;
-    c.ncomp[0]   = 1;
-    c.comp[0][0] = 0;
-    c.ncomp[1]   = 1;
-    c.comp[1][0] = 1;
-    u0[0]        = 1;
-    break;
-  case 8:
-    c.n          = 2;
-    c.nobs       = 1;
-    c.nsplit     = 2;
-    c.ncomp[0]   = 1;
-    c.comp[0][0] = 0;
-    c.ncomp[1]   = 1;
-    c.comp[1][0] = 1;
-    u0[0]        = 1;
-    break;
-  case 16:
-    c.n          = 2;
-    c.nobs       = 1;
-    c.nsplit     = 2;
-    c.ncomp[0]   = 1;
-    c.comp[0][0] = 0;
-    c.ncomp[1]   = 1;
-    c.comp[1][0] = 1;
-    u0[0]        = 1;
-    break;
-  case 17:
-    c.n          = 3;
-    c.nobs       = 1;
-    c.nsplit     = 3;
-    c.ncomp[0]   = 1;
-    c.comp[0][0] = 0;
-    c.ncomp[1]   = 1;
-    c.comp[1][0] = 1;
-    c.ncomp[2]   = 1;
-    c.comp[2][0] = 2;
-    u0[0]        = 2;
-    break;
-  case 18:
-    c.n          = 2;
-    c.nobs       = 1;
-    c.nsplit     = 2;
-    c.ncomp[0]   = 1;
-    c.comp[0][0] = 0;
-    c.ncomp[1]   = 1;
-    c.comp[1][0] = 1;
-    u0[0]        = 0.5;
-    u0[1]        = 0.125;
-    break;
-  case 20:
-    c.n          = 2;
-    c.nobs       = 1;
-    c.nsplit     = 2;
-    c.ncomp[0]   = 1;
-    c.comp[0][0] = 0;
-    c.ncomp[1]   = 1;
-    c.comp[1][0] = 1;
-    u0[0]        = 1;
-    break;
-  case 21:
-    c.n          = 3;
-    c.nobs       = 1;
-    c.nsplit     = 2;
-    c.ncomp[0]   = 1;
-    c.comp[0][0] = 0;
-    c.ncomp[1]   = 2;
-    c.comp[1][0] = 1;
-    c.comp[1][1] = 2;
-    u0[0]        = 1;
-    u0[2]        = 1;
-    break;
-  case 22:
-    c.n          = 2;
-    c.nobs       = 1;
-    c.nsplit     = 2;
-    c.ncomp[0]   = 1;
-    c.comp[0][0] = 0;
-    c.ncomp[1]   = 1;
-    c.comp[1][0] = 1;
-    break;
-  case 23:
-    c.n          = 3;
-    c.nobs       = 1;
-    c.nsplit     = 2;
-    c.ncomp[0]   = 2;
-    c.comp[0][0] = 0;
-    c.comp[0][1] = 1;
-    c.ncomp[1]   = 1;
-    c.comp[1][0] = 2;
-    u0[0]        = 1;
-    u0[2]        = 1.5;
-    break;
-  case 24:
-    c.n          = 2;
-    c.nobs       = 1;
-    c.nsplit     = 2;
-    c.ncomp[0]   = 1;
-    c.comp[0][0] = 0;
-    c.ncomp[1]   = 1;
-    c.comp[1][0] = 1;
-    u0[0]        = 1;
-    break;
-  case 25:
-    c.n          = 3;
-    c.nobs       = 1;
-    c.nsplit     = 3;
-    c.ncomp[0]   = 1;
-    c.comp[0][0] = 0;
-    c.ncomp[1]   = 1;
-    c.comp[1][0] = 1;
-    c.ncomp[2]   = 1;
-    c.comp[2][0] = 2;
-    u0[0]        = 1;
-    break;
-  case 26:
-    c.n          = 2;
-    c.nobs       = 1;
-    c.nsplit     = 2;
-    c.ncomp[0]   = 1;
-    c.comp[0][0] = 0;
-    c.ncomp[1]   = 1;
-    c.comp[1][0] = 1;
-    u0[0]        = 1;
-    break;
-  case 27:
-    c.n          = 3;
-    c.nobs       = 2;
-    c.nsplit     = 2;
-    c.ncomp[0]   = 1;
-    c.comp[0][0] = 0;
-    c.ncomp[1]   = 2;
-    c.comp[1][0] = 1;
-    c.comp[1][1] = 2;
-    u0[0]        = 1;
-    u0[1]        = 1;
-    break;
-  case 28:
-    c.n          = 4;
-    c.nobs       = 1;
-    c.nsplit     = 2;
-    c.ncomp[0]   = 2;
-    c.comp[0][0] = 0;
-    c.comp[0][1] = 1;
-    c.ncomp[1]   = 2;
-    c.comp[1][0] = 2;
-    c.comp[1][1] = 3;
-    u0[0]        = 1;
-    u0[2]        = 1;
-    break;
-  case 19:
-    c.n          = 3;
-    c.nobs       = 1;
-    c.nsplit     = 3;
-    c.ncomp[0]   = 1;
-    c.comp[0][0] = 0;
-    c.ncomp[1]   = 1;
-    c.comp[1][0] = 1;
-    c.ncomp[2]   = 1;
-    c.comp[2][0] = 2;
-    u0[0]        = 2;
-    break;
+  PetscReal    u0[8] = {0};
+  const Setup *setup = nullptr;
+  for (const Setup &st : kSetups)
+    if (st.prob == c.prob) setup = &st;
+  PetscCheck(setup, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "-prob %d: no such problem (0-28, the cases of Field())", (int)c.prob);
+  c.n      = (PetscInt)setup->u0.size();
+  c.nobs   = setup->nobs;
+  c.nsplit = (PetscInt)setup->splits.size();
+  for (PetscInt s = 0; s < c.nsplit; ++s) {
+    c.ncomp[s] = (PetscInt)setup->splits[s].size();
+    for (PetscInt k = 0; k < c.ncomp[s]; ++k) c.comp[s][k] = setup->splits[s][k];
   }
+  for (PetscInt i = 0; i < c.n; ++i) u0[i] = setup->u0[i];
   if (obs1) c.nobs = 1;
   {
     PetscReal xs[8];
