@@ -20,6 +20,7 @@ from concurrent.futures import ThreadPoolExecutor
 # name, problem, final time, reference step, options (DeltaT 0.1 throughout)
 PROBLEMS = [
     ('slow explicit time dependence (section 13)', 0, 2, 1e-5, ['-eps', '1e-3']),
+    ('slow explicit time dependence to t = 10 (section 24)', 0, 10, 1e-5, ['-eps', '1e-3']),
     ('slow harmonic driven by a slaved nonlinearity', 4, 2, 1e-5, ['-eps', '1e-3']),
     ('fast rate varying with the slow variable', 5, 2, 1e-5, ['-eps', '1e-3']),
     ('slow forcing inside the fast split (section 18)', 8, 2, 1e-5, ['-eps', '1e-3']),

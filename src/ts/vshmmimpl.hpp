@@ -150,11 +150,12 @@ struct TS_VSHMM {
   PetscReal              radius_baseline = 0;                  // its radius at the levels' last full spectra (adapt)
   PetscInt               slow_steps      = 0;                  // accepted steps whose estimate they led
   std::vector<PetscReal> obs_a, obs_b;
-  std::vector<PetscReal> obs_diff;                 // the last ObservableDifference, signed and weighted, per observable
-  std::vector<PetscReal> step_signed;              // that of the last comparison of the step being taken
-  std::vector<PetscReal> adapt_signed;             // the accepted steps' estimated errors, signed, summed (tolerance units)
-  PetscInt               adapt_accepted       = 0; // accepted macro steps of this solve
-  PetscInt               adapt_start_accepted = 0; // those accepted before adapt started again (SeparationChanged())
+  std::vector<PetscReal> obs_diff;                   // the last ObservableDifference, signed and weighted, per observable
+  std::vector<PetscReal> step_signed;                // that of the last comparison of the step being taken
+  std::vector<PetscReal> adapt_signed;               // the accepted steps' estimated errors, signed, summed (tolerance units)
+  PetscReal              adapt_coherence      = 0.5; // the largest exponent gamma of the errors' growth measured so far (OwnStepBudget())
+  PetscInt               adapt_accepted       = 0;   // accepted macro steps of this solve
+  PetscInt               adapt_start_accepted = 0;   // those accepted before adapt started again (SeparationChanged())
   PetscReal              error_estimate = 0, error_estimate_total = 0;
   PetscInt64             adapt_evaluations = 0, adapt_rejections = 0, adapt_calibrations = 0;
   PetscInt64             adapt_uncompared_total = 0; // accepted steps whose comparison was left out (statistics)

@@ -1205,7 +1205,7 @@ TEST(VSHMMAdapt, APairMergedAtTheInitialStateTakesSavingsOnceSeparated)
 // z' = -1000 (z - g(t, y)), g from 1/2 to cos(3 y) around t = 2 (tanh, width 0.1), DeltaT = 0.1 to
 // t = 4. Once a step can coarsen nothing (micro step and cycle at their bounds) and its last two
 // estimates were far below their shares and the last did not rise (more than 2x), its comparison is
-// left out, at most 3 steps in a row (the model's prediction stands in): 16 and 9 steps at 1e-2 and
+// left out, at most 3 steps in a row (the model's prediction stands in): 14 and 9 steps at 1e-2 and
 // 1e-3, and y(4) is within the tolerance across the change (0.005 and 0.03 of it).
 void SwitchFast(const void *, PetscReal t, const PetscScalar *x, PetscScalar *f)
 {
@@ -1225,12 +1225,13 @@ TEST(VSHMMAdapt, SteadyStepsLeaveOutTheirComparisons)
     AdaptRun          run;
     ASSERT_EQ(SolveObservingX0(options.c_str(), p, {1.0, 0.5}, {"slow", "fast"}, 0.1, T, &run), 0);
     EXPECT_LE(std::abs(run.x[0] - ref), tol * (1 + std::abs(ref))) << options << ": y(4) = " << run.x[0] << ", reference " << ref;
-    /* 15 and 9 steps (16 and 9 before a macro step's first comparison inherited the faster
+    /* 14 and 9 steps (15 and 9 before the largest significant coherence measured was kept,
+       docs/accuracy.md section 24; 16 and 9 before a macro step's first comparison inherited the faster
        levels' lag; 15 and 8 while a scheduled calibration of a step with nothing to coarsen
        was made; 13 and 8 while a fall of the estimate by more than 2x forced a comparison too; 12
        and 7 while the micro step started at DeltaT / 100, not at the fast level's stability
        limit); without the limit of 3 in a row 19 and 12 then */
-    EXPECT_EQ(run.stats.adapt_uncompared, tol > 5e-3 ? 15 : 9) << options;
+    EXPECT_EQ(run.stats.adapt_uncompared, tol > 5e-3 ? 14 : 9) << options;
   }
 }
 
@@ -2327,6 +2328,25 @@ TEST(VSHMMAdapt, TheCarriedComparisonConvertsEachStepAsItsOwn)
   ASSERT_EQ(SolveObservingX0("-ts_vshmm_adapt -ts_rtol 1e-3 -ts_atol 1e-3 -ts_vshmm_warnings_viewer none", p, {1.0, 0.0}, {"slow", "fast"}, 0.1, 4, &plain), 0);
   EXPECT_EQ(plain.x[0], run.x[0]);
   EXPECT_EQ(plain.evaluations, run.evaluations);
+}
+
+// The errors' coherence, once measured significant, stands. x' = -y + sin 3t, y' = -(y - cos(t) sin
+// x) / 1e-3 from (1, 0), DeltaT = 0.1, x observed, at 1e-2 to t = 8.8: the signed sum of the steps'
+// estimates grew like k^0.94 to t = 3.3 (gamma 0.94, each step's share 0.013 of the tolerance),
+// then passed through 0 with x's oscillation (t = 5.1, 7.5), where gamma read 1/2 and the shares
+// rose to 0.1; the error added up again from t = 6.8 on, and x(8.8) ended 2.2 tol off, silently.
+// Kept (a gamma measured after at least 8 steps, with the signed sum at least twice a random
+// walk's): 0.46 tol. A chaotic fast level's noise never reads significant
+// (AChaoticFastLevelDoesNotRefineBelowItsFloor).
+TEST(VSHMMAdapt, TheErrorsCoherenceOnceSignificantStands)
+{
+  constexpr double T = 8.8, tol = 1e-2;
+  const double     ref = ConvergedReference({StepCountSlow, StepCountFast}, nullptr, {1.0, 0.0}, T, 1e-5, 2e-5, 1e-9);
+  SplitProblem     p;
+  AdaptRun         run;
+  p.terms = {StepCountSlow, StepCountFast};
+  ASSERT_EQ(SolveObservingX0("-ts_vshmm_adapt -ts_vshmm_warnings_viewer none -ts_rtol 1e-2 -ts_atol 1e-2", p, {1.0, 0.0}, {"slow", "fast"}, 0.1, T, &run), 0);
+  EXPECT_LE(std::abs(run.x[0] - ref), tol * (1 + std::abs(ref))) << "x(8.8) = " << run.x[0] << ", reference " << ref;
 }
 
 // A final time inside a macro step with -ts_exact_final_time interpolate: x' = -y + sin 9t (slow
