@@ -421,25 +421,49 @@ static int bandwidth(const std::vector<double> &f)
 }
 
 // The trigonometric interpolant of grid values f (N points) at the M points 2 pi j / M (the
-// Nyquist coefficient of an even N split evenly between +-N/2): synthesised on L > N points, L a
-// multiple of M, and sampled every L/M points.
+// Nyquist coefficient of an even N split evenly between +-N/2). Summed directly over the
+// coefficients above 1e-14 of the largest (a coefficient field's few harmonics: e^{sin 64x} has
+// about 15) with the angles k j mod M from a table of M; where that sum would cost more than
+// kDirectInterpolation multiply-adds, synthesised by FFT on L > N points, L a multiple of M, and
+// sampled every L/M points. The FFT path plans a transform of a size used nowhere else, 1-3 ms
+// of FFTW's estimate planner (the nonlinear scene's set-up: 3.5-5.5 of its 9.7 ms).
+static constexpr double kDirectInterpolation = 1 << 20;
+
 static std::vector<double> interpolate(const std::vector<double> &f, int M)
 {
   const int N = (int)f.size();
-  int       L = M;
-  while (L <= N) L += M;
-  RealFFT a(N, Planner::Estimate), b(L, Planner::Estimate);
+  RealFFT   a(N, Planner::Estimate);
   std::memcpy(a.real(), f.data(), sizeof(double) * N);
   a.forward();
-  double *s = b.spectrum();
-  std::memset(s, 0, sizeof(double) * 2 * (L / 2 + 1));
+  std::vector<double> re(N / 2 + 1), im(N / 2 + 1);
+  double              big = 0;
   for (int k = 0; k <= N / 2; ++k) {
     const double w = (N % 2 == 0 && k == N / 2 && k > 0) ? 0.5 : 1.0;
-    s[2 * k]       = w * a.spectrum()[2 * k] / N;
-    s[2 * k + 1]   = (N % 2 == 0 && k == N / 2) ? 0.0 : a.spectrum()[2 * k + 1] / N;
+    re[k]          = w * a.spectrum()[2 * k] / N;
+    im[k]          = (N % 2 == 0 && k == N / 2) ? 0.0 : a.spectrum()[2 * k + 1] / N;
+    big            = std::max(big, std::hypot(re[k], im[k]));
   }
+  std::vector<int> used;
+  for (int k = 1; k <= N / 2; ++k)
+    if (std::hypot(re[k], im[k]) > 1e-14 * big) used.push_back(k);
+  std::vector<double> v(M, re[0]);
+  if ((double)used.size() * M <= kDirectInterpolation) {
+    std::vector<double> c(M), sn(M);
+    for (int m = 0; m < M; ++m) c[m] = std::cos(2 * kPi * m / M), sn[m] = std::sin(2 * kPi * m / M);
+    for (int k : used)
+      for (int j = 0; j < M; ++j) {
+        const int m = (int)(((long long)k * j) % M);
+        v[j] += 2 * (re[k] * c[m] - im[k] * sn[m]);
+      }
+    return v;
+  }
+  int L = M;
+  while (L <= N) L += M;
+  RealFFT b(L, Planner::Estimate);
+  double *s = b.spectrum();
+  std::memset(s, 0, sizeof(double) * 2 * (L / 2 + 1));
+  for (int k = 0; k <= N / 2; ++k) s[2 * k] = re[k], s[2 * k + 1] = im[k];
   b.inverse();
-  std::vector<double> v(M);
   for (int j = 0; j < M; ++j) v[j] = b.real()[(size_t)j * (L / M)];
   return v;
 }
