@@ -107,4 +107,11 @@ vshmm_example_test(NAME dissipative_vshmm_adapt_lag_additive_view EXE dissipativ
 vshmm_example_test(NAME dissipative_vshmm_adapt_unseparated_pair_view EXE dissipative NP 1
                    ARGS -ts_type vshmm -eps 3e-2 -ts_vshmm_adapt -ts_rtol 3e-3 -ts_atol 3e-3 -ts_view -no_timing
                    REGEX "levels 1/2: no savings between them [(]they are 1.31 apart, less than 2, and the faster only decays[)].*final t 2.0000 xi 1.48[01][0-9]*e[+]00\nrhs_evaluations 4344\n")
-
+# -ts_adapt_monitor (PETSc's option for adaptive controllers) prints a line per try of a macro step
+# that got an error estimate, what became of it and its parameters: the first step, an initial
+# layer, refined twice; on two ranks once (the next line is the next step's, not a copy)
+foreach(_np 1 2)
+  vshmm_example_test(NAME dissipative_vshmm_adapt_monitor_np${_np} EXE dissipative NP ${_np}
+                     ARGS -ts_type vshmm -ts_vshmm_adapt -ts_rtol 1e-2 -ts_atol 1e-2 -ts_adapt_monitor -ts_max_time 0.3 -no_timing
+                     REGEX "TSAdapt vshmm: step +0 rejected t=0 +[+] 1.000e-01 try 1 estimate 6.56[0-9]e[+]00 of its share 5.774e-01 [(]11.4[)], micro step [0-9.]+e-04, time ratios [0-9.]+,[0-9.]+, 6 micro cycles\n[^\n]*step +0 rejected[^\n]*\n[^\n]*step +0 accepted t=0 [^\n]*try 3 [^\n]*\n[^\n]*step +1 accepted t=0.1 [^\n]*\n[^\n]*step +2 accepted t=0.2 ")
+endforeach()

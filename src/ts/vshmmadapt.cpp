@@ -2041,6 +2041,25 @@ PetscErrorCode TSVSHMMAdaptCheckSeparation_Private(TS ts)
 }
 
 /* One macro step with accuracy control; the accepted result is left in ts->vec_sol. */
+/* -ts_adapt_monitor (TSAdaptSetMonitor() on the TS's TSAdapt, as PETSc's adaptive controllers
+   print theirs): a line per try of a macro step that got an estimate, what became of it, and the
+   parameters it ran with. */
+static PetscErrorCode MonitorTry(TS ts, const char *outcome, PetscReal t0, PetscReal DeltaT, PetscInt attempt, const vshmm::AdaptParameters &p, PetscInt64 cycles, PetscReal E, PetscReal budget)
+{
+  TSAdapt adapt;
+
+  PetscFunctionBegin;
+  PetscCall(TSGetAdapt(ts, &adapt));
+  if (!adapt->monitor) PetscFunctionReturn(0);
+  std::string ratios;
+  for (double r : p.ratios) ratios += (ratios.empty() ? "" : ",") + std::to_string(r);
+  PetscCall(PetscViewerASCIIAddTab(adapt->monitor, ((PetscObject)adapt)->tablevel));
+  PetscCall(PetscViewerASCIIPrintf(adapt->monitor, "    TSAdapt vshmm: step %3" PetscInt_FMT " %s t=%-11g+%10.3e try %" PetscInt_FMT " estimate %.3e of its share %.3e (%.3g), micro step %.3e, time ratios %s, %" PetscInt64_FMT " micro cycles\n", ts->steps, outcome, (double)t0, (double)DeltaT, attempt, (double)E, (double)budget, (double)(E / budget),
+                                   (double)p.microStep, ratios.c_str(), cycles));
+  PetscCall(PetscViewerASCIISubtractTab(adapt->monitor, ((PetscObject)adapt)->tablevel));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
 {
   TS_VSHMM       *vs     = (TS_VSHMM *)ts->data;
@@ -2327,6 +2346,7 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
       const PetscReal dearer = vshmm::workRate(single, cost) / vshmm::workRate(p, cost);
       if (dearer <= kMaxDearer) {
         PetscCall(PetscInfo(ts, "Adapt: macro step [%g, %g] try %" PetscInt_FMT ": the estimate %g does not fall below its share %g with the savings: tried without them (single-rate, %g times the work)\n", (double)t0, (double)t1, attempt, (double)E, (double)budget, (double)dearer));
+        PetscCall(MonitorTry(ts, "rejected (a floor: tried without savings)", t0, DeltaT, attempt, p, counts.cycles, E, budget));
         DiscardTry(vs, rhs0, lev0);
         beforeSingleRate = p;
         floorEstimate    = E;
@@ -2344,6 +2364,7 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
        549 million evaluations, each step's estimate going up and down by 10x) */
     const PetscBool pastFloor = (!savings && vs->adapt_floor_dt > 0 && next.microStep < kFloorFactor * vs->adapt_floor_dt) ? PETSC_TRUE : PETSC_FALSE;
     if (E > budget && refinable && !floor && !pastFloor && attempt + 1 < kMaxAttempts) { /* redo with finer parameters */
+      PetscCall(MonitorTry(ts, "rejected", t0, DeltaT, attempt, p, counts.cycles, E, budget));
       DiscardTry(vs, rhs0, lev0);
       if (vs->adapt_accepted > 0) PetscCall(KeepComparableRatios(ts, p, next));
       predicted = vs->adapt_model.total(next);
@@ -2380,6 +2401,7 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
         PetscCall(TSVSHMMWarn_Private(ts, "TSVSHMM warning (-ts_vshmm_adapt): the macro step [%g, %g] is accepted with an error estimate of %g times its share of the tolerance (%s). %s The run goes on; the estimates are in the statistics (TSVSHMMGetStatistics(), -ts_view). This warning is given once per solve.\n", (double)t0, (double)t1, (double)(E / budget), why, noise ? "The sampled values carry a part VSHMM does not resolve (typically fast fluctuations, or an initial layer: the faster variables start off their slow manifold, and in the first macro steps the savings factors change the slow values by an amount that does not fall with them): a tolerance this far below -ts_rtol/-ts_atol is out of reach for VSHMM here." : "Loosen the tolerance, or leave the micro step and savings factors to -ts_vshmm_adapt, or use a single-rate TS type."));
       }
     }
+    PetscCall(MonitorTry(ts, E > budget ? "accepted above its share" : "accepted", t0, DeltaT, attempt, p, counts.cycles, E, budget));
     PetscCall(VecCopy(vs->Xbase, ts->vec_sol));
     TSVSHMMAddCounts_Private(vs, counts);
     vs->error_estimate = E;
