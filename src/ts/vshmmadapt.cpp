@@ -2040,7 +2040,14 @@ PetscErrorCode TSVSHMMAdaptCheckSeparation_Private(TS ts)
   PetscFunctionReturn(0);
 }
 
-/* One macro step with accuracy control; the accepted result is left in ts->vec_sol. */
+/* The time ratios of p, comma-separated, for -info and -ts_adapt_monitor */
+static std::string RatiosText(const vshmm::AdaptParameters &p)
+{
+  std::string ratios;
+  for (double r : p.ratios) ratios += (ratios.empty() ? "" : ",") + std::to_string(r);
+  return ratios;
+}
+
 /* -ts_adapt_monitor (TSAdaptSetMonitor() on the TS's TSAdapt, as PETSc's adaptive controllers
    print theirs): a line per try of a macro step that got an estimate, what became of it, and the
    parameters it ran with. */
@@ -2051,8 +2058,7 @@ static PetscErrorCode MonitorTry(TS ts, const char *outcome, PetscReal t0, Petsc
   PetscFunctionBegin;
   PetscCall(TSGetAdapt(ts, &adapt));
   if (!adapt->monitor) PetscFunctionReturn(0);
-  std::string ratios;
-  for (double r : p.ratios) ratios += (ratios.empty() ? "" : ",") + std::to_string(r);
+  const std::string ratios = RatiosText(p);
   PetscCall(PetscViewerASCIIAddTab(adapt->monitor, ((PetscObject)adapt)->tablevel));
   PetscCall(PetscViewerASCIIPrintf(adapt->monitor, "    TSAdapt vshmm: step %3" PetscInt_FMT " %s t=%-11g+%10.3e try %" PetscInt_FMT " estimate %.3e of its share %.3e (%.3g), micro step %.3e, time ratios %s, %" PetscInt64_FMT " micro cycles\n", ts->steps, outcome, (double)t0, (double)DeltaT, attempt, (double)E, (double)budget, (double)(E / budget),
                                    (double)p.microStep, ratios.c_str(), cycles));
@@ -2060,6 +2066,7 @@ static PetscErrorCode MonitorTry(TS ts, const char *outcome, PetscReal t0, Petsc
   PetscFunctionReturn(0);
 }
 
+/* One macro step with accuracy control; the accepted result is left in ts->vec_sol. */
 PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
 {
   TS_VSHMM       *vs     = (TS_VSHMM *)ts->data;
@@ -2284,8 +2291,7 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
       refinable = (next.microStep < p.microStep || vshmm::cycleLength(next) < vshmm::cycleLength(p)) ? PETSC_TRUE : PETSC_FALSE;
     }
     LimitToStableSteps(ts, next);
-    std::string ratios;
-    for (double r : p.ratios) ratios += (ratios.empty() ? "" : ",") + std::to_string(r);
+    const std::string ratios = RatiosText(p);
     PetscCall(PetscInfo(ts, "Adapt: macro step [%g, %g] try %" PetscInt_FMT ": dt %g, time ratios %s, cycle %g, %" PetscInt64_FMT " cycles; estimate %g of its share %g\n", (double)t0, (double)t1, attempt, (double)p.microStep, ratios.c_str(), (double)vshmm::cycleLength(p),
                         counts.cycles, (double)E, (double)budget));
     /* a floor: twice, finer parameters did not lower the estimate clearly below the lowest of

@@ -153,7 +153,7 @@ struct TS_VSHMM {
   std::vector<PetscReal> obs_diff;                   // the last ObservableDifference, signed and weighted, per observable
   std::vector<PetscReal> step_signed;                // that of the last comparison of the step being taken
   std::vector<PetscReal> adapt_signed;               // the accepted steps' estimated errors, signed, summed (tolerance units)
-  PetscReal              adapt_coherence      = 0.5; // the largest exponent gamma of the errors' growth measured so far (OwnStepBudget())
+  PetscReal              adapt_coherence      = 0.5; // the largest exponent gamma of the errors' growth measured significant so far (OwnStepBudget())
   PetscInt               adapt_accepted       = 0;   // accepted macro steps of this solve
   PetscInt               adapt_start_accepted = 0;   // those accepted before adapt started again (SeparationChanged())
   PetscReal              error_estimate = 0, error_estimate_total = 0;
