@@ -273,6 +273,18 @@ static PetscErrorCode Mon(TS ts, PetscInt step, PetscReal t, Vec X, void *ctx)
   PetscFunctionReturn(0);
 }
 
+/* "LABEL steps steps+estimates est_total E" for a TSVSHMM run (tools/adapt_outside.py reads it) */
+static PetscErrorCode PrintWork(TS ts, const char *label)
+{
+  TSVSHMMStatistics st;
+  PetscInt64        tot = 0;
+  PetscFunctionBeginUser;
+  PetscCall(TSVSHMMGetStatistics(ts, &st));
+  for (PetscInt i = 0; i < st.nsplits; i++) tot += st.rhs_evaluations[i];
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%s %lld %lld est_total %g\n", label, (long long)tot, (long long)(tot + st.adapt_evaluations), (double)st.error_estimate_total));
+  PetscFunctionReturn(0);
+}
+
 /* Each problem's observables' count, the components each split writes (slowest first) and its
    initial state (-x0 replaces it); its number of components is the state's length. */
 struct Setup {
@@ -423,13 +435,7 @@ int main(int argc, char **argv)
   PetscCall(PetscOptionsGetBool(NULL, NULL, "-restart", &restart, NULL));
   if (restart) { /* a second solve from the start (an ensemble member): time, step number and state reset */
     PetscCall(PetscPrintf(PETSC_COMM_WORLD, "RESTART\n"));
-    if (isv) {
-      TSVSHMMStatistics st;
-      PetscInt64        tot = 0;
-      PetscCall(TSVSHMMGetStatistics(ts, &st));
-      for (PetscInt i = 0; i < st.nsplits; i++) tot += st.rhs_evaluations[i];
-      PetscCall(PetscPrintf(PETSC_COMM_WORLD, "WORK1 %lld %lld est_total %g\n", (long long)tot, (long long)(tot + st.adapt_evaluations), (double)st.error_estimate_total));
-    }
+    if (isv) PetscCall(PrintWork(ts, "WORK1"));
     PetscCall(TSSetTime(ts, 0));
     PetscCall(TSSetStepNumber(ts, 0));
     PetscCall(TSSetTimeStep(ts, 0.1));
@@ -438,13 +444,8 @@ int main(int argc, char **argv)
     PetscCall(VecRestoreArray(U, &u));
     PetscCall(TSSolve(ts, U));
   }
-  if (isv) {
-    TSVSHMMStatistics st;
-    PetscInt64        tot = 0;
-    PetscCall(TSVSHMMGetStatistics(ts, &st));
-    for (PetscInt i = 0; i < st.nsplits; i++) tot += st.rhs_evaluations[i];
-    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "WORK %lld %lld est_total %g\n", (long long)tot, (long long)(tot + st.adapt_evaluations), (double)st.error_estimate_total));
-  } else {
+  if (isv) PetscCall(PrintWork(ts, "WORK"));
+  else {
     PetscInt st;
     PetscCall(TSGetStepNumber(ts, &st));
     PetscCall(PetscPrintf(PETSC_COMM_WORLD, "WORK steps %d\n", (int)st));
