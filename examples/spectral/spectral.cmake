@@ -167,6 +167,19 @@ vshmm_example_test(NAME spectral_nonlinear_vshmm_small_vs_sparse EXE diffusion
                    ARGS ${_sp_nl} -ts_dt 0.125 -compare_grid_solution ${_sp_dir}/spectral_nonlinear_sparse_small/sparse -compare_tolerance 6e-3
                    REGEX "compare t 0.25 relative_l2_error")
 set_tests_properties(spectral_nonlinear_vshmm_small_vs_dns spectral_nonlinear_vshmm_small_vs_sparse PROPERTIES FIXTURES_REQUIRED spectral_nonlinear_refs)
+# Implicit TS types: VSHMMSpectralSetUpTS() declares TS_NONLINEAR with burgers or a cubic reaction, so
+# each Crank-Nicolson step is a Newton solve (2 iterations here); the examples used to declare
+# TS_LINEAR, which made PETSc take one linear solve per step (SNES ksponly; 7x the error of Newton
+# at N = 512, t = 1, dt = 1e-3, and no message). Against the DNS 5.4e-7, 4.8e-7. A linear scene keeps
+# TS_LINEAR (ksponly, exact there).
+vshmm_example_test(NAME spectral_nonlinear_dns_small_cn EXE diffusion
+                   ARGS ${_sp_nl} -spectral_mode dns -ts_type cn -snes_mf -pc_type none -ts_dt 2e-3 -snes_converged_reason
+                        -compare_grid_solution ${_sp_dir}/spectral_nonlinear_dns_small/dns -compare_tolerance 1e-6
+                   REGEX "Nonlinear solve converged due to CONVERGED_FNORM_RELATIVE iterations 2.*compare t 0.25 relative_l2_error")
+set_tests_properties(spectral_nonlinear_dns_small_cn PROPERTIES FIXTURES_REQUIRED spectral_nonlinear_refs)
+vshmm_example_test(NAME spectral_diffusion_dns_cn_linear EXE diffusion
+                   ARGS ${_sp_diff} -spectral_mode dns -ts_type cn -snes_mf -pc_type none -ts_dt 1e-2 -output_times 0.02 -ts_view -no_timing
+                   REGEX "type: cn.*SNES Object: [^\n]*\n  *type: ksponly")
 
 # --- stable steps from the operator (VSHMMSpectralGetStableTimeStep()) and the growth check ----
 # Without -ts_dt the examples step by 0.9 times the stable step of an Arnoldi estimate of the

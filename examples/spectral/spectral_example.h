@@ -586,7 +586,6 @@ static PetscErrorCode RunSpectralExample(const char *scene, PetscReal tfinal)
   PetscCall(VSHMMSpectralSetInitialCondition(run.sp, U));
 
   PetscCall(TSCreate(PETSC_COMM_WORLD, &ts));
-  PetscCall(TSSetProblemType(ts, TS_LINEAR));
   PetscCall(TSSetSolution(ts, U));
   PetscCall(VSHMMSpectralSetUpTS(run.sp, ts));
   PetscCall(TSSetType(ts, TSRK));

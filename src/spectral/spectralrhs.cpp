@@ -350,6 +350,9 @@ static PetscErrorCode SplitRHS(TS ts, PetscReal t, Vec U, Vec F, void *ctx)
    full-size vector (zeros outside cluster j): the splits add up to the full right-hand side.
    The physical-space field of a state is computed once and shared by the splits called with
    that state (same Vec, object state and time), as TSVSHMM does on each level.
+   It declares the problem type: `TS_NONLINEAR` with the terms burgers or a reaction of degree 2
+   or 3, else `TS_LINEAR` (diffusion, advection, source and an affine reaction), so an implicit TS
+   type solves each stage by Newton's method, or by one linear solve where that is exact.
    It also sets the TS monitor `VSHMMSpectralGrowthMonitor()`, which stops the solve with an error
    when the solution grows beyond what the scene's terms allow (-spectral_growth_bound; 0: never).
 
@@ -369,7 +372,8 @@ PetscErrorCode VSHMMSpectralSetUpTS(VSHMMSpectral sp, TS ts)
   PetscCall(VSHMMSpectralSetUp(sp));
   s = sp->data;
   PetscCall(TSSetRHSFunction(ts, NULL, VSHMMSpectralRHSFunction, sp));
-  PetscCall(TSMonitorSet(ts, VSHMMSpectralGrowthMonitor, sp, NULL)); /* the growth check, spectralstable.cpp */
+  PetscCall(TSSetProblemType(ts, s->op && s->op->isNonlinear() ? TS_NONLINEAR : TS_LINEAR)); /* implicit types: Newton, or one linear solve per stage */
+  PetscCall(TSMonitorSet(ts, VSHMMSpectralGrowthMonitor, sp, NULL));                         /* the growth check, spectralstable.cpp */
   if (s->mode != VSHMMSPECTRAL_MODE_SPARSE) PetscFunctionReturn(0);
   PetscCall(TSGetSolution(ts, &U));
   PetscCheck(U, PetscObjectComm((PetscObject)sp), PETSC_ERR_ARG_WRONGSTATE, "VSHMMSpectralSetUpTS(): call TSSetSolution() first");
