@@ -193,12 +193,13 @@ double phaseError(const StabilityFunction &R, std::complex<double> lambda, doubl
   return std::fabs(d);
 }
 
-double largestAccurateStep(const StabilityFunction &R, const std::vector<std::complex<double>> &modes, double hMax, double stepsPerUnitStep, double allowed, double phaseWeight)
+double largestAccurateStep(const StabilityFunction &R, const std::vector<std::complex<double>> &modes, double hMax, double stepsPerUnitStep, double allowed, double phaseWeight, double amplitudeStepsPerUnitStep)
 {
-  auto error = [&](double h) {
+  const double amplitudeSteps = amplitudeStepsPerUnitStep > 0 ? std::min(amplitudeStepsPerUnitStep, stepsPerUnitStep) : stepsPerUnitStep;
+  auto         error          = [&](double h) {
     double e = 0;
-    for (const std::complex<double> &lambda : modes) e = std::max(e, amplitudeError(R, lambda, h) + (phaseWeight > 0 ? phaseWeight * phaseError(R, lambda, h) : 0.0));
-    return e * stepsPerUnitStep / h;
+    for (const std::complex<double> &lambda : modes) e = std::max(e, amplitudeError(R, lambda, h) * amplitudeSteps + (phaseWeight > 0 ? phaseWeight * phaseError(R, lambda, h) * stepsPerUnitStep : 0.0));
+    return e / h;
   };
   if (!(hMax > 0) || modes.empty() || error(hMax) <= allowed) return hMax;
   double lo = hMax, hi = hMax;

@@ -90,8 +90,10 @@ double phaseError(const StabilityFunction &R, std::complex<double> lambda, doubl
 // lost (or gained) by the steps, no comparison of two such runs sees it, the energy is gone from
 // both; where the sampled values hold the mode itself, its phase error adds up step by step as
 // well (a rotation keeps it: the errors add coherently). hMax where it already passes; bisection
-// to 1e-3 relative otherwise.
-double largestAccurateStep(const StabilityFunction &R, const std::vector<std::complex<double>> &modes, double hMax, double stepsPerUnitStep, double allowed, double phaseWeight = 0.0);
+// to 1e-3 relative otherwise. amplitudeStepsPerUnitStep (where positive and smaller) sums the
+// amplitude error over fewer steps than the phase error: an oscillation that restores its own
+// amplitude (a limit cycle) keeps an amplitude error only over the time it takes to restore it.
+double largestAccurateStep(const StabilityFunction &R, const std::vector<std::complex<double>> &modes, double hMax, double stepsPerUnitStep, double allowed, double phaseWeight = 0.0, double amplitudeStepsPerUnitStep = -1.0);
 
 // The largest savings factor alpha_j, 0 <= alpha_j <= savings[j-1] (j = 1..K), with which the
 // steps of level j - 1 damp the mode lambda by at least dampingTarget over a macro step

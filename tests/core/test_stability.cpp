@@ -269,6 +269,26 @@ TEST(LargestAccurateStep, CountsThePhaseWhereTheValuesHoldTheMode)
   EXPECT_EQ(vshmm::largestAccurateStep(R, {omega}, 2.5e-3, 2.0, 1e-2, 0.0), amplitudeOnly);
 }
 
+// An oscillation that restores its amplitude (a limit cycle) keeps an amplitude error only over the
+// time it takes to restore it: the amplitude summed over 2e-3 of the span (a rate 1,000 restoring
+// the amplitude of a rotation at 1,000 on a span of 2), the phase still over the whole span.
+TEST(LargestAccurateStep, AnAmplitudeRestoredIsCountedOverItsRestoringTime)
+{
+  vshmm::StabilityFunction   R(RK4());
+  const std::complex<double> omega(0, 1e3);
+  const double               restored = vshmm::largestAccurateStep(R, {omega}, 2.5e-3, 2.0, 1e-2, 0.0, 1e-3);
+  EXPECT_EQ(restored, vshmm::largestAccurateStep(R, {omega}, 2.5e-3, 1e-3, 1e-2));      /* the amplitude alone: as over a span of 1e-3 */
+  EXPECT_GT(restored, 2.5 * vshmm::largestAccurateStep(R, {omega}, 2.5e-3, 2.0, 1e-2)); /* (2000)^(1/5): 4.6x */
+  const double withPhase = vshmm::largestAccurateStep(R, {omega}, 2.5e-3, 2.0, 1e-2, 0.5, 1e-3);
+  const auto   error     = [&](double h) { return (vshmm::amplitudeError(R, omega, h) * 1e-3 + 0.5 * vshmm::phaseError(R, omega, h) * 2.0) / h; };
+  EXPECT_LE(error(withPhase), 1e-2);
+  EXPECT_GT(error(1.01 * withPhase), 1e-2);
+  EXPECT_LT(withPhase, restored);
+  /* not positive, or not shorter than the span: the amplitude over the whole span */
+  EXPECT_EQ(vshmm::largestAccurateStep(R, {omega}, 2.5e-3, 2.0, 1e-2, 0.0, -1.0), vshmm::largestAccurateStep(R, {omega}, 2.5e-3, 2.0, 1e-2));
+  EXPECT_EQ(vshmm::largestAccurateStep(R, {omega}, 2.5e-3, 2.0, 1e-2, 0.0, 5.0), vshmm::largestAccurateStep(R, {omega}, 2.5e-3, 2.0, 1e-2));
+}
+
 } // namespace
 
 namespace {
