@@ -10,7 +10,7 @@ steps' estimates.
     python3 tools/adapt_outside.py BUILD_DIR [--tols 1e-1,1e-2,1e-3] [--only SUBSTRING] [--jobs N]
                                    [-- extra options for the adaptive runs]
 
-About four minutes on two cores (the references and the spread of rates most of it).
+About six minutes on two cores (the references, the spread of rates and the limit cycle at eps = 1e-4 most of it).
 """
 import math
 import subprocess
@@ -41,6 +41,8 @@ PROBLEMS = [
     ('slow rotation at the speed of a slaved fast variable', 23, 10, 1e-5, ['-eps', '1e-3']),
     ('Michaelis-Menten with a small constant K = 0.1', 26, 4, 1e-5, ['-eps', '1e-3', '-a', '0.1']),
     ('fast rotation that slows down, driving y (said, not met at 1e-3)', 28, 3, 1e-6, ['-eps', '1e-3']),
+    ('a fast limit cycle (van der Pol, Hopf parameter x; section 25)', 29, 2, 1e-5, ['-eps', '1e-3']),
+    ('the same limit cycle at eps 1e-4 (section 25)', 29, 2, 1e-6, ['-eps', '1e-4']),
 ]
 
 

@@ -168,6 +168,11 @@ static void Field(Ctx *c, PetscReal t, const PetscScalar *u, PetscScalar *f)
     f[2] = u[0] * u[3] / e;
     f[3] = -u[0] * u[2] / e;
     break;
+  case 29: /* a fast limit cycle whose amplitude the slow variable sets (van der Pol with Hopf parameter x, amplitude about 2 sqrt(x)): x' = 1 - x q^2 ; q' = p/eps, p' = (-q + (x - q^2) p)/eps */
+    f[0] = 1 - u[0] * u[1] * u[1];
+    f[1] = u[2] / e;
+    f[2] = (-u[1] + (u[0] - u[1] * u[1]) * u[2]) / e;
+    break;
   case 19: /* three-level chemistry: A' = -A + B ; B' = (A - 2 B + C)/eps ; C' = (B - C - C^3)/eps2 */
     f[0] = -u[0] + u[1];
     f[1] = (u[0] - 2 * u[1] + u[2]) / e;
@@ -322,6 +327,7 @@ static const Setup kSetups[] = {
   {26, 1, {{0}, {1}}, {1, 0}},
   {27, 2, {{0}, {1, 2}}, {1, 1, 0}},
   {28, 1, {{0, 1}, {2, 3}}, {1, 0, 1, 0}},
+  {29, 1, {{0}, {1, 2}}, {0.2, 0.5, 0}},
 };
 
 int main(int argc, char **argv)

@@ -676,6 +676,11 @@ static PetscErrorCode TSView_VSHMM(TS ts, PetscViewer viewer)
     }
     PetscCall(PetscViewerASCIIPrintf(viewer, "  slowest rate of each level's own components (component splits; additive: an oscillation's amplitude rate in its own splits):%s\n", list.c_str()));
   }
+  if (vs->adapt && vs->fastest_phase_now && (vs->fastest_nonlinear || vs->fastest_restore > 0))
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  the fastest level's oscillation over four phases of it: mean eigenvalue %.3g%+.3gi, its amplitude restored at rate %.3g%s\n", vs->fastest_mean_mode.real(), vs->fastest_mean_mode.imag(), (double)vs->fastest_restore,
+                                     !vs->fastest_nonlinear                                                            ? ""
+                                     : std::abs(vs->fastest_mean_mode.imag()) > std::abs(vs->fastest_mean_mode.real()) ? " (nonlinear: oscillating by the mean, its own slowest rate the largest of the four phases')"
+                                                                                                                       : " (nonlinear; the mean does not oscillate: the Jacobian at the state judged)"));
   if (!vs->separations.empty()) {
     std::string list;
     for (PetscReal S : vs->separations) {

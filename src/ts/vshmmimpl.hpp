@@ -70,25 +70,29 @@ struct TS_VSHMM {
   std::vector<PetscLogEvent>                 level_events;
 
   // What each level's field looks like near the state (stability and separation checks, adapt)
-  std::vector<PetscReal>                         level_radius;                        // spectral radius estimate of the Jacobian of G_l
-  std::vector<PetscReal>                         level_max_step;                      // largest stable step of the inner RK for its limiting modes (inf: none)
-  std::vector<std::complex<double>>              level_worst;                         // the mode that sets it
-  std::vector<std::vector<std::complex<double>>> level_limiting;                      // decaying or oscillating Ritz values
-  std::vector<PetscReal>                         level_slowest;                       // smallest |Ritz value| of the block of the level's own components (0: not estimated)
-  PetscReal                                      fastest_share = 1;                   // the fastest level's part of the state (TSVSHMMLevelOwnRates_Private(); 1: not estimated)
-  PetscReal                                      fastest_drive = 0;                   // how far the slower levels' fields move the state over the run per relative amplitude error of the fastest level's oscillation (over ||X||; 0: not estimated)
-  std::vector<Vec>                               fastest_phase;                       // the slower levels' field at four phases of the fastest level's oscillation less its phase average (FastestLevelDrive(); empty: not estimated)
-  PetscReal                                      unaveraged         = 0;              // -ts_vshmm_adapt: the weighted error of a macro step that leaves that phase-dependent part unaveraged (1 = the tolerance; 0: none)
-  PetscReal                                      unaveraged_omega   = 0;              // and the slowest frequency of the fastest level's limiting oscillations
-  PetscReal                                      unaveraged_max     = 0;              // the largest unaveraged of the solve (the relative phases of a band of fast modes change it)
-  PetscBool                                      fastest_phase_now  = PETSC_FALSE;    // fastest_phase is of the present spectra
-  PetscBool                                      unaveraged_unknown = PETSC_FALSE;    // the fastest level oscillates, but its oscillation had no amplitude to measure unaveraged with (a state on its slow manifold, or at rest)
-  std::vector<PetscReal>                         level_time_rate;                     // per level l >= 1: how fast its own splits' explicit time dependence moves, ||dF_l/dt|| / (rho_l ||X||) (0: none or not estimated)
-  std::vector<PetscReal>                         level_time_rate_max;                 // -ts_vshmm_adapt: the largest of the solve per level
-  PetscBool                                      time_dependent     = PETSC_FALSE;    // some faster level's splits depend on time explicitly (found by LevelTimeRates())
-  PetscBool                                      time_rates_checked = PETSC_FALSE;    // the separation check compared the savings with them (once per solve, at set-up)
-  PetscReal                                      own_rates_time     = PETSC_MIN_REAL; // when level_slowest was estimated (with the spectra of that time)
-  PetscReal                                      spectra_time       = PETSC_MIN_REAL; // when they were estimated
+  std::vector<PetscReal>                         level_radius;                    // spectral radius estimate of the Jacobian of G_l
+  std::vector<PetscReal>                         level_max_step;                  // largest stable step of the inner RK for its limiting modes (inf: none)
+  std::vector<std::complex<double>>              level_worst;                     // the mode that sets it
+  std::vector<std::vector<std::complex<double>>> level_limiting;                  // decaying or oscillating Ritz values
+  std::vector<PetscReal>                         level_slowest;                   // smallest |Ritz value| of the block of the level's own components (0: not estimated)
+  PetscReal                                      fastest_share     = 1;           // the fastest level's part of the state (TSVSHMMLevelOwnRates_Private(); 1: not estimated)
+  PetscReal                                      fastest_drive     = 0;           // how far the slower levels' fields move the state over the run per relative amplitude error of the fastest level's oscillation (over ||X||; 0: not estimated)
+  PetscBool                                      fastest_nonlinear = PETSC_FALSE; // its plane's Jacobian differs with the phase (FastestLevelPlane()): judged by fastest_mean_mode
+  std::complex<double>                           fastest_mean_mode = 0;           // the eigenvalue of the mean of the plane's Jacobian over four phases
+  PetscReal                                      fastest_own_phase = 0;           // the largest slowest own rate of its own components at three other phases (nonlinear, component splits)
+  PetscReal              fastest_restore = 0; // how fast the fastest level's oscillation restores its amplitude: minus half its Jacobian's trace on the oscillation's plane, averaged over four phases (FastestLevelDrive(); 0: none, or not estimated)
+  std::vector<Vec>       fastest_phase;       // the slower levels' field at four phases of the fastest level's oscillation less its phase average (FastestLevelDrive(); empty: not estimated)
+  PetscReal              unaveraged         = 0;              // -ts_vshmm_adapt: the weighted error of a macro step that leaves that phase-dependent part unaveraged (1 = the tolerance; 0: none)
+  PetscReal              unaveraged_omega   = 0;              // and the slowest frequency of the fastest level's limiting oscillations
+  PetscReal              unaveraged_max     = 0;              // the largest unaveraged of the solve (the relative phases of a band of fast modes change it)
+  PetscBool              fastest_phase_now  = PETSC_FALSE;    // fastest_phase is of the present spectra
+  PetscBool              unaveraged_unknown = PETSC_FALSE;    // the fastest level oscillates, but its oscillation had no amplitude to measure unaveraged with (a state on its slow manifold, or at rest)
+  std::vector<PetscReal> level_time_rate;                     // per level l >= 1: how fast its own splits' explicit time dependence moves, ||dF_l/dt|| / (rho_l ||X||) (0: none or not estimated)
+  std::vector<PetscReal> level_time_rate_max;                 // -ts_vshmm_adapt: the largest of the solve per level
+  PetscBool              time_dependent     = PETSC_FALSE;    // some faster level's splits depend on time explicitly (found by LevelTimeRates())
+  PetscBool              time_rates_checked = PETSC_FALSE;    // the separation check compared the savings with them (once per solve, at set-up)
+  PetscReal              own_rates_time     = PETSC_MIN_REAL; // when level_slowest was estimated (with the spectra of that time)
+  PetscReal              spectra_time       = PETSC_MIN_REAL; // when they were estimated
 
   // Accuracy control (-ts_vshmm_adapt)
   vshmm::AdaptParameters adapt_params;                        // micro step and time ratios for the next macro step

@@ -481,6 +481,143 @@ static PetscErrorCode FastestJacobianApply(TS ts, Vec X, Vec G, Vec V, Vec Xp, V
   PetscFunctionReturn(0);
 }
 
+static constexpr PetscReal kNonlinearPlane = 0.1; /* the four phases' plane matrices differ by more than this of their mean: a nonlinear oscillation */
+
+/* The fastest level's oscillation as a whole, on its plane (P, Q of FastestLevelDrive(), made
+   orthonormal): the 2 x 2 matrix of J_K on the plane at four phases of it (X - P + cos(theta) P +
+   sin(theta) Q), and their mean M. For a linear level (a rotation, a damped one) the four are the
+   same. For a nonlinear one the Jacobian at the present state says little: the fastest level of a
+   van der Pol oscillator, q' = p / eps, p' = (-q + (x - q^2) p) / eps, has the trace (x - q^2) / eps,
+   which changes sign along the cycle, and at some phases real eigenvalues, one of them growing:
+   at one state it seems to decay, at the next to oscillate, its amplitude rate (|Re lambda|) near
+   0 at another. Where the four differ by more than kNonlinearPlane of M (vs->fastest_nonlinear,
+   vs->fastest_mean_mode: M's eigenvalue) and M oscillates, the level oscillates (LevelDecays() in
+   vshmmadapt.cpp; a mean that does not oscillate leaves the Jacobian at the state to judge: the
+   four phases are an ellipse about the origin of the level's own components, not a chaotic
+   attractor), and the slowest own rate of its own components is the largest of their slowest
+   rates at the four phases (a slow process inside the level is slow at every phase). And by Liouville's formula the mean trace over
+   a limit cycle is the rate at which its amplitude is attracted (the other Floquet exponent, the
+   phase's, is 0; for a linear damped rotation half of it is the damping): vs->fastest_restore =
+   -tr(M) / 2 where positive. A micro step's amplitude error then settles at its rate over that one
+   instead of adding up over the run (AccurateMicroStep() in vshmmadapt.cpp). 12 evaluations of the
+   fastest level (24 where nonlinear: a second pass at the mean's frequency; and with component
+   splits three more estimates of its own block's Ritz values). docs/accuracy.md section 25. */
+static PetscErrorCode FastestLevelPlane(TS ts, Vec P, Vec Q0, PetscReal rho, Vec mask)
+{
+  TS_VSHMM *vs = (TS_VSHMM *)ts->data;
+  Vec       E1, E2, Xt, Gt, Xp, W, Q;
+  PetscReal n1, n2, M[4][4], mean[4];
+  PetscBool finite;
+  PetscReal omega = rho; /* the frequency Q was made with (FastestLevelDrive(): the level's radius) */
+
+  PetscFunctionBegin;
+  vs->fastest_restore   = 0;
+  vs->fastest_nonlinear = PETSC_FALSE;
+  vs->fastest_own_phase = 0;
+  PetscCall(VecDuplicate(ts->vec_sol, &Q));
+  PetscCall(VecCopy(Q0, Q));
+  for (int pass = 0; pass < 2; ++pass) { /* a second pass at the mean eigenvalue's frequency (below) */
+    finite              = PETSC_TRUE;
+    vs->fastest_restore = 0;
+    for (PetscReal &m : mean) m = 0;
+    PetscCall(VecDuplicate(ts->vec_sol, &E1));
+    PetscCall(VecDuplicate(ts->vec_sol, &E2));
+    PetscCall(VecCopy(P, E1));
+    PetscCall(VecNorm(E1, NORM_2, &n1));
+    PetscCall(VecCopy(Q, E2));
+    if (n1 > 0 && std::isfinite(n1)) {
+      PetscScalar c;
+      PetscCall(VecScale(E1, 1.0 / n1));
+      PetscCall(VecDot(E2, E1, &c));
+      PetscCall(VecAXPY(E2, -c, E1));
+    }
+    PetscCall(VecNorm(E2, NORM_2, &n2));
+    if (!(n1 > 0 && std::isfinite(n1) && n2 > PETSC_SQRT_MACHINE_EPSILON * n1 && std::isfinite(n2))) { /* no plane: no oscillation */
+      PetscCall(VecDestroy(&E1));
+      PetscCall(VecDestroy(&E2));
+      PetscCall(VecDestroy(&Q));
+      vs->fastest_nonlinear = PETSC_FALSE;
+      vs->fastest_restore   = 0;
+      PetscFunctionReturn(0);
+    }
+    PetscCall(VecScale(E2, 1.0 / n2));
+    PetscCall(VecDuplicate(ts->vec_sol, &Xt));
+    PetscCall(VecDuplicate(ts->vec_sol, &Gt));
+    PetscCall(VecDuplicate(ts->vec_sol, &Xp));
+    PetscCall(VecDuplicate(ts->vec_sol, &W));
+    const StabilityCounting counting(vs);
+    const PetscInt          K = (PetscInt)vs->level_end.size() - 1;
+    for (int quarter = 0; quarter < 4; ++quarter) {
+      const PetscReal c = quarter == 0 ? 1 : quarter == 2 ? -1 : 0, q = quarter == 1 ? 1 : quarter == 3 ? -1 : 0;
+      PetscScalar     d[4];
+      PetscCall(VecWAXPY(Xt, -1.0, P, ts->vec_sol)); /* X - P + cos(theta) P + sin(theta) Q */
+      PetscCall(VecAXPBYPCZ(Xt, c, q, 1.0, P, Q));
+      PetscCall(TSVSHMMEvaluateLevel_Private(vs, K, ts->ptime, Xt, Gt));
+      PetscCall(FastestJacobianApply(ts, Xt, Gt, E1, Xp, W));
+      PetscCall(VecDot(W, E1, &d[0])); /* (E1, J E1) */
+      PetscCall(VecDot(W, E2, &d[2])); /* (E2, J E1) */
+      PetscCall(FastestJacobianApply(ts, Xt, Gt, E2, Xp, W));
+      PetscCall(VecDot(W, E1, &d[1])); /* (E1, J E2) */
+      PetscCall(VecDot(W, E2, &d[3])); /* (E2, J E2) */
+      for (int i = 0; i < 4; ++i) {
+        M[quarter][i] = PetscRealPart(d[i]);
+        mean[i] += M[quarter][i] / 4;
+        finite = (finite && std::isfinite(M[quarter][i])) ? PETSC_TRUE : PETSC_FALSE;
+      }
+    }
+    if (finite) {
+      PetscReal size = 0, spread = 0;
+      for (int i = 0; i < 4; ++i) size += mean[i] * mean[i];
+      for (int quarter = 0; quarter < 4; ++quarter) {
+        PetscReal e = 0;
+        for (int i = 0; i < 4; ++i) e += (M[quarter][i] - mean[i]) * (M[quarter][i] - mean[i]);
+        spread = PetscMax(spread, e);
+      }
+      const PetscReal trace = mean[0] + mean[3], det = mean[0] * mean[3] - mean[1] * mean[2], disc = trace * trace / 4 - det;
+      vs->fastest_mean_mode = disc < 0 ? std::complex<double>(trace / 2, std::sqrt(-disc)) : std::complex<double>(trace / 2 + (trace < 0 ? -1 : 1) * std::sqrt(disc), 0);
+      /* a trace within the forward differences' noise (a rotation, a Hamiltonian level: 0 at every phase) restores nothing */
+      if (-trace / 2 > vshmm::kAmplitudeRateNoise * std::abs(vs->fastest_mean_mode)) vs->fastest_restore = -trace / 2;
+      vs->fastest_nonlinear = (size > 0 && spread > kNonlinearPlane * kNonlinearPlane * size) ? PETSC_TRUE : PETSC_FALSE;
+      PetscCall(PetscInfo(ts, "The fastest level's oscillation on its plane (a quarter turn at frequency %g), mean over four phases: trace %g, eigenvalue %g%+gi (amplitude restored at rate %g); the phases differ by %g of it%s\n", (double)omega, (double)trace,
+                          (double)vs->fastest_mean_mode.real(), (double)vs->fastest_mean_mode.imag(), (double)vs->fastest_restore, (double)(size > 0 ? std::sqrt(spread / size) : 0), vs->fastest_nonlinear ? ": nonlinear, judged by the mean" : ""));
+    }
+    PetscCall(VecDestroy(&Xt));
+    PetscCall(VecDestroy(&Gt));
+    PetscCall(VecDestroy(&Xp));
+    PetscCall(VecDestroy(&W));
+    PetscCall(VecDestroy(&E1));
+    PetscCall(VecDestroy(&E2));
+    /* the quarter turn Q = G_K(X) / omega is made with the level's radius; a nonlinear oscillation's
+     frequency (the mean eigenvalue's) can differ from it by a factor 2 or more, and the four phases
+     then miss the cycle: once more with that frequency */
+    const PetscReal freq = vs->fastest_mean_mode.imag();
+    if (!(finite && vs->fastest_nonlinear && freq > 0 && std::isfinite(freq) && PetscAbsReal(freq - omega) > 0.1 * omega)) break;
+    PetscCall(VecScale(Q, omega / freq));
+    omega = freq;
+  }
+  if (vs->fastest_nonlinear && mask && vshmm::oscillates(vs->fastest_mean_mode)) { /* the own block's slowest rate at the other three phases */
+    Vec X0 = ts->vec_sol;
+    PetscCall(VecDuplicate(ts->vec_sol, &Xt));
+    for (int quarter = 1; quarter < 4; ++quarter) {
+      const PetscReal                   c = quarter == 2 ? -1 : 0, q = quarter == 1 ? 1 : quarter == 3 ? -1 : 0;
+      std::vector<std::complex<double>> ritz;
+      PetscBool                         ok = PETSC_FALSE;
+      double                            noise;
+      PetscErrorCode                    ierr;
+      PetscCall(VecWAXPY(Xt, -1.0, P, X0));
+      PetscCall(VecAXPBYPCZ(Xt, c, q, 1.0, P, Q));
+      ts->vec_sol = Xt;
+      ierr        = OwnBlockRitzValues(ts, (PetscInt)vs->level_end.size() - 1, mask, PETSC_FALSE, ritz, &ok, &noise);
+      ts->vec_sol = X0;
+      PetscCall(ierr);
+      if (ok) vs->fastest_own_phase = PetscMax(vs->fastest_own_phase, vshmm::slowestRate(ritz, noise));
+    }
+    PetscCall(VecDestroy(&Xt));
+  }
+  PetscCall(VecDestroy(&Q));
+  PetscFunctionReturn(0);
+}
+
 /* How strongly the fastest level's oscillation drives the state through the slower levels' fields,
    per unit time and relative amplitude of the oscillation, over ||X||: a thin fast rotation that a
    slow variable squares (y' = -y + C u^2 with small u) holds little of the state but moves the slow
@@ -532,6 +669,7 @@ static PetscErrorCode FastestLevelDrive(TS ts, Vec mask, PetscReal n_all)
     PetscCall(FastestJacobianApply(ts, ts->vec_sol, G, P, Xs, Q));
     PetscCall(VecScale(Q, 1.0 / rho));
   }
+  PetscCall(FastestLevelPlane(ts, P, Q, rho, mask));
   PetscCall(VecSet(D, 0.0));
   if (vs->fastest_phase.empty()) {
     vs->fastest_phase.resize(8, nullptr);
@@ -699,8 +837,43 @@ PetscErrorCode TSVSHMMLevelOwnSlowest_Private(TS ts, PetscInt level, PetscReal *
   PetscCall(VecDuplicate(ts->vec_sol, &mask));
   PetscCall(TSVSHMMWrittenComponents_Private(vs, vs->level_end[level - 1], vs->level_end[level], ts->ptime, mask));
   PetscCall(OwnBlockRitzValues(ts, level, mask, PETSC_FALSE, ritz, &finite, &noise));
-  PetscCall(VecDestroy(&mask));
   if (finite) *slowest = vshmm::slowestRate(ritz, noise);
+  if (finite && level + 1 == (PetscInt)vs->level_end.size() && vs->fastest_nonlinear && vs->fastest_phase_now && vshmm::oscillates(vs->fastest_mean_mode)) {
+    /* a nonlinear oscillation (FastestLevelPlane()): the largest of the slowest rates at four phases
+       of it, the quarter turn G_K(X) / omega at the mean eigenvalue's frequency (a slow process
+       inside the level is slow at every phase; the van der Pol oscillator's reads 8 at one phase
+       and 1,500 at another) */
+    Vec       P, Q, X0 = ts->vec_sol, Xt;
+    PetscReal phase = *slowest;
+    PetscCall(VecDuplicate(X0, &P));
+    PetscCall(VecDuplicate(X0, &Q));
+    PetscCall(VecDuplicate(X0, &Xt));
+    PetscCall(VecPointwiseMult(P, mask, X0));
+    PetscCall(TSVSHMMEvaluateLevel_Private(vs, level, ts->ptime, X0, Q));
+    PetscCall(VecPointwiseMult(Q, mask, Q));
+    PetscCall(VecScale(Q, 1.0 / vs->fastest_mean_mode.imag()));
+    for (int quarter = 1; quarter < 4; ++quarter) {
+      const PetscReal                   c = quarter == 2 ? -1 : 0, q = quarter == 1 ? 1 : quarter == 3 ? -1 : 0;
+      std::vector<std::complex<double>> r;
+      PetscBool                         ok = PETSC_FALSE;
+      double                            nz;
+      PetscErrorCode                    ierr;
+      PetscCall(VecWAXPY(Xt, -1.0, P, X0));
+      PetscCall(VecAXPBYPCZ(Xt, c, q, 1.0, P, Q));
+      ts->vec_sol = Xt;
+      ierr        = OwnBlockRitzValues(ts, level, mask, PETSC_FALSE, r, &ok, &nz);
+      ts->vec_sol = X0;
+      PetscCall(ierr);
+      if (ok) phase = PetscMax(phase, vshmm::slowestRate(r, nz));
+    }
+    PetscCall(VecDestroy(&P));
+    PetscCall(VecDestroy(&Q));
+    PetscCall(VecDestroy(&Xt));
+    if (phase > *slowest)
+      PetscCall(PetscInfo(ts, "Own components of level %" PetscInt_FMT " at t = %g: slowest rate %g at this phase of its nonlinear oscillation, %g at the slowest of four\n", level, (double)ts->ptime, (double)*slowest, (double)phase));
+    *slowest = phase;
+  }
+  PetscCall(VecDestroy(&mask));
   PetscFunctionReturn(0);
 }
 
@@ -716,6 +889,9 @@ PetscErrorCode TSVSHMMLevelOwnRates_Private(TS ts)
   vs->level_slowest.assign(nscales, 0.0);
   vs->fastest_share     = 1.0;
   vs->fastest_drive     = 0.0;
+  vs->fastest_restore   = 0.0;
+  vs->fastest_nonlinear = PETSC_FALSE;
+  vs->fastest_own_phase = 0.0;
   vs->fastest_phase_now = PETSC_FALSE;
   for (PetscInt level = 1; level < nscales; ++level) {
     if (!ComponentLevel(vs, level)) { /* additive splits: the fastest level's part of the state as its field sees it, ||G_K(X)|| / (rho_K ||X||) (the stiffest modes count fully) */
@@ -758,7 +934,11 @@ PetscErrorCode TSVSHMMLevelOwnRates_Private(TS ts)
     PetscCall(VecDestroy(&mask));
     if (!finite) continue;
     if (level == nscales - 1) PetscCall(CheckUnstableEquilibrium(ts, level, ritz, noise));
-    const double slowest = vshmm::slowestRate(ritz, noise);
+    double slowest = vshmm::slowestRate(ritz, noise);
+    if (level == nscales - 1 && vs->fastest_nonlinear && vshmm::oscillates(vs->fastest_mean_mode) && vs->fastest_own_phase > slowest) { /* FastestLevelPlane() */
+      PetscCall(PetscInfo(ts, "Own components of level %" PetscInt_FMT " at t = %g: slowest rate %g at this phase of its nonlinear oscillation, %g at the slowest of four\n", level, (double)ts->ptime, slowest, (double)vs->fastest_own_phase));
+      slowest = vs->fastest_own_phase;
+    }
     if (slowest > 0) vs->level_slowest[level] = slowest;
     PetscCall(PetscInfo(ts, "Own components of level %" PetscInt_FMT " at t = %g: slowest rate %g%s\n", level, (double)ts->ptime, (double)vs->level_slowest[level], level == nscales - 1 ? " (its part of the state: the line above)" : ""));
   }
