@@ -481,6 +481,34 @@ static PetscErrorCode FastestJacobianApply(TS ts, Vec X, Vec G, Vec V, Vec Xp, V
   PetscFunctionReturn(0);
 }
 
+/* The largest slowest rate (vshmm::slowestRate()) of level `level`'s own block (mask) at the three
+   phases X - P + cos(theta) P + sin(theta) Q, theta a quarter, half and three quarters turn, of a
+   nonlinear oscillation, and `slowest` (its rate at X): a slow process inside the level is slow at
+   every phase, a phase's own Jacobian is not (FastestLevelPlane(), TSVSHMMLevelOwnSlowest_Private()). */
+static PetscErrorCode OwnSlowestOverPhases(TS ts, PetscInt level, Vec mask, Vec P, Vec Q, PetscReal *slowest)
+{
+  Vec X0 = ts->vec_sol, Xt;
+
+  PetscFunctionBegin;
+  PetscCall(VecDuplicate(X0, &Xt));
+  for (int quarter = 1; quarter < 4; ++quarter) {
+    const PetscReal                   c = quarter == 2 ? -1 : 0, q = quarter == 1 ? 1 : quarter == 3 ? -1 : 0;
+    std::vector<std::complex<double>> ritz;
+    PetscBool                         ok = PETSC_FALSE;
+    double                            noise;
+    PetscErrorCode                    ierr;
+    PetscCall(VecWAXPY(Xt, -1.0, P, X0));
+    PetscCall(VecAXPBYPCZ(Xt, c, q, 1.0, P, Q));
+    ts->vec_sol = Xt;
+    ierr        = OwnBlockRitzValues(ts, level, mask, PETSC_FALSE, ritz, &ok, &noise);
+    ts->vec_sol = X0;
+    PetscCall(ierr);
+    if (ok) *slowest = PetscMax(*slowest, vshmm::slowestRate(ritz, noise));
+  }
+  PetscCall(VecDestroy(&Xt));
+  PetscFunctionReturn(0);
+}
+
 static constexpr PetscReal kNonlinearPlane = 0.1; /* the four phases' plane matrices differ by more than this of their mean: a nonlinear oscillation */
 
 /* The fastest level's oscillation as a whole, on its plane (P, Q of FastestLevelDrive(), made
@@ -515,13 +543,17 @@ static PetscErrorCode FastestLevelPlane(TS ts, Vec P, Vec Q0, PetscReal rho, Vec
   vs->fastest_nonlinear = PETSC_FALSE;
   vs->fastest_own_phase = 0;
   PetscCall(VecDuplicate(ts->vec_sol, &Q));
+  PetscCall(VecDuplicate(ts->vec_sol, &E1));
+  PetscCall(VecDuplicate(ts->vec_sol, &E2));
+  PetscCall(VecDuplicate(ts->vec_sol, &Xt));
+  PetscCall(VecDuplicate(ts->vec_sol, &Gt));
+  PetscCall(VecDuplicate(ts->vec_sol, &Xp));
+  PetscCall(VecDuplicate(ts->vec_sol, &W));
   PetscCall(VecCopy(Q0, Q));
   for (int pass = 0; pass < 2; ++pass) { /* a second pass at the mean eigenvalue's frequency (below) */
     finite              = PETSC_TRUE;
     vs->fastest_restore = 0;
     for (PetscReal &m : mean) m = 0;
-    PetscCall(VecDuplicate(ts->vec_sol, &E1));
-    PetscCall(VecDuplicate(ts->vec_sol, &E2));
     PetscCall(VecCopy(P, E1));
     PetscCall(VecNorm(E1, NORM_2, &n1));
     PetscCall(VecCopy(Q, E2));
@@ -533,18 +565,11 @@ static PetscErrorCode FastestLevelPlane(TS ts, Vec P, Vec Q0, PetscReal rho, Vec
     }
     PetscCall(VecNorm(E2, NORM_2, &n2));
     if (!(n1 > 0 && std::isfinite(n1) && n2 > PETSC_SQRT_MACHINE_EPSILON * n1 && std::isfinite(n2))) { /* no plane: no oscillation */
-      PetscCall(VecDestroy(&E1));
-      PetscCall(VecDestroy(&E2));
-      PetscCall(VecDestroy(&Q));
       vs->fastest_nonlinear = PETSC_FALSE;
       vs->fastest_restore   = 0;
-      PetscFunctionReturn(0);
+      break;
     }
     PetscCall(VecScale(E2, 1.0 / n2));
-    PetscCall(VecDuplicate(ts->vec_sol, &Xt));
-    PetscCall(VecDuplicate(ts->vec_sol, &Gt));
-    PetscCall(VecDuplicate(ts->vec_sol, &Xp));
-    PetscCall(VecDuplicate(ts->vec_sol, &W));
     const StabilityCounting counting(vs);
     const PetscInt          K = (PetscInt)vs->level_end.size() - 1;
     for (int quarter = 0; quarter < 4; ++quarter) {
@@ -581,12 +606,6 @@ static PetscErrorCode FastestLevelPlane(TS ts, Vec P, Vec Q0, PetscReal rho, Vec
       PetscCall(PetscInfo(ts, "The fastest level's oscillation on its plane (a quarter turn at frequency %g), mean over four phases: trace %g, eigenvalue %g%+gi (amplitude restored at rate %g); the phases differ by %g of it%s\n", (double)omega, (double)trace,
                           (double)vs->fastest_mean_mode.real(), (double)vs->fastest_mean_mode.imag(), (double)vs->fastest_restore, (double)(size > 0 ? std::sqrt(spread / size) : 0), vs->fastest_nonlinear ? ": nonlinear, judged by the mean" : ""));
     }
-    PetscCall(VecDestroy(&Xt));
-    PetscCall(VecDestroy(&Gt));
-    PetscCall(VecDestroy(&Xp));
-    PetscCall(VecDestroy(&W));
-    PetscCall(VecDestroy(&E1));
-    PetscCall(VecDestroy(&E2));
     /* the quarter turn Q = G_K(X) / omega is made with the level's radius; a nonlinear oscillation's
      frequency (the mean eigenvalue's) can differ from it by a factor 2 or more, and the four phases
      then miss the cycle: once more with that frequency */
@@ -595,25 +614,13 @@ static PetscErrorCode FastestLevelPlane(TS ts, Vec P, Vec Q0, PetscReal rho, Vec
     PetscCall(VecScale(Q, omega / freq));
     omega = freq;
   }
-  if (vs->fastest_nonlinear && mask && vshmm::oscillates(vs->fastest_mean_mode)) { /* the own block's slowest rate at the other three phases */
-    Vec X0 = ts->vec_sol;
-    PetscCall(VecDuplicate(ts->vec_sol, &Xt));
-    for (int quarter = 1; quarter < 4; ++quarter) {
-      const PetscReal                   c = quarter == 2 ? -1 : 0, q = quarter == 1 ? 1 : quarter == 3 ? -1 : 0;
-      std::vector<std::complex<double>> ritz;
-      PetscBool                         ok = PETSC_FALSE;
-      double                            noise;
-      PetscErrorCode                    ierr;
-      PetscCall(VecWAXPY(Xt, -1.0, P, X0));
-      PetscCall(VecAXPBYPCZ(Xt, c, q, 1.0, P, Q));
-      ts->vec_sol = Xt;
-      ierr        = OwnBlockRitzValues(ts, (PetscInt)vs->level_end.size() - 1, mask, PETSC_FALSE, ritz, &ok, &noise);
-      ts->vec_sol = X0;
-      PetscCall(ierr);
-      if (ok) vs->fastest_own_phase = PetscMax(vs->fastest_own_phase, vshmm::slowestRate(ritz, noise));
-    }
-    PetscCall(VecDestroy(&Xt));
-  }
+  PetscCall(VecDestroy(&E1));
+  PetscCall(VecDestroy(&E2));
+  PetscCall(VecDestroy(&Xt));
+  PetscCall(VecDestroy(&Gt));
+  PetscCall(VecDestroy(&Xp));
+  PetscCall(VecDestroy(&W));
+  if (vs->fastest_nonlinear && mask && vshmm::oscillates(vs->fastest_mean_mode)) PetscCall(OwnSlowestOverPhases(ts, (PetscInt)vs->level_end.size() - 1, mask, P, Q, &vs->fastest_own_phase)); /* at the other three phases */
   PetscCall(VecDestroy(&Q));
   PetscFunctionReturn(0);
 }
@@ -843,32 +850,17 @@ PetscErrorCode TSVSHMMLevelOwnSlowest_Private(TS ts, PetscInt level, PetscReal *
        of it, the quarter turn G_K(X) / omega at the mean eigenvalue's frequency (a slow process
        inside the level is slow at every phase; the van der Pol oscillator's reads 8 at one phase
        and 1,500 at another) */
-    Vec       P, Q, X0 = ts->vec_sol, Xt;
+    Vec       P, Q;
     PetscReal phase = *slowest;
-    PetscCall(VecDuplicate(X0, &P));
-    PetscCall(VecDuplicate(X0, &Q));
-    PetscCall(VecDuplicate(X0, &Xt));
-    PetscCall(VecPointwiseMult(P, mask, X0));
-    PetscCall(TSVSHMMEvaluateLevel_Private(vs, level, ts->ptime, X0, Q));
+    PetscCall(VecDuplicate(ts->vec_sol, &P));
+    PetscCall(VecDuplicate(ts->vec_sol, &Q));
+    PetscCall(VecPointwiseMult(P, mask, ts->vec_sol));
+    PetscCall(TSVSHMMEvaluateLevel_Private(vs, level, ts->ptime, ts->vec_sol, Q));
     PetscCall(VecPointwiseMult(Q, mask, Q));
     PetscCall(VecScale(Q, 1.0 / vs->fastest_mean_mode.imag()));
-    for (int quarter = 1; quarter < 4; ++quarter) {
-      const PetscReal                   c = quarter == 2 ? -1 : 0, q = quarter == 1 ? 1 : quarter == 3 ? -1 : 0;
-      std::vector<std::complex<double>> r;
-      PetscBool                         ok = PETSC_FALSE;
-      double                            nz;
-      PetscErrorCode                    ierr;
-      PetscCall(VecWAXPY(Xt, -1.0, P, X0));
-      PetscCall(VecAXPBYPCZ(Xt, c, q, 1.0, P, Q));
-      ts->vec_sol = Xt;
-      ierr        = OwnBlockRitzValues(ts, level, mask, PETSC_FALSE, r, &ok, &nz);
-      ts->vec_sol = X0;
-      PetscCall(ierr);
-      if (ok) phase = PetscMax(phase, vshmm::slowestRate(r, nz));
-    }
+    PetscCall(OwnSlowestOverPhases(ts, level, mask, P, Q, &phase));
     PetscCall(VecDestroy(&P));
     PetscCall(VecDestroy(&Q));
-    PetscCall(VecDestroy(&Xt));
     if (phase > *slowest)
       PetscCall(PetscInfo(ts, "Own components of level %" PetscInt_FMT " at t = %g: slowest rate %g at this phase of its nonlinear oscillation, %g at the slowest of four\n", level, (double)ts->ptime, (double)*slowest, (double)phase));
     *slowest = phase;
