@@ -276,4 +276,72 @@ double forcedResponse(const std::vector<double> &H, int n, int ld, double tau)
   return std::isfinite(response) ? std::sqrt(response) : std::numeric_limits<double>::infinity();
 }
 
+std::vector<Beat> beatFrequencies(const std::vector<std::complex<double>> &modes, double fastAbove, double separation)
+{
+  std::vector<double> omega;
+  std::vector<Beat>   beats, distinct;
+  for (const std::complex<double> &lambda : modes)
+    if (oscillates(lambda) && std::abs(lambda) > fastAbove && lambda.imag() > 0) omega.push_back(lambda.imag());
+  std::sort(omega.begin(), omega.end());
+  for (size_t i = 0; i < omega.size(); ++i)
+    for (size_t j = i + 1; j < omega.size(); ++j) {
+      const double g = omega[j] - omega[i];
+      if (g > kDistinctFrequencies * omega[j] && g * separation < omega[i]) beats.push_back({g, omega[i], omega[j]});
+    }
+  std::sort(beats.begin(), beats.end(), [](const Beat &a, const Beat &b) { return a.frequency < b.frequency; });
+  for (const Beat &b : beats) /* one of beats within kDistinctBeats of each other */
+    if (distinct.empty() || b.frequency > distinct.back().frequency * (1 + kDistinctBeats)) distinct.push_back(b);
+  return distinct;
+}
+
+std::vector<double> modesRotated(const std::vector<double> &vr, const std::vector<std::complex<double>> &lambda, int n, double theta, double delta, double split)
+{
+  using C = std::complex<double>;
+  if (n <= 0 || (int)lambda.size() != n || (int)vr.size() < n * n) return {};
+  /* the eigenvectors, complex (LAPACK's geev: a pair's real and imaginary parts in two columns) */
+  std::vector<C> Y(n * n), A(n * n), c(n, 0.0);
+  for (int j = 0; j < n; ++j) {
+    if (lambda[j].imag() > 0 && j + 1 < n) {
+      for (int i = 0; i < n; ++i) {
+        Y[i + j * n]       = C(vr[i + j * n], vr[i + (j + 1) * n]);
+        Y[i + (j + 1) * n] = std::conj(Y[i + j * n]);
+      }
+      ++j;
+    } else
+      for (int i = 0; i < n; ++i) Y[i + j * n] = vr[i + j * n];
+  }
+  /* Y c = e1 by Gaussian elimination with partial pivoting */
+  A    = Y;
+  c[0] = 1.0;
+  for (int k = 0; k < n; ++k) {
+    int p = k;
+    for (int i = k + 1; i < n; ++i)
+      if (std::abs(A[i + k * n]) > std::abs(A[p + k * n])) p = i;
+    if (!(std::abs(A[p + k * n]) > 0)) return {};
+    if (p != k) {
+      for (int j = 0; j < n; ++j) std::swap(A[k + j * n], A[p + j * n]);
+      std::swap(c[k], c[p]);
+    }
+    for (int i = k + 1; i < n; ++i) {
+      const C m = A[i + k * n] / A[k + k * n];
+      for (int j = k; j < n; ++j) A[i + j * n] -= m * A[k + j * n];
+      c[i] -= m * c[k];
+    }
+  }
+  for (int k = n - 1; k >= 0; --k) {
+    for (int j = k + 1; j < n; ++j) c[k] -= A[k + j * n] * c[j];
+    c[k] /= A[k + k * n];
+  }
+  std::vector<double> y(n, 0.0);
+  for (int j = 0; j < n; ++j) {
+    const double omega = lambda[j].imag();
+    const double phi   = omega == 0 ? 0.0 : (omega > 0 ? 1.0 : -1.0) * (theta + (std::abs(omega) > split ? delta : 0.0));
+    const C      w     = c[j] * std::polar(1.0, phi);
+    for (int i = 0; i < n; ++i) y[i] += (w * Y[i + j * n]).real();
+  }
+  for (double v : y)
+    if (!std::isfinite(v)) return {};
+  return y;
+}
+
 } // namespace vshmm

@@ -110,4 +110,28 @@ double largestStableSavingsFactor(const StabilityFunction &R, const Kernel &kern
 // tau [[H, e1], [0, 0]], by scaling and squaring of its Taylor series. Infinity where it overflows.
 double forcedResponse(const std::vector<double> &H, int n, int ld, double tau);
 
+// Two oscillations whose frequencies differ by g make, in any product of them, a beat at
+// frequency g: slower than either, a process on a slower scale where g is small. The beats among
+// the oscillating modes (|Im| > |Re|, Im > 0) above fastAbove in |lambda|: every difference g of
+// two distinct frequencies (g above kDistinctFrequencies of the larger; equal frequencies make no
+// beat) that is at least `separation` times slower than the slower of the two (lower, upper);
+// ascending in g, beats within kDistinctBeats of a slower one left out.
+constexpr double kDistinctFrequencies = 1e-6;
+constexpr double kDistinctBeats       = 0.01;
+struct Beat {
+  double frequency, lower, upper;
+};
+std::vector<Beat> beatFrequencies(const std::vector<std::complex<double>> &modes, double fastAbove, double separation);
+
+// e1 with every mode of an n x n real matrix turned in its own plane: with the eigenvalues lambda
+// and right eigenvectors vr of the matrix (column-major, as LAPACK's geev gives them: a complex
+// pair's real and imaginary parts in two columns, the one with Im > 0 first), e1 = sum_j c_j y_j,
+// and each term of a mode with Im lambda_j != 0 is multiplied by exp(i s_j phi_j), s_j the sign of
+// Im lambda_j, phi_j = theta, plus delta where |Im lambda_j| > split: every oscillation advanced by
+// the same angle theta whatever its frequency (an average over theta is an average over each one's
+// own phase), those above `split` by delta more (a relative phase). Real modes are left as they
+// are. On a Krylov space of a Jacobian started at v, V times this is v / ||v|| so turned. Empty
+// where the eigenvectors are singular or the result is not finite.
+std::vector<double> modesRotated(const std::vector<double> &vr, const std::vector<std::complex<double>> &lambda, int n, double theta, double delta, double split);
+
 } // namespace vshmm

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <complex>
+#include <limits>
 #include <vector>
 
 #include "stability.hpp"
@@ -315,6 +317,66 @@ TEST(ForcedResponse, LeadingDimension)
   const double        y1  = 1 - std::exp(-tau);
   const double        y2  = (1 - std::exp(-100 * tau)) / 100 - (std::exp(-tau) - std::exp(-100 * tau)) / 99; // int_0^tau e^{-100 (tau - s)} y1(s) ds
   EXPECT_NEAR(vshmm::forcedResponse(H, 2, 3, tau), std::hypot(y1, y2), 1e-10);
+}
+
+} // namespace
+
+namespace {
+
+// Two rotations (frequencies 1000 and 1010, the block form x' = w y, y' = -w x in coordinates Q
+// mixes, so that e1 holds both): each turned by theta in its own plane, the faster one (above the
+// split 1005) by delta more, against the closed form Q R Q^T e1. A real mode stays; singular
+// eigenvectors give nothing.
+TEST(ModesRotated, EachOscillationByTheSameAngle)
+{
+  using C                     = std::complex<double>;
+  const double        h       = 1 / std::sqrt(2.0);
+  const double        Q[4][4] = {{h, 0, h, 0}, {0, h, 0, h}, {h, 0, -h, 0}, {0, h, 0, -h}}; // symmetric, orthogonal
+  std::vector<double> vr(16);
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) vr[i + j * 4] = Q[i][j] * h; // the block's eigenvectors (1, i) / sqrt 2 for +i w, mixed by Q
+  const std::vector<C> lambda = {C(0, 1000), C(0, -1000), C(0, 1010), C(0, -1010)};
+  for (double theta : {0.0, 0.7, 2.5})
+    for (double delta : {0.0, 1.5707963267948966, 3.0}) {
+      const std::vector<double> y = vshmm::modesRotated(vr, lambda, 4, theta, delta, 1005);
+      ASSERT_EQ(y.size(), 4u);
+      const double b[4] = {h * std::cos(theta), -h * std::sin(theta), h * std::cos(theta + delta), -h * std::sin(theta + delta)}; // Q^T e1 = (h, 0, h, 0) turned
+      for (int i = 0; i < 4; ++i) {
+        double expected = 0;
+        for (int j = 0; j < 4; ++j) expected += Q[i][j] * b[j];
+        EXPECT_NEAR(y[i], expected, 1e-14) << "theta " << theta << " delta " << delta << " component " << i;
+      }
+    }
+  const std::vector<double> real = vshmm::modesRotated({1.0}, {C(-1, 0)}, 1, 2.0, 1.0, 0.0);
+  ASSERT_EQ(real.size(), 1u);
+  EXPECT_EQ(real[0], 1.0);
+  EXPECT_TRUE(vshmm::modesRotated(std::vector<double>(16, 0.0), lambda, 4, 1.0, 0.0, 1005).empty());
+  EXPECT_TRUE(vshmm::modesRotated(vr, {C(0, 1)}, 4, 1.0, 0.0, 0).empty()); // eigenvalues and vectors do not match
+}
+
+// Two fast rotations 10 apart beat at 10 (a slow process where the slower level's rate is 1); equal
+// frequencies do not beat; a difference as fast as the rotations is no beat; real modes and slow
+// oscillations (below fastAbove) are not counted; beats within 1% are one.
+TEST(BeatFrequencies, DifferencesOfDistinctFastFrequencies)
+{
+  using C                            = std::complex<double>;
+  const std::vector<vshmm::Beat> two = vshmm::beatFrequencies({C(-1, 0), C(0, 1000), C(0, -1000), C(0, 1010), C(0, -1010)}, 10, 10);
+  ASSERT_EQ(two.size(), 1u);
+  EXPECT_DOUBLE_EQ(two[0].frequency, 10.0);
+  EXPECT_EQ(two[0].lower, 1000.0);
+  EXPECT_EQ(two[0].upper, 1010.0);
+  EXPECT_TRUE(vshmm::beatFrequencies({C(0, 1000), C(0, -1000), C(-1e-9, 1000 * (1 + 1e-8))}, 10, 10).empty()); // equal up to the estimate's noise
+  EXPECT_TRUE(vshmm::beatFrequencies({C(0, 1000), C(0, 1500)}, 10, 10).empty());                               // 500: not 10 times slower than 1000
+  EXPECT_TRUE(vshmm::beatFrequencies({C(-5000, 0), C(-5001, 0)}, 10, 10).empty());                             // no oscillation
+  EXPECT_TRUE(vshmm::beatFrequencies({C(0, 5), C(0, 6), C(0, 1000)}, 10, 10).empty());                         // 5 and 6 below fastAbove
+  const std::vector<vshmm::Beat> band = vshmm::beatFrequencies({C(0, 50), C(0, 50.0113), C(0, 50.08), C(0, 50.0805)}, 10, 10);
+  ASSERT_EQ(band.size(), 4u); // 0.0005 (distinct: 1e-5 of 50), 0.0113, 0.0687 (0.0692 within 1% of it), 0.08 (0.0805 within 1%)
+  EXPECT_NEAR(band[0].frequency, 0.0005, 1e-9);
+  EXPECT_EQ(band[0].lower, 50.08);
+  EXPECT_NEAR(band[1].frequency, 0.0113, 1e-9);
+  EXPECT_NEAR(band[2].frequency, 0.0687, 1e-9);
+  EXPECT_EQ(band[2].lower, 50.0113);
+  EXPECT_NEAR(band[3].frequency, 0.08, 1e-9);
 }
 
 } // namespace
