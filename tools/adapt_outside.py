@@ -43,6 +43,7 @@ PROBLEMS = [
     ('fast rotation that slows down, driving y (said, not met at 1e-3)', 28, 3, 1e-6, ['-eps', '1e-3']),
     ('a fast limit cycle (van der Pol, Hopf parameter x; section 25)', 29, 2, 1e-5, ['-eps', '1e-3']),
     ('the same limit cycle at eps 1e-4 (section 25)', 29, 2, 1e-6, ['-eps', '1e-4']),
+    ('two fast rotations 10 apart, their beat drives x (section 26)', 30, 2, 1e-5, ['-eps', '1e-3', '-a', '10']),
 ]
 
 

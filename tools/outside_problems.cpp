@@ -173,6 +173,13 @@ static void Field(Ctx *c, PetscReal t, const PetscScalar *u, PetscScalar *f)
     f[1] = u[2] / e;
     f[2] = (-u[1] + (u[0] - u[1] * u[1]) * u[2]) / e;
     break;
+  case 30: /* two fast rotations a beat apart drive a slow variable: x' = -x + q1 q2 ; q1' = p1/eps, p1' = -q1/eps ; q2' = w p2/eps, p2' = -w q2/eps, w = 1 + a eps (q1 q2 holds cos(a t): a slow beat the averaging must keep) */
+    f[0] = -u[0] + u[1] * u[3];
+    f[1] = u[2] / e;
+    f[2] = -u[1] / e;
+    f[3] = (1 + a * e) * u[4] / e;
+    f[4] = -(1 + a * e) * u[3] / e;
+    break;
   case 19: /* three-level chemistry: A' = -A + B ; B' = (A - 2 B + C)/eps ; C' = (B - C - C^3)/eps2 */
     f[0] = -u[0] + u[1];
     f[1] = (u[0] - 2 * u[1] + u[2]) / e;
@@ -328,6 +335,7 @@ static const Setup kSetups[] = {
   {27, 2, {{0}, {1, 2}}, {1, 1, 0}},
   {28, 1, {{0, 1}, {2, 3}}, {1, 0, 1, 0}},
   {29, 1, {{0}, {1, 2}}, {0.2, 0.5, 0}},
+  {30, 1, {{0}, {1, 2, 3, 4}}, {0, 1, 0, 1, 0}},
 };
 
 int main(int argc, char **argv)
@@ -360,7 +368,7 @@ int main(int argc, char **argv)
   const Setup *setup = nullptr;
   for (const Setup &st : kSetups)
     if (st.prob == c.prob) setup = &st;
-  PetscCheck(setup, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "-prob %d: no such problem (0-28, the cases of Field())", (int)c.prob);
+  PetscCheck(setup, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "-prob %d: no such problem (0-30, the cases of Field())", (int)c.prob);
   c.n      = (PetscInt)setup->u0.size();
   c.nobs   = setup->nobs;
   c.nsplit = (PetscInt)setup->splits.size();
