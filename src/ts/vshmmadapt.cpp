@@ -444,10 +444,41 @@ PetscErrorCode TSVSHMMAdaptUnaveraged_Private(TS ts)
     PetscCall(ObservableDifference(ts, ts->ptime, ts->vec_sol, Xs, &d, PETSC_FALSE));
     if (std::isfinite(d)) worst = PetscMax(worst, d);
   }
-  PetscCall(VecDestroy(&Xs));
   vs->unaveraged     = worst;
   vs->unaveraged_max = PetscMax(vs->unaveraged_max, worst);
   PetscCall(PetscInfo(ts, "Adapt: a macro step that leaves the fastest level's oscillation (slowest frequency %g) unaveraged moves the observables by %g of the tolerance\n", (double)omega, (double)worst));
+  /* the beats of its modes (FastestLevelBeats()). A beat that savings slow below a turn per macro
+     step holds one relative phase from step to step, and its part of the field adds up over the
+     steps until the slower levels forget it: over at least 1 / rho_{K-1}, their fastest rate (at
+     most half the run); a beat turning slower than the run moves a relative phase only g span of a
+     half turn, so its part is counted at that fraction */
+  const PetscReal span   = TSVSHMMAmplitudeSpan_Private(ts);
+  const PetscReal memory = PetscMin(0.5 * span, PetscMax(ts->time_step, vs->level_radius[K - 1] > 0 ? 1.0 / vs->level_radius[K - 1] : 0.5 * span));
+  for (size_t b = 0; b < vs->beat_omega.size() && 4 * b + 3 < vs->beat_phase.size(); ++b) {
+    const PetscReal g = vs->beat_omega[b], reach = memory * PetscMin(1.0, g * span / PETSC_PI);
+    PetscReal       beat = 0;
+    for (int j = 0; j < 4; ++j) {
+      PetscReal d;
+      PetscCall(VecWAXPY(Xs, reach, vs->beat_phase[4 * b + j], ts->vec_sol));
+      PetscCall(ObservableDifference(ts, ts->ptime, ts->vec_sol, Xs, &d, PETSC_FALSE));
+      if (std::isfinite(d)) beat = PetscMax(beat, d);
+    }
+    PetscCall(PetscInfo(ts, "Adapt: the fastest level's modes beat at %g: one relative phase of the beat held over %g moves the observables by %g of the tolerance\n", (double)g, (double)reach, (double)beat));
+    if (beat > kUnaveragedShare && (!(vs->beat_bound > 0) || g < (1 - vshmm::kDistinctBeats) * vs->beat_bound)) {
+      vs->beat_bound  = g;
+      vs->beat_effect = beat;
+    } else if (beat > kUnaveragedShare && g <= (1 + vshmm::kDistinctBeats) * vs->beat_bound) vs->beat_effect = PetscMax(vs->beat_effect, beat); /* the same beat again */
+  }
+  if (vs->beat_bound > 0 && !vs->beat_warned) {
+    const PetscReal speedup = PetscMax(1.0, vs->beat_bound * ts->time_step / (2 * PETSC_PI));
+    vs->beat_warned         = PETSC_TRUE;
+    PetscCall(TSVSHMMWarn_Private(ts,
+                                  "TSVSHMM warning (-ts_vshmm_adapt): at t = %g two oscillations of the fastest level's own splits beat at frequency %g (the difference of their frequencies), a slow process inside the fast level: savings slow it "
+                                  "with the level, and one relative phase "
+                                  "of it held moves the observables by %g times the tolerance. The savings now keep it turning at least once per macro step (time ratios at most %g in product%s). %s This warning is given once per solve.\n",
+                                  (double)ts->ptime, (double)vs->beat_bound, (double)vs->beat_effect, (double)speedup, speedup > 1 ? "" : ": none", speedup > 1 ? "" : "Without savings a single-rate TS type (-ts_type rk) does the same work without VSHMM's estimates."));
+  }
+  PetscCall(VecDestroy(&Xs));
   PetscFunctionReturn(0);
 }
 
@@ -572,6 +603,9 @@ static vshmm::AdaptBounds Bounds(TS ts, PetscReal DeltaT)
   };
   /* the fastest level turns at least once per macro step in micro time, DeltaT / (r_0 ... r_{K-1}) */
   if ((vs->unaveraged_unknown || vs->unaveraged_max > kUnaveragedShare) && vs->unaveraged_omega > 0 && vs->level_radius.size() > 1) boundSpeedup(vs->level_radius.size() - 1, vs->unaveraged_omega * DeltaT / (2 * PETSC_PI));
+  /* and a beat of its modes that moves the observables (TSVSHMMAdaptUnaveraged_Private()) as well:
+     slower than a turn per macro step, no savings */
+  if (vs->beat_bound > 0 && vs->level_radius.size() > 1) boundSpeedup(vs->level_radius.size() - 1, vs->beat_bound * DeltaT / (2 * PETSC_PI));
   /* a level whose splits depend on time explicitly sees that dependence r_0 ... r_{l-1} times
      faster than it is (one clock for every level): it stays kMinSeparation below the level's
      radius (LevelTimeRates() in vshmmstability.cpp; a fast forcing sin(t / eps) allows no savings),

@@ -80,12 +80,17 @@ struct TS_VSHMM {
   PetscBool                                      fastest_nonlinear = PETSC_FALSE; // its plane's Jacobian differs with the phase (FastestLevelPlane()): judged by fastest_mean_mode
   std::complex<double>                           fastest_mean_mode = 0;           // the eigenvalue of the mean of the plane's Jacobian over four phases
   PetscReal                                      fastest_own_phase = 0;           // the largest slowest own rate of its own components at three other phases (nonlinear, component splits)
-  PetscReal              fastest_restore = 0; // how fast the fastest level's oscillation restores its amplitude: minus half its Jacobian's trace on the oscillation's plane, averaged over four phases (FastestLevelDrive(); 0: none, or not estimated)
-  std::vector<Vec>       fastest_phase;       // the slower levels' field at four phases of the fastest level's oscillation less its phase average (FastestLevelDrive(); empty: not estimated)
-  PetscReal              unaveraged         = 0;              // -ts_vshmm_adapt: the weighted error of a macro step that leaves that phase-dependent part unaveraged (1 = the tolerance; 0: none)
-  PetscReal              unaveraged_omega   = 0;              // and the slowest frequency of the fastest level's limiting oscillations
-  PetscReal              unaveraged_max     = 0;              // the largest unaveraged of the solve (the relative phases of a band of fast modes change it)
-  PetscBool              fastest_phase_now  = PETSC_FALSE;    // fastest_phase is of the present spectra
+  PetscReal              fastest_restore = 0;   // how fast the fastest level's oscillation restores its amplitude: minus half its Jacobian's trace on the oscillation's plane, averaged over four phases (FastestLevelDrive(); 0: none, or not estimated)
+  std::vector<Vec>       fastest_phase;         // the slower levels' field at four phases of the fastest level's oscillation less its phase average (FastestLevelDrive(); empty: not estimated)
+  PetscReal              unaveraged        = 0; // -ts_vshmm_adapt: the weighted error of a macro step that leaves that phase-dependent part unaveraged (1 = the tolerance; 0: none)
+  PetscReal              unaveraged_omega  = 0; // and the slowest frequency of the fastest level's limiting oscillations
+  PetscReal              unaveraged_max    = 0; // the largest unaveraged of the solve (the relative phases of a band of fast modes change it)
+  PetscBool              fastest_phase_now = PETSC_FALSE;     // fastest_phase is of the present spectra
+  std::vector<PetscReal> beat_omega;                          // the beats of the fastest level's oscillations probed at the present spectra (FastestLevelBeats(); vshmm::beatFrequencies())
+  std::vector<Vec>       beat_phase;                          // per beat, the slower levels' field averaged over the common phase at four relative phases of the beat, less their mean
+  PetscReal              beat_bound         = 0;              // -ts_vshmm_adapt: the slowest beat of the solve whose relative phase, held until the slower levels forget it, moves the observables by more than kUnaveragedShare (0: none)
+  PetscReal              beat_effect        = 0;              // and that measure (1 = the tolerance)
+  PetscBool              beat_warned        = PETSC_FALSE;    // told of it in this solve
   PetscBool              unaveraged_unknown = PETSC_FALSE;    // the fastest level oscillates, but its oscillation had no amplitude to measure unaveraged with (a state on its slow manifold, or at rest)
   std::vector<PetscReal> level_time_rate;                     // per level l >= 1: how fast its own splits' explicit time dependence moves, ||dF_l/dt|| / (rho_l ||X||) (0: none or not estimated)
   std::vector<PetscReal> level_time_rate_max;                 // -ts_vshmm_adapt: the largest of the solve per level

@@ -41,6 +41,9 @@ static constexpr PetscReal kUnstableSeparation  = 10;   /* an own mode growing t
 static constexpr PetscReal kFastQuantityRate    = 10;   /* a sampled quantity moving this many times faster than the slower level's radius along a level's own splits moves on that level's scale */
 static constexpr PetscReal kSustainedDecay      = 3;    /* an oscillation whose amplitude decays by less than e^this over a macro step is sustained (more: a transient, a layer) */
 static constexpr PetscReal kDifferenceStep      = 1e-6; /* relative perturbation of the state for an observable's derivative (central differences) */
+static constexpr PetscReal kBeatSeparation      = 10;   /* a difference of two fast frequencies this many times slower than they are: a beat (vshmm::beatFrequencies()) */
+static constexpr PetscInt  kMaxBeats            = 3;    /* the slowest beats probed at most (FastestLevelBeats()) */
+static constexpr PetscReal kInvariantKrylov     = 1e-6; /* an Arnoldi residual below this of H's column: the Krylov space is invariant (to the forward differences' noise) */
 
 /* A deterministic start vector for the Arnoldi and power iterations, the same on any number of
    ranks: 1 + sin(1.7 i + 0.3) / 2 at global index i. */
@@ -625,6 +628,110 @@ static PetscErrorCode FastestLevelPlane(TS ts, Vec P, Vec Q0, PetscReal rho, Vec
   PetscFunctionReturn(0);
 }
 
+/* Two oscillations of the fastest level's own splits whose frequencies differ by g make, in any
+   product of them that a slower level's field holds, a beat at frequency g: a slow process inside
+   the fast level. Savings slow it with the level, r_0 ... r_{K-1} times, and where it then turns
+   less than once per macro step the slow steps see one relative phase of it, which coarser
+   comparisons see as well: two fast rotations 10 apart (x' = -x + q1 q2, frequencies 1000 and 1010)
+   ended 3-30 tolerances off, silently (docs/accuracy.md section 26). The own splits' modes, not the
+   whole level's: a frequency that a slower split shifts (the paper's oscillators, whose medium split
+   moves one rotation by 1 / eps) turns in that split's steps too. For each of the kMaxBeats slowest
+   beats of the modes in the oscillation's part of the state P (vshmm::beatFrequencies() on the Ritz
+   values of an Arnoldi space of the own splits' Jacobian started at P, on the level's own
+   components where mask is given), the slower levels' field averaged over eight common phases (each
+   mode turned in its own plane by the same angle, vshmm::modesRotated(): each one's own oscillation
+   averaged out, whatever its frequency) at four relative phases of the beat (the modes above its
+   middle frequency a quarter turn further each time), less their mean, in vs->beat_phase. Only
+   where the Arnoldi space is invariant (a few fast modes; P in a band wider than the space is not
+   probed). What that does to the observables is measured by TSVSHMMAdaptUnaveraged_Private(). */
+static PetscErrorCode FastestLevelBeats(TS ts, Vec P, Vec mask)
+{
+  TS_VSHMM      *vs = (TS_VSHMM *)ts->data;
+  const PetscInt K  = (PetscInt)vs->level_end.size() - 1;
+  PetscInt       N, m, k;
+  Vec           *V, Y, Xs, F, Mean;
+  PetscReal      beta;
+
+  PetscFunctionBegin;
+  vs->beat_omega.clear();
+  if (K < 1 || !((PetscInt)vs->level_radius.size() > K && vs->level_radius[K] > 0) || (PetscInt)vs->level_limiting.size() <= K) PetscFunctionReturn(0);
+  /* the whole level's modes beat (two distinct fast frequencies) before its own splits' are looked at */
+  if (vshmm::beatFrequencies(vs->level_limiting[K], vs->level_radius[K] / kBeatSeparation, kBeatSeparation).empty()) PetscFunctionReturn(0);
+  PetscCall(VecNorm(P, NORM_2, &beta));
+  if (!(beta > 0)) PetscFunctionReturn(0);
+  std::vector<PetscScalar> H;
+  PetscCall(VecGetSize(ts->vec_sol, &N));
+  PetscCall(LevelArnoldi(ts, K, ts->ptime, ts->vec_sol, &V, &m, H, &k, NULL, mask, P, PETSC_FALSE, PETSC_TRUE));
+  /* the modes of the Krylov space, with their eigenvectors */
+  std::vector<PetscScalar>          B(k * k), vr(k * k), work(8 * k + 8);
+  std::vector<PetscReal>            wr(k), wi(k);
+  std::vector<std::complex<double>> ritz;
+  PetscBLASInt                      n, lwork = (PetscBLASInt)work.size(), one = 1, info = 1;
+  if (k > 0) {
+    for (PetscInt j = 0; j < k; ++j)
+      for (PetscInt i = 0; i < k; ++i) B[i + j * k] = H[i + j * (m + 1)];
+    PetscCall(PetscBLASIntCast(k, &n));
+    PetscCallBLAS("LAPACKgeev", LAPACKgeev_("N", "V", &n, B.data(), &n, wr.data(), wi.data(), nullptr, &one, vr.data(), &n, work.data(), &lwork, &info));
+  }
+  if (!info)
+    for (PetscInt i = 0; i < k; ++i) ritz.emplace_back(wr[i], wi[i]);
+  std::vector<vshmm::Beat> beats = info ? std::vector<vshmm::Beat>() : vshmm::beatFrequencies(ritz, vs->level_radius[K] / kBeatSeparation, kBeatSeparation);
+  PetscReal                hnorm = 0;
+  for (PetscInt i = 0; i < k; ++i) hnorm = PetscMax(hnorm, PetscAbsScalar(H[i + (k - 1) * (m + 1)]));
+  if (!beats.empty() && k == m && m < N && !(PetscAbsScalar(H[k + (k - 1) * (m + 1)]) <= kInvariantKrylov * hnorm)) {
+    PetscCall(PetscInfo(ts, "The fastest level's own splits' modes beat at %g (the slowest difference of their frequencies), but its oscillation does not lie in an invariant Krylov space of %" PetscInt_FMT " vectors: not probed\n", beats[0].frequency, m));
+    beats.clear();
+  }
+  if (beats.empty()) {
+    PetscCall(VecDestroyVecs(m + 1, &V));
+    PetscFunctionReturn(0);
+  }
+  if ((PetscInt)beats.size() > kMaxBeats) beats.resize(kMaxBeats);
+  const std::vector<double> vrk(vr.begin(), vr.end());
+  PetscCall(VecDuplicate(ts->vec_sol, &Y));
+  PetscCall(VecDuplicate(ts->vec_sol, &Xs));
+  PetscCall(VecDuplicate(ts->vec_sol, &F));
+  PetscCall(VecDuplicate(ts->vec_sol, &Mean));
+  while (vs->beat_phase.size() < 4 * beats.size()) {
+    vs->beat_phase.push_back(nullptr);
+    PetscCall(VecDuplicate(ts->vec_sol, &vs->beat_phase.back()));
+  }
+  for (const vshmm::Beat &beat : beats) {
+    const size_t b      = vs->beat_omega.size();
+    bool         finite = true;
+    PetscCall(VecSet(Mean, 0.0));
+    for (int j = 0; j < 4 && finite; ++j) { /* the faster modes a quarter turn of the beat further each time */
+      Vec avg = vs->beat_phase[4 * b + j];
+      PetscCall(VecSet(avg, 0.0));
+      for (int i = 0; i < 8 && finite; ++i) { /* every mode an eighth of its own turn further each time */
+        const std::vector<double> y = vshmm::modesRotated(vrk, ritz, (int)k, i * PETSC_PI / 4, j * PETSC_PI / 2, 0.5 * (beat.lower + beat.upper));
+        finite                      = !y.empty();
+        if (!finite) break;
+        std::vector<PetscScalar> c(y.begin(), y.end());
+        for (PetscScalar &v : c) v *= beta;
+        PetscCall(VecSet(Y, 0.0));
+        PetscCall(VecMAXPY(Y, k, c.data(), V));
+        if (mask) PetscCall(VecPointwiseMult(Y, Y, mask));
+        PetscCall(VecWAXPY(Xs, -1.0, P, ts->vec_sol)); /* X - P + P turned */
+        PetscCall(VecAXPY(Xs, 1.0, Y));
+        PetscCall(TSVSHMMEvaluateLevel_Private(vs, K - 1, ts->ptime, Xs, F));
+        PetscCall(VecAXPY(avg, 0.125, F));
+      }
+      PetscCall(VecAXPY(Mean, 0.25, avg));
+    }
+    if (!finite) continue;
+    for (int j = 0; j < 4; ++j) PetscCall(VecAXPY(vs->beat_phase[4 * b + j], -1.0, Mean));
+    vs->beat_omega.push_back(beat.frequency);
+  }
+  PetscCall(PetscInfo(ts, "The fastest level's own splits' modes beat at %g%s (the slowest difference of their frequencies; %" PetscInt_FMT " probed)\n", beats[0].frequency, beats.size() > 1 ? " and more" : "", (PetscInt)vs->beat_omega.size()));
+  PetscCall(VecDestroyVecs(m + 1, &V));
+  PetscCall(VecDestroy(&Y));
+  PetscCall(VecDestroy(&Xs));
+  PetscCall(VecDestroy(&F));
+  PetscCall(VecDestroy(&Mean));
+  PetscFunctionReturn(0);
+}
+
 /* How strongly the fastest level's oscillation drives the state through the slower levels' fields,
    per unit time and relative amplitude of the oscillation, over ||X||: a thin fast rotation that a
    slow variable squares (y' = -y + C u^2 with small u) holds little of the state but moves the slow
@@ -677,6 +784,7 @@ static PetscErrorCode FastestLevelDrive(TS ts, Vec mask, PetscReal n_all)
     PetscCall(VecScale(Q, 1.0 / rho));
   }
   PetscCall(FastestLevelPlane(ts, P, Q, rho, mask));
+  PetscCall(FastestLevelBeats(ts, P, mask));
   PetscCall(VecSet(D, 0.0));
   if (vs->fastest_phase.empty()) {
     vs->fastest_phase.resize(8, nullptr);
@@ -885,6 +993,7 @@ PetscErrorCode TSVSHMMLevelOwnRates_Private(TS ts)
   vs->fastest_nonlinear = PETSC_FALSE;
   vs->fastest_own_phase = 0.0;
   vs->fastest_phase_now = PETSC_FALSE;
+  vs->beat_omega.clear();
   for (PetscInt level = 1; level < nscales; ++level) {
     if (!ComponentLevel(vs, level)) { /* additive splits: the fastest level's part of the state as its field sees it, ||G_K(X)|| / (rho_K ||X||) (the stiffest modes count fully) */
       bool oscillates = false;        /* used by -ts_vshmm_adapt's micro step bound only, for oscillating modes */
