@@ -227,9 +227,10 @@ static PetscErrorCode StartRun(TS ts)
   vs->time_dependent     = PETSC_FALSE;
   vs->time_rates_checked = PETSC_FALSE;
   vs->level_time_rate_max.clear();
-  vs->beat_bound  = 0; /* a beat found in an earlier run does not bound this one's savings */
-  vs->beat_effect = 0;
-  vs->beat_warned = PETSC_FALSE;
+  vs->beat_bound    = 0; /* a beat found in an earlier run does not bound this one's savings */
+  vs->beat_effect   = 0;
+  vs->beat_warned   = PETSC_FALSE;
+  vs->beats_checked = PETSC_FALSE;
   for (Vec &v : vs->radius_vecs) PetscCall(VecDestroy(&v)); /* the power method's start vectors */
   vs->radius_vecs.clear();
   if (vs->check_stability) PetscCall(TSVSHMMCheckStability_Private(ts));

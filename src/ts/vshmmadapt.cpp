@@ -469,7 +469,7 @@ PetscErrorCode TSVSHMMAdaptUnaveraged_Private(TS ts)
       vs->beat_effect = beat;
     } else if (beat > kUnaveragedShare && g <= (1 + vshmm::kDistinctBeats) * vs->beat_bound) vs->beat_effect = PetscMax(vs->beat_effect, beat); /* the same beat again */
   }
-  if (vs->beat_bound > 0 && !vs->beat_warned) {
+  if (vs->beat_bound > 0 && !vs->beat_warned && vs->savings.empty()) { /* (savings the user set: the separation check says it, CheckBeats()) */
     const PetscReal speedup = PetscMax(1.0, vs->beat_bound * ts->time_step / (2 * PETSC_PI));
     vs->beat_warned         = PETSC_TRUE;
     PetscCall(TSVSHMMWarn_Private(ts,
@@ -1076,6 +1076,56 @@ static PetscErrorCode CheckTimeRates(TS ts)
   PetscFunctionReturn(0);
 }
 
+/* Fixed savings that slow a beat of the fastest level's own oscillations (two frequencies a slow
+   rate g apart: TSVSHMMFastestBeats_Private()) below a turn per macro step, r_0 ... r_{K-1} > g
+   DeltaT / 2 pi, where one relative phase of it, held until the slower levels forget it (as
+   TSVSHMMAdaptUnaveraged_Private() holds it), moves a component of the state by more than
+   kFixedSwing relative to 1 + |x_i|: the slow steps see one relative phase, and the answer is wrong
+   (x' = -x + q1 q2 with rotations at 1000 and 1010, time ratio 100: x(2) 0.37 for 0.046). Said (an
+   error with -ts_vshmm_check_separation error), once, at set-up; -ts_vshmm_adapt with the savings
+   left to it keeps the beat turning instead. */
+static PetscErrorCode CheckBeats(TS ts)
+{
+  TS_VSHMM      *vs = (TS_VSHMM *)ts->data;
+  const PetscInt K  = (PetscInt)vs->level_end.size() - 1;
+  Vec            D;
+
+  PetscFunctionBegin;
+  if (vs->check_separation == TSVSHMM_SEPARATION_OFF || (vs->adapt && vs->savings.empty()) || vs->beats_checked || K < 1) PetscFunctionReturn(0);
+  vs->beats_checked                 = PETSC_TRUE;
+  const std::vector<double> r       = vshmm::timeRatiosFromSavings(vs->savings_used);
+  PetscReal                 speedup = 1;
+  for (double x : r) speedup *= x;
+  if (!(speedup > 1.0 + kNegligibleSavings)) PetscFunctionReturn(0);
+  PetscCall(TSVSHMMFastestBeats_Private(ts));
+  if (vs->beat_omega.empty()) PetscFunctionReturn(0);
+  const PetscReal span = TSVSHMMAmplitudeSpan_Private(ts), memory = PetscMin(0.5 * span, PetscMax(ts->time_step, vs->level_radius[K - 1] > 0 ? 1.0 / vs->level_radius[K - 1] : 0.5 * span));
+  PetscCall(VecDuplicate(ts->vec_sol, &D));
+  for (size_t b = 0; b < vs->beat_omega.size() && 4 * b + 3 < vs->beat_phase.size(); ++b) {
+    const PetscReal g = vs->beat_omega[b], allowed = PetscMax(1.0, g * ts->time_step / (2 * PETSC_PI)), reach = memory * PetscMin(1.0, g * span / PETSC_PI);
+    if (!(speedup > allowed)) continue;
+    PetscReal swing = 0;
+    for (int j = 0; j < 4; ++j) { /* |reach D_i| / (1 + |x_i|), the largest component */
+      PetscReal m;
+      PetscCall(VecCopy(ts->vec_sol, D));
+      PetscCall(VecAbs(D));
+      PetscCall(VecShift(D, 1.0));
+      PetscCall(VecPointwiseDivide(D, vs->beat_phase[4 * b + j], D));
+      PetscCall(VecNorm(D, NORM_INFINITY, &m));
+      if (std::isfinite(m)) swing = PetscMax(swing, reach * m);
+    }
+    PetscCall(PetscInfo(ts, "Separation check at t = %g: the fastest level's own oscillations beat at %g; one relative phase of it held over %g moves the state by %g relative to 1 + |x_i|\n", (double)ts->ptime, (double)g, (double)reach, (double)swing));
+    if (!(swing > kFixedSwing)) continue;
+    PetscCheck(vs->check_separation != TSVSHMM_SEPARATION_ERROR, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_INCOMP, "TSVSHMM separation check at t = %g: two oscillations of the fastest level's own splits beat at frequency %g (the difference of their frequencies), a slow process inside the fast level, and the savings factors slow it %g times, to less than a turn per macro step (time ratios at most %g in product keep one): one relative phase of the beat held moves the state by %g relative to 1 + |x_i|, so the answer will be wrong by an amount VSHMM cannot estimate. Use smaller savings factors, -ts_vshmm_adapt without them, or a single-rate TS type (-ts_type rk); -ts_vshmm_check_separation warn runs anyway",
+               (double)ts->ptime, (double)g, (double)speedup, (double)allowed, (double)swing);
+    PetscCall(TSVSHMMWarn_Private(ts, "TSVSHMM warning: separation check at t = %g: two oscillations of the fastest level's own splits beat at frequency %g (the difference of their frequencies), a slow process inside the fast level, and the savings factors slow it %g times, to less than a turn per macro step (time ratios at most %g in product keep one): one relative phase of the beat held moves the state by %g relative to 1 + |x_i|, so the answer will be wrong by an amount VSHMM cannot estimate. Use smaller savings factors, -ts_vshmm_adapt without them, or a single-rate TS type (-ts_type rk). (-ts_vshmm_check_separation error makes this an error, off silences it.)\n",
+                                  (double)ts->ptime, (double)g, (double)speedup, (double)allowed, (double)swing));
+    break;
+  }
+  PetscCall(VecDestroy(&D));
+  PetscFunctionReturn(0);
+}
+
 /* The separation check: spectral radii of consecutive levels (or the separations set). */
 PetscErrorCode TSVSHMMCheckSeparation_Private(TS ts)
 {
@@ -1094,6 +1144,7 @@ PetscErrorCode TSVSHMMCheckSeparation_Private(TS ts)
   vs->no_separation   = best < kMinSeparation ? PETSC_TRUE : PETSC_FALSE;
   vs->separation_time = ts->ptime;
   PetscCall(CheckTimeRates(ts));
+  PetscCall(CheckBeats(ts));
   PetscCall(PetscInfo(ts, "Separation check at t = %g: %s\n", (double)ts->ptime, figures.c_str()));
   if (!vs->no_separation || vs->check_separation == TSVSHMM_SEPARATION_OFF) PetscFunctionReturn(0);
   const char *what = (vs->separations.empty() && !own) ? "ratio of the spectral radii of consecutive levels" : "separation of consecutive levels";

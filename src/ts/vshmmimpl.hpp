@@ -91,6 +91,7 @@ struct TS_VSHMM {
   PetscReal              beat_bound         = 0;              // -ts_vshmm_adapt: the slowest beat of the solve whose relative phase, held until the slower levels forget it, moves the observables by more than kUnaveragedShare (0: none)
   PetscReal              beat_effect        = 0;              // and that measure (1 = the tolerance)
   PetscBool              beat_warned        = PETSC_FALSE;    // told of it in this solve
+  PetscBool              beats_checked      = PETSC_FALSE;    // the separation check of fixed savings looked for beats (once, at set-up)
   PetscBool              unaveraged_unknown = PETSC_FALSE;    // the fastest level oscillates, but its oscillation had no amplitude to measure unaveraged with (a state on its slow manifold, or at rest)
   std::vector<PetscReal> level_time_rate;                     // per level l >= 1: how fast its own splits' explicit time dependence moves, ||dF_l/dt|| / (rho_l ||X||) (0: none or not estimated)
   std::vector<PetscReal> level_time_rate_max;                 // -ts_vshmm_adapt: the largest of the solve per level
@@ -239,5 +240,6 @@ PETSC_INTERN PetscErrorCode TSVSHMMAdaptSetUp_Private(TS);
 PETSC_INTERN PetscErrorCode TSVSHMMAdaptReset_Private(TS);
 PETSC_INTERN PetscReal      TSVSHMMAmplitudeSpan_Private(TS);
 PETSC_INTERN PetscErrorCode TSVSHMMAdaptUnaveraged_Private(TS);
+PETSC_INTERN PetscErrorCode TSVSHMMFastestBeats_Private(TS);                                                                 /* the fastest level's beats (vs->beat_omega, vs->beat_phase) for the separation check of fixed savings */
 PETSC_INTERN PetscErrorCode TSVSHMMAdaptSampleSchedule_Private(TS, PetscReal, std::unique_ptr<vshmm::MesoscopicSchedule> &); /* for a state inside the last macro step (TSInterpolate()) */
 PETSC_INTERN PetscErrorCode TSVSHMMCheckFastQuantities_Private(TS, PetscReal);                                               /* fixed savings: said where the sampled quantities carry a faster level's phase */

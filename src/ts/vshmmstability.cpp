@@ -43,6 +43,7 @@ static constexpr PetscReal kSustainedDecay      = 3;    /* an oscillation whose 
 static constexpr PetscReal kDifferenceStep      = 1e-6; /* relative perturbation of the state for an observable's derivative (central differences) */
 static constexpr PetscReal kBeatSeparation      = 10;   /* a difference of two fast frequencies this many times slower than they are: a beat (vshmm::beatFrequencies()) */
 static constexpr PetscInt  kMaxBeats            = 3;    /* the slowest beats probed at most (FastestLevelBeats()) */
+static constexpr PetscReal kAffineField         = 1e-8; /* a second difference below this of the field: the field is affine (FastestLevelBeats()) */
 static constexpr PetscReal kInvariantKrylov     = 1e-6; /* an Arnoldi residual below this of H's column: the Krylov space is invariant (to the forward differences' noise) */
 
 /* A deterministic start vector for the Arnoldi and power iterations, the same on any number of
@@ -644,6 +645,24 @@ static PetscErrorCode FastestLevelPlane(TS ts, Vec P, Vec Q0, PetscReal rho, Vec
    middle frequency a quarter turn further each time), less their mean, in vs->beat_phase. Only
    where the Arnoldi space is invariant (a few fast modes; P in a band wider than the space is not
    probed). What that does to the observables is measured by TSVSHMMAdaptUnaveraged_Private(). */
+/* Whether the fastest level's modes may beat at all, without evaluations: its limiting modes hold
+   two distinct fast frequencies a beat apart, and the problem is not declared linear (a linear
+   field holds no product of the modes). */
+static PetscErrorCode MayBeat(TS ts, PetscBool *may)
+{
+  TS_VSHMM      *vs = (TS_VSHMM *)ts->data;
+  const PetscInt K  = (PetscInt)vs->level_end.size() - 1;
+  TSProblemType  type;
+
+  PetscFunctionBegin;
+  *may = PETSC_FALSE;
+  if (K < 1 || !((PetscInt)vs->level_radius.size() > K && vs->level_radius[K] > 0) || (PetscInt)vs->level_limiting.size() <= K) PetscFunctionReturn(0);
+  if (vshmm::beatFrequencies(vs->level_limiting[K], vs->level_radius[K] / kBeatSeparation, kBeatSeparation).empty()) PetscFunctionReturn(0);
+  PetscCall(TSGetProblemType(ts, &type));
+  *may = type == TS_LINEAR ? PETSC_FALSE : PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode FastestLevelBeats(TS ts, Vec P, Vec mask)
 {
   TS_VSHMM      *vs = (TS_VSHMM *)ts->data;
@@ -654,11 +673,35 @@ static PetscErrorCode FastestLevelBeats(TS ts, Vec P, Vec mask)
 
   PetscFunctionBegin;
   vs->beat_omega.clear();
-  if (K < 1 || !((PetscInt)vs->level_radius.size() > K && vs->level_radius[K] > 0) || (PetscInt)vs->level_limiting.size() <= K) PetscFunctionReturn(0);
-  /* the whole level's modes beat (two distinct fast frequencies) before its own splits' are looked at */
-  if (vshmm::beatFrequencies(vs->level_limiting[K], vs->level_radius[K] / kBeatSeparation, kBeatSeparation).empty()) PetscFunctionReturn(0);
+  PetscBool may;
+  PetscCall(MayBeat(ts, &may));
+  if (!may) PetscFunctionReturn(0);
   PetscCall(VecNorm(P, NORM_2, &beta));
   if (!(beta > 0)) PetscFunctionReturn(0);
+  /* nor where the slower field is affine in the oscillation's part (its second difference along P
+     at the rounding's level: no product of the modes in it) */
+  {
+    Vec       F0, F1, F2, Xs;
+    PetscReal d, n0, n1;
+    PetscCall(VecDuplicate(ts->vec_sol, &F0));
+    PetscCall(VecDuplicate(ts->vec_sol, &F1));
+    PetscCall(VecDuplicate(ts->vec_sol, &F2));
+    PetscCall(VecDuplicate(ts->vec_sol, &Xs));
+    PetscCall(TSVSHMMEvaluateLevel_Private(vs, K - 1, ts->ptime, ts->vec_sol, F0));
+    PetscCall(VecWAXPY(Xs, -1.0, P, ts->vec_sol));
+    PetscCall(TSVSHMMEvaluateLevel_Private(vs, K - 1, ts->ptime, Xs, F1));
+    PetscCall(VecAXPY(Xs, -1.0, P));
+    PetscCall(TSVSHMMEvaluateLevel_Private(vs, K - 1, ts->ptime, Xs, F2));
+    PetscCall(VecNorm(F0, NORM_2, &n0));
+    PetscCall(VecNorm(F1, NORM_2, &n1));
+    PetscCall(VecAXPBYPCZ(F2, 1.0, -2.0, 1.0, F0, F1)); /* F(X) - 2 F(X - P) + F(X - 2 P) */
+    PetscCall(VecNorm(F2, NORM_2, &d));
+    PetscCall(VecDestroy(&F0));
+    PetscCall(VecDestroy(&F1));
+    PetscCall(VecDestroy(&F2));
+    PetscCall(VecDestroy(&Xs));
+    if (std::isfinite(d) && d <= kAffineField * (n0 + n1)) PetscFunctionReturn(0);
+  }
   std::vector<PetscScalar> H;
   PetscCall(VecGetSize(ts->vec_sol, &N));
   PetscCall(LevelArnoldi(ts, K, ts->ptime, ts->vec_sol, &V, &m, H, &k, NULL, mask, P, PETSC_FALSE, PETSC_TRUE));
@@ -1392,5 +1435,47 @@ PetscErrorCode TSVSHMMCheckStability_Private(TS ts)
   }
   PetscCall(CheckCoupling(ts, dt, *schedule));
   PetscCall(CheckFastEnergy(ts));
+  PetscFunctionReturn(0);
+}
+
+/* The beats of the fastest level's own oscillations for the separation check of fixed savings
+   (FastestLevelBeats(), which -ts_vshmm_adapt runs with each estimate of the spectra): the
+   oscillation's part of the state is the level's own components (component splits) or
+   -J_K^2 X / rho_K^2 (additive splits), as FastestLevelDrive() takes it. Counted as the stability
+   check's evaluations. */
+PetscErrorCode TSVSHMMFastestBeats_Private(TS ts)
+{
+  TS_VSHMM      *vs = (TS_VSHMM *)ts->data;
+  const PetscInt K  = (PetscInt)vs->level_end.size() - 1;
+  Vec            Osc, mask = nullptr;
+
+  PetscFunctionBegin;
+  vs->beat_omega.clear();
+  PetscBool may;
+  PetscCall(MayBeat(ts, &may));
+  if (!may) PetscFunctionReturn(0);
+  const StabilityCounting counting(vs);
+  const PetscReal         rho = vs->level_radius[K];
+  PetscCall(VecDuplicate(ts->vec_sol, &Osc));
+  if (ComponentLevel(vs, K)) {
+    PetscCall(VecDuplicate(ts->vec_sol, &mask));
+    PetscCall(TSVSHMMWrittenComponents_Private(vs, vs->level_end[K - 1], vs->level_end[K], ts->ptime, mask));
+    PetscCall(VecPointwiseMult(Osc, mask, ts->vec_sol));
+  } else {
+    Vec G, Xp, W;
+    PetscCall(VecDuplicate(ts->vec_sol, &G));
+    PetscCall(VecDuplicate(ts->vec_sol, &Xp));
+    PetscCall(VecDuplicate(ts->vec_sol, &W));
+    PetscCall(TSVSHMMEvaluateLevel_Private(vs, K, ts->ptime, ts->vec_sol, G));
+    PetscCall(FastestJacobianApply(ts, ts->vec_sol, G, ts->vec_sol, Xp, W)); /* J X */
+    PetscCall(FastestJacobianApply(ts, ts->vec_sol, G, W, Xp, Osc));         /* J^2 X */
+    PetscCall(VecScale(Osc, -1.0 / (rho * rho)));
+    PetscCall(VecDestroy(&G));
+    PetscCall(VecDestroy(&Xp));
+    PetscCall(VecDestroy(&W));
+  }
+  PetscCall(FastestLevelBeats(ts, Osc, mask));
+  PetscCall(VecDestroy(&Osc));
+  PetscCall(VecDestroy(&mask));
   PetscFunctionReturn(0);
 }
