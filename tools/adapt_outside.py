@@ -10,7 +10,7 @@ steps' estimates.
     python3 tools/adapt_outside.py BUILD_DIR [--tols 1e-1,1e-2,1e-3] [--only SUBSTRING] [--jobs N]
                                    [-- extra options for the adaptive runs]
 
-About six minutes on two cores (the references, the spread of rates and the limit cycle at eps = 1e-4 most of it).
+About seven minutes on two cores (the references, the spread of rates and the limit cycle at eps = 1e-4 most of it).
 """
 import math
 import subprocess
@@ -44,6 +44,8 @@ PROBLEMS = [
     ('a fast limit cycle (van der Pol, Hopf parameter x; section 25)', 29, 2, 1e-5, ['-eps', '1e-3']),
     ('the same limit cycle at eps 1e-4 (section 25)', 29, 2, 1e-6, ['-eps', '1e-4']),
     ('two fast rotations 10 apart, their beat drives x (section 26)', 30, 2, 1e-5, ['-eps', '1e-3', '-a', '10']),
+    ('a beat in the medium level of three (section 26)', 32, 2, 1e-6, ['-eps', '1e-3', '-eps2', '1e-6', '-a', '10']),
+    ('three fast rotations in a triad resonance (section 26: not detected)', 31, 2, 1e-6, ['-eps', '1e-3', '-a', '10']),
 ]
 
 

@@ -180,6 +180,23 @@ static void Field(Ctx *c, PetscReal t, const PetscScalar *u, PetscScalar *f)
     f[3] = (1 + a * e) * u[4] / e;
     f[4] = -(1 + a * e) * u[3] / e;
     break;
+  case 31: /* three fast rotations in a triad resonance, w1 + w2 - w3 = a: x' = -x + 4 q1 q2 q3 ; (q_i, p_i)' = w_i (p_i, -q_i) / eps, w = (1, 1.5, 2.5 - a eps) (q1 q2 q3 holds cos(a t) / 4: a slow combination no pair of them shows) */
+    f[0] = -u[0] + 4 * u[1] * u[3] * u[5];
+    f[1] = u[2] / e;
+    f[2] = -u[1] / e;
+    f[3] = 1.5 * u[4] / e;
+    f[4] = -1.5 * u[3] / e;
+    f[5] = (2.5 - a * e) * u[6] / e;
+    f[6] = -(2.5 - a * e) * u[5] / e;
+    break;
+  case 32: /* a beat in the medium level of three: x' = -x + u1 u2 ; (u1, v1)' = (v1, -u1) / eps, (u2, v2)' = w (v2, -u2) / eps, w = 1 + a eps ; fast w' = -(w - u1) / eps2 */
+    f[0] = -u[0] + u[1] * u[3];
+    f[1] = u[2] / e;
+    f[2] = -u[1] / e;
+    f[3] = (1 + a * e) * u[4] / e;
+    f[4] = -(1 + a * e) * u[3] / e;
+    f[5] = -(u[5] - u[1]) / e2;
+    break;
   case 19: /* three-level chemistry: A' = -A + B ; B' = (A - 2 B + C)/eps ; C' = (B - C - C^3)/eps2 */
     f[0] = -u[0] + u[1];
     f[1] = (u[0] - 2 * u[1] + u[2]) / e;
@@ -336,6 +353,8 @@ static const Setup kSetups[] = {
   {28, 1, {{0, 1}, {2, 3}}, {1, 0, 1, 0}},
   {29, 1, {{0}, {1, 2}}, {0.2, 0.5, 0}},
   {30, 1, {{0}, {1, 2, 3, 4}}, {0, 1, 0, 1, 0}},
+  {31, 1, {{0}, {1, 2, 3, 4, 5, 6}}, {0, 1, 0, 1, 0, 1, 0}},
+  {32, 1, {{0}, {1, 2, 3, 4}, {5}}, {0, 1, 0, 1, 0, 0}},
 };
 
 int main(int argc, char **argv)
@@ -368,7 +387,7 @@ int main(int argc, char **argv)
   const Setup *setup = nullptr;
   for (const Setup &st : kSetups)
     if (st.prob == c.prob) setup = &st;
-  PetscCheck(setup, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "-prob %d: no such problem (0-30, the cases of Field())", (int)c.prob);
+  PetscCheck(setup, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "-prob %d: no such problem (0-32, the cases of Field())", (int)c.prob);
   c.n      = (PetscInt)setup->u0.size();
   c.nobs   = setup->nobs;
   c.nsplit = (PetscInt)setup->splits.size();

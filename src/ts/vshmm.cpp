@@ -54,6 +54,7 @@ static PetscErrorCode TSVSHMMTearDown_Private(TS ts)
   for (Vec &v : vs->beat_phase) PetscCall(VecDestroy(&v));
   vs->beat_phase.clear();
   vs->beat_omega.clear();
+  vs->beat_level.clear();
   for (Vec &k : vs->K) PetscCall(VecDestroy(&k));
   vs->K.clear();
   vs->schedule.reset();
@@ -227,8 +228,8 @@ static PetscErrorCode StartRun(TS ts)
   vs->time_dependent     = PETSC_FALSE;
   vs->time_rates_checked = PETSC_FALSE;
   vs->level_time_rate_max.clear();
-  vs->beat_bound    = 0; /* a beat found in an earlier run does not bound this one's savings */
-  vs->beat_effect   = 0;
+  vs->beat_bound.clear(); /* a beat found in an earlier run does not bound this one's savings */
+  vs->beat_effect.clear();
   vs->beat_warned   = PETSC_FALSE;
   vs->beats_checked = PETSC_FALSE;
   for (Vec &v : vs->radius_vecs) PetscCall(VecDestroy(&v)); /* the power method's start vectors */
@@ -688,9 +689,11 @@ static PetscErrorCode TSView_VSHMM(TS ts, PetscViewer viewer)
                                      !vs->fastest_nonlinear                                                            ? ""
                                      : std::abs(vs->fastest_mean_mode.imag()) > std::abs(vs->fastest_mean_mode.real()) ? " (nonlinear: oscillating by the mean, its own slowest rate the largest of the four phases')"
                                                                                                                        : " (nonlinear; the mean does not oscillate: the Jacobian at the state judged)"));
-  if (vs->adapt && vs->beat_bound > 0)
-    PetscCall(PetscViewerASCIIPrintf(viewer, "  the fastest level's own oscillations beat at %.3g (a slow process inside it; one relative phase held moves the observables by %.3g tolerances): savings keep it turning once per macro step, time ratios at most %.3g in product\n",
-                                     (double)vs->beat_bound, (double)vs->beat_effect, (double)PetscMax(1.0, vs->beat_bound * ts->time_step / (2 * PETSC_PI))));
+  for (size_t L = 1; vs->adapt && L < vs->beat_bound.size(); ++L) {
+    if (vs->beat_bound[L] > 0)
+      PetscCall(PetscViewerASCIIPrintf(viewer, "  level %d's own oscillations beat at %.3g (a slow process inside it; one relative phase held moves the observables by %.3g tolerances): savings keep it turning once per macro step, r_0 ... r_%d at most %.3g\n", (int)L,
+                                       (double)vs->beat_bound[L], (double)vs->beat_effect[L], (int)L - 1, (double)PetscMax(1.0, vs->beat_bound[L] * ts->time_step / (2 * PETSC_PI))));
+  }
   if (!vs->separations.empty()) {
     std::string list;
     for (PetscReal S : vs->separations) {

@@ -447,14 +447,32 @@ PetscErrorCode TSVSHMMAdaptUnaveraged_Private(TS ts)
   vs->unaveraged     = worst;
   vs->unaveraged_max = PetscMax(vs->unaveraged_max, worst);
   PetscCall(PetscInfo(ts, "Adapt: a macro step that leaves the fastest level's oscillation (slowest frequency %g) unaveraged moves the observables by %g of the tolerance\n", (double)omega, (double)worst));
-  /* the beats of its modes (FastestLevelBeats()). A beat that savings slow below a turn per macro
-     step holds one relative phase from step to step, and its part of the field adds up over the
-     steps until the slower levels forget it: over at least 1 / rho_{K-1}, their fastest rate (at
-     most half the run); a beat turning slower than the run moves a relative phase only g span of a
-     half turn, so its part is counted at that fraction */
-  const PetscReal span   = TSVSHMMAmplitudeSpan_Private(ts);
-  const PetscReal memory = PetscMin(0.5 * span, PetscMax(ts->time_step, vs->level_radius[K - 1] > 0 ? 1.0 / vs->level_radius[K - 1] : 0.5 * span));
-  for (size_t b = 0; b < vs->beat_omega.size() && 4 * b + 3 < vs->beat_phase.size(); ++b) {
+  PetscCall(VecDestroy(&Xs));
+  PetscFunctionReturn(0);
+}
+
+/* What the beats of the faster levels' own oscillations do to the observables (TSVSHMMLevelBeats_Private():
+   the slower field at four relative phases of each beat, less their mean). A beat that savings slow
+   below a turn per macro step holds one relative phase from step to step, and its part of the field
+   adds up over the steps until the slower levels forget it: over at least 1 / rho_{L-1}, their
+   fastest rate (at least DeltaT, at most half the run); a beat turning slower than the run moves a
+   relative phase only g span of a half turn, so its part is counted at that fraction. Where that
+   moves the observables by more than kUnaveragedShare, level L's beat bounds the savings
+   (vs->beat_bound[L], Bounds()): it turns at least once per macro step in micro time. */
+PetscErrorCode TSVSHMMAdaptBeats_Private(TS ts)
+{
+  TS_VSHMM       *vs   = (TS_VSHMM *)ts->data;
+  const PetscReal span = TSVSHMMAmplitudeSpan_Private(ts);
+  Vec             Xs;
+
+  PetscFunctionBegin;
+  if (!vs->adapt || vs->beat_omega.empty()) PetscFunctionReturn(0);
+  vs->beat_bound.resize(vs->level_end.size(), 0.0);
+  vs->beat_effect.resize(vs->level_end.size(), 0.0);
+  PetscCall(VecDuplicate(ts->vec_sol, &Xs));
+  for (size_t b = 0; b < vs->beat_omega.size() && b < vs->beat_level.size() && 4 * b + 3 < vs->beat_phase.size(); ++b) {
+    const PetscInt  L      = vs->beat_level[b];
+    const PetscReal memory = PetscMin(0.5 * span, PetscMax(ts->time_step, vs->level_radius[L - 1] > 0 ? 1.0 / vs->level_radius[L - 1] : 0.5 * span));
     const PetscReal g = vs->beat_omega[b], reach = memory * PetscMin(1.0, g * span / PETSC_PI);
     PetscReal       beat = 0;
     for (int j = 0; j < 4; ++j) {
@@ -463,20 +481,21 @@ PetscErrorCode TSVSHMMAdaptUnaveraged_Private(TS ts)
       PetscCall(ObservableDifference(ts, ts->ptime, ts->vec_sol, Xs, &d, PETSC_FALSE));
       if (std::isfinite(d)) beat = PetscMax(beat, d);
     }
-    PetscCall(PetscInfo(ts, "Adapt: the fastest level's modes beat at %g: one relative phase of the beat held over %g moves the observables by %g of the tolerance\n", (double)g, (double)reach, (double)beat));
-    if (beat > kUnaveragedShare && (!(vs->beat_bound > 0) || g < (1 - vshmm::kDistinctBeats) * vs->beat_bound)) {
-      vs->beat_bound  = g;
-      vs->beat_effect = beat;
-    } else if (beat > kUnaveragedShare && g <= (1 + vshmm::kDistinctBeats) * vs->beat_bound) vs->beat_effect = PetscMax(vs->beat_effect, beat); /* the same beat again */
-  }
-  if (vs->beat_bound > 0 && !vs->beat_warned && vs->savings.empty()) { /* (savings the user set: the separation check says it, CheckBeats()) */
-    const PetscReal speedup = PetscMax(1.0, vs->beat_bound * ts->time_step / (2 * PETSC_PI));
-    vs->beat_warned         = PETSC_TRUE;
-    PetscCall(TSVSHMMWarn_Private(ts,
-                                  "TSVSHMM warning (-ts_vshmm_adapt): at t = %g two oscillations of the fastest level's own splits beat at frequency %g (the difference of their frequencies), a slow process inside the fast level: savings slow it "
-                                  "with the level, and one relative phase "
-                                  "of it held moves the observables by %g times the tolerance. The savings now keep it turning at least once per macro step (time ratios at most %g in product%s). %s This warning is given once per solve.\n",
-                                  (double)ts->ptime, (double)vs->beat_bound, (double)vs->beat_effect, (double)speedup, speedup > 1 ? "" : ": none", speedup > 1 ? "" : "Without savings a single-rate TS type (-ts_type rk) does the same work without VSHMM's estimates."));
+    PetscCall(PetscInfo(ts, "Adapt: level %" PetscInt_FMT "'s modes beat at %g: one relative phase of the beat held over %g moves the observables by %g of the tolerance\n", L, (double)g, (double)reach, (double)beat));
+    if (!(beat > kUnaveragedShare)) continue;
+    if (!(vs->beat_bound[L] > 0) || g < (1 - vshmm::kDistinctBeats) * vs->beat_bound[L]) {
+      vs->beat_bound[L]  = g;
+      vs->beat_effect[L] = beat;
+    } else if (g <= (1 + vshmm::kDistinctBeats) * vs->beat_bound[L]) vs->beat_effect[L] = PetscMax(vs->beat_effect[L], beat); /* the same beat again */
+    if (!vs->beat_warned && vs->savings.empty()) {                                                                            /* (savings the user set: the separation check says it, CheckBeats()) */
+      const PetscReal speedup = PetscMax(1.0, vs->beat_bound[L] * ts->time_step / (2 * PETSC_PI));
+      vs->beat_warned         = PETSC_TRUE;
+      PetscCall(TSVSHMMWarn_Private(ts,
+                                    "TSVSHMM warning (-ts_vshmm_adapt): at t = %g two oscillations of level %d's own splits beat at frequency %g (the difference of their frequencies), a slow process inside that level: savings slow it with the "
+                                    "level, and one relative phase "
+                                    "of it held moves the observables by %g times the tolerance. The savings now keep it turning at least once per macro step (r_0 ... r_%d at most %g%s). %s This warning is given once per solve.\n",
+                                    (double)ts->ptime, (int)L, (double)vs->beat_bound[L], (double)vs->beat_effect[L], (int)L - 1, (double)speedup, speedup > 1 ? "" : ": none", speedup > 1 || L + 1 < (PetscInt)vs->level_end.size() ? "" : "Without savings a single-rate TS type (-ts_type rk) does the same work without VSHMM's estimates."));
+    }
   }
   PetscCall(VecDestroy(&Xs));
   PetscFunctionReturn(0);
@@ -603,9 +622,10 @@ static vshmm::AdaptBounds Bounds(TS ts, PetscReal DeltaT)
   };
   /* the fastest level turns at least once per macro step in micro time, DeltaT / (r_0 ... r_{K-1}) */
   if ((vs->unaveraged_unknown || vs->unaveraged_max > kUnaveragedShare) && vs->unaveraged_omega > 0 && vs->level_radius.size() > 1) boundSpeedup(vs->level_radius.size() - 1, vs->unaveraged_omega * DeltaT / (2 * PETSC_PI));
-  /* and a beat of its modes that moves the observables (TSVSHMMAdaptUnaveraged_Private()) as well:
-     slower than a turn per macro step, no savings */
-  if (vs->beat_bound > 0 && vs->level_radius.size() > 1) boundSpeedup(vs->level_radius.size() - 1, vs->beat_bound * DeltaT / (2 * PETSC_PI));
+  /* and so does a level whose own modes beat where that moves the observables
+     (TSVSHMMAdaptBeats_Private()): for a beat slower than a turn per macro step, no savings */
+  for (size_t L = 1; L < vs->beat_bound.size() && L < vs->level_radius.size(); ++L)
+    if (vs->beat_bound[L] > 0) boundSpeedup(L, vs->beat_bound[L] * DeltaT / (2 * PETSC_PI));
   /* a level whose splits depend on time explicitly sees that dependence r_0 ... r_{l-1} times
      faster than it is (one clock for every level): it stays kMinSeparation below the level's
      radius (LevelTimeRates() in vshmmstability.cpp; a fast forcing sin(t / eps) allows no savings),
@@ -1077,7 +1097,7 @@ static PetscErrorCode CheckTimeRates(TS ts)
 }
 
 /* Fixed savings that slow a beat of the fastest level's own oscillations (two frequencies a slow
-   rate g apart: TSVSHMMFastestBeats_Private()) below a turn per macro step, r_0 ... r_{K-1} > g
+   rate g apart: TSVSHMMLevelBeats_Private()) below a turn per macro step, r_0 ... r_{L-1} > g
    DeltaT / 2 pi, where one relative phase of it, held until the slower levels forget it (as
    TSVSHMMAdaptUnaveraged_Private() holds it), moves a component of the state by more than
    kFixedSwing relative to 1 + |x_i|: the slow steps see one relative phase, and the answer is wrong
@@ -1092,17 +1112,21 @@ static PetscErrorCode CheckBeats(TS ts)
 
   PetscFunctionBegin;
   if (vs->check_separation == TSVSHMM_SEPARATION_OFF || (vs->adapt && vs->savings.empty()) || vs->beats_checked || K < 1) PetscFunctionReturn(0);
-  vs->beats_checked                 = PETSC_TRUE;
-  const std::vector<double> r       = vshmm::timeRatiosFromSavings(vs->savings_used);
-  PetscReal                 speedup = 1;
-  for (double x : r) speedup *= x;
-  if (!(speedup > 1.0 + kNegligibleSavings)) PetscFunctionReturn(0);
-  PetscCall(TSVSHMMFastestBeats_Private(ts));
+  vs->beats_checked             = PETSC_TRUE;
+  const std::vector<double> r   = vshmm::timeRatiosFromSavings(vs->savings_used);
+  PetscReal                 all = 1;
+  for (double x : r) all *= x;
+  if (!(all > 1.0 + kNegligibleSavings)) PetscFunctionReturn(0);
+  PetscCall(TSVSHMMLevelBeats_Private(ts));
   if (vs->beat_omega.empty()) PetscFunctionReturn(0);
-  const PetscReal span = TSVSHMMAmplitudeSpan_Private(ts), memory = PetscMin(0.5 * span, PetscMax(ts->time_step, vs->level_radius[K - 1] > 0 ? 1.0 / vs->level_radius[K - 1] : 0.5 * span));
+  const PetscReal span = TSVSHMMAmplitudeSpan_Private(ts);
   PetscCall(VecDuplicate(ts->vec_sol, &D));
-  for (size_t b = 0; b < vs->beat_omega.size() && 4 * b + 3 < vs->beat_phase.size(); ++b) {
+  for (size_t b = 0; b < vs->beat_omega.size() && b < vs->beat_level.size() && 4 * b + 3 < vs->beat_phase.size(); ++b) {
+    const PetscInt  L      = vs->beat_level[b];
+    const PetscReal memory = PetscMin(0.5 * span, PetscMax(ts->time_step, vs->level_radius[L - 1] > 0 ? 1.0 / vs->level_radius[L - 1] : 0.5 * span));
     const PetscReal g = vs->beat_omega[b], allowed = PetscMax(1.0, g * ts->time_step / (2 * PETSC_PI)), reach = memory * PetscMin(1.0, g * span / PETSC_PI);
+    PetscReal       speedup = 1; /* level L's: r_0 ... r_{L-1} */
+    for (PetscInt l = 0; l < L && l < (PetscInt)r.size(); ++l) speedup *= r[l];
     if (!(speedup > allowed)) continue;
     PetscReal swing = 0;
     for (int j = 0; j < 4; ++j) { /* |reach D_i| / (1 + |x_i|), the largest component */
@@ -1114,12 +1138,12 @@ static PetscErrorCode CheckBeats(TS ts)
       PetscCall(VecNorm(D, NORM_INFINITY, &m));
       if (std::isfinite(m)) swing = PetscMax(swing, reach * m);
     }
-    PetscCall(PetscInfo(ts, "Separation check at t = %g: the fastest level's own oscillations beat at %g; one relative phase of it held over %g moves the state by %g relative to 1 + |x_i|\n", (double)ts->ptime, (double)g, (double)reach, (double)swing));
+    PetscCall(PetscInfo(ts, "Separation check at t = %g: level %" PetscInt_FMT "'s own oscillations beat at %g; one relative phase of it held over %g moves the state by %g relative to 1 + |x_i|\n", (double)ts->ptime, L, (double)g, (double)reach, (double)swing));
     if (!(swing > kFixedSwing)) continue;
-    PetscCheck(vs->check_separation != TSVSHMM_SEPARATION_ERROR, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_INCOMP, "TSVSHMM separation check at t = %g: two oscillations of the fastest level's own splits beat at frequency %g (the difference of their frequencies), a slow process inside the fast level, and the savings factors slow it %g times, to less than a turn per macro step (time ratios at most %g in product keep one): one relative phase of the beat held moves the state by %g relative to 1 + |x_i|, so the answer will be wrong by an amount VSHMM cannot estimate. Use smaller savings factors, -ts_vshmm_adapt without them, or a single-rate TS type (-ts_type rk); -ts_vshmm_check_separation warn runs anyway",
-               (double)ts->ptime, (double)g, (double)speedup, (double)allowed, (double)swing);
-    PetscCall(TSVSHMMWarn_Private(ts, "TSVSHMM warning: separation check at t = %g: two oscillations of the fastest level's own splits beat at frequency %g (the difference of their frequencies), a slow process inside the fast level, and the savings factors slow it %g times, to less than a turn per macro step (time ratios at most %g in product keep one): one relative phase of the beat held moves the state by %g relative to 1 + |x_i|, so the answer will be wrong by an amount VSHMM cannot estimate. Use smaller savings factors, -ts_vshmm_adapt without them, or a single-rate TS type (-ts_type rk). (-ts_vshmm_check_separation error makes this an error, off silences it.)\n",
-                                  (double)ts->ptime, (double)g, (double)speedup, (double)allowed, (double)swing));
+    PetscCheck(vs->check_separation != TSVSHMM_SEPARATION_ERROR, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_INCOMP, "TSVSHMM separation check at t = %g: two oscillations of level %d's own splits beat at frequency %g (the difference of their frequencies), a slow process inside that level, and the savings factors slow it %g times, to less than a turn per macro step (r_0 ... r_%d at most %g keep one): one relative phase of the beat held moves the state by %g relative to 1 + |x_i|, so the answer will be wrong by an amount VSHMM cannot estimate. Use smaller savings factors, -ts_vshmm_adapt without them, or a single-rate TS type (-ts_type rk); -ts_vshmm_check_separation warn runs anyway",
+               (double)ts->ptime, (int)L, (double)g, (double)speedup, (int)L - 1, (double)allowed, (double)swing);
+    PetscCall(TSVSHMMWarn_Private(ts, "TSVSHMM warning: separation check at t = %g: two oscillations of level %d's own splits beat at frequency %g (the difference of their frequencies), a slow process inside that level, and the savings factors slow it %g times, to less than a turn per macro step (r_0 ... r_%d at most %g keep one): one relative phase of the beat held moves the state by %g relative to 1 + |x_i|, so the answer will be wrong by an amount VSHMM cannot estimate. Use smaller savings factors, -ts_vshmm_adapt without them, or a single-rate TS type (-ts_type rk). (-ts_vshmm_check_separation error makes this an error, off silences it.)\n",
+                                  (double)ts->ptime, (int)L, (double)g, (double)speedup, (int)L - 1, (double)allowed, (double)swing));
     break;
   }
   PetscCall(VecDestroy(&D));

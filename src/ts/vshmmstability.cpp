@@ -42,8 +42,8 @@ static constexpr PetscReal kFastQuantityRate    = 10;   /* a sampled quantity mo
 static constexpr PetscReal kSustainedDecay      = 3;    /* an oscillation whose amplitude decays by less than e^this over a macro step is sustained (more: a transient, a layer) */
 static constexpr PetscReal kDifferenceStep      = 1e-6; /* relative perturbation of the state for an observable's derivative (central differences) */
 static constexpr PetscReal kBeatSeparation      = 10;   /* a difference of two fast frequencies this many times slower than they are: a beat (vshmm::beatFrequencies()) */
-static constexpr PetscInt  kMaxBeats            = 3;    /* the slowest beats probed at most (FastestLevelBeats()) */
-static constexpr PetscReal kAffineField         = 1e-8; /* a second difference below this of the field: the field is affine (FastestLevelBeats()) */
+static constexpr PetscInt  kMaxBeats            = 3;    /* the slowest beats probed at most (LevelBeats()) */
+static constexpr PetscReal kAffineField         = 1e-8; /* a second difference below this of the field: the field is affine (LevelBeats()) */
 static constexpr PetscReal kInvariantKrylov     = 1e-6; /* an Arnoldi residual below this of H's column: the Krylov space is invariant (to the forward differences' noise) */
 
 /* A deterministic start vector for the Arnoldi and power iterations, the same on any number of
@@ -464,11 +464,11 @@ static PetscErrorCode AdditiveOwnRate(TS ts, PetscInt level)
    the fastest level's oscillations. */
 /* W = J_K V, the Jacobian of the fastest level's field G_K at X applied to V by a forward difference
    from G = G_K(X). */
-static PetscErrorCode FastestJacobianApply(TS ts, Vec X, Vec G, Vec V, Vec Xp, Vec W)
+/* The same for level K's field (G = its field at X). */
+static PetscErrorCode LevelJacobianApply(TS ts, PetscInt K, Vec X, Vec G, Vec V, Vec Xp, Vec W)
 {
-  TS_VSHMM      *vs = (TS_VSHMM *)ts->data;
-  const PetscInt K  = (PetscInt)vs->level_end.size() - 1;
-  PetscReal      xnorm, vnorm;
+  TS_VSHMM *vs = (TS_VSHMM *)ts->data;
+  PetscReal xnorm, vnorm;
 
   PetscFunctionBegin;
   PetscCall(VecNorm(X, NORM_2, &xnorm));
@@ -483,6 +483,11 @@ static PetscErrorCode FastestJacobianApply(TS ts, Vec X, Vec G, Vec V, Vec Xp, V
   PetscCall(VecAXPY(W, -1.0, G));
   PetscCall(VecScale(W, 1.0 / delta));
   PetscFunctionReturn(0);
+}
+
+static PetscErrorCode FastestJacobianApply(TS ts, Vec X, Vec G, Vec V, Vec Xp, Vec W)
+{
+  return LevelJacobianApply(ts, (PetscInt)((TS_VSHMM *)ts->data)->level_end.size() - 1, X, G, V, Xp, W);
 }
 
 /* The largest slowest rate (vshmm::slowestRate()) of level `level`'s own block (mask) at the three
@@ -629,13 +634,30 @@ static PetscErrorCode FastestLevelPlane(TS ts, Vec P, Vec Q0, PetscReal rho, Vec
   PetscFunctionReturn(0);
 }
 
-/* Two oscillations of the fastest level's own splits whose frequencies differ by g make, in any
-   product of them that a slower level's field holds, a beat at frequency g: a slow process inside
-   the fast level. Savings slow it with the level, r_0 ... r_{K-1} times, and where it then turns
-   less than once per macro step the slow steps see one relative phase of it, which coarser
-   comparisons see as well: two fast rotations 10 apart (x' = -x + q1 q2, frequencies 1000 and 1010)
-   ended 3-30 tolerances off, silently (docs/accuracy.md section 26). The own splits' modes, not the
-   whole level's: a frequency that a slower split shifts (the paper's oscillators, whose medium split
+/* Whether level L's modes may beat at all, without evaluations: its limiting modes hold two
+   distinct fast frequencies a beat apart, and the problem is not declared linear (a linear field
+   holds no product of the modes). */
+static PetscErrorCode MayBeat(TS ts, PetscInt L, PetscBool *may)
+{
+  TS_VSHMM     *vs = (TS_VSHMM *)ts->data;
+  TSProblemType type;
+
+  PetscFunctionBegin;
+  *may = PETSC_FALSE;
+  if (L < 1 || !((PetscInt)vs->level_radius.size() > L && vs->level_radius[L] > 0) || (PetscInt)vs->level_limiting.size() <= L) PetscFunctionReturn(0);
+  if (vshmm::beatFrequencies(vs->level_limiting[L], vs->level_radius[L] / kBeatSeparation, kBeatSeparation).empty()) PetscFunctionReturn(0);
+  PetscCall(TSGetProblemType(ts, &type));
+  *may = type == TS_LINEAR ? PETSC_FALSE : PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+/* Two oscillations of level K's own splits whose frequencies differ by g make, in any product of
+   them that a slower level's field holds, a beat at frequency g: a slow process inside the level.
+   Savings slow it with the level, r_0 ... r_{K-1} times, and where it then turns less than once per
+   macro step the slow steps see one relative phase of it, which coarser comparisons see as well:
+   two fast rotations 10 apart (x' = -x + q1 q2, frequencies 1000 and 1010) ended 3-311 tolerances
+   off, silently at 1e-1 (docs/accuracy.md section 26). The own splits' modes, not the whole
+   level's: a frequency that a slower split shifts (the paper's oscillators, whose medium split
    moves one rotation by 1 / eps) turns in that split's steps too. For each of the kMaxBeats slowest
    beats of the modes in the oscillation's part of the state P (vshmm::beatFrequencies() on the Ritz
    values of an Arnoldi space of the own splits' Jacobian started at P, on the level's own
@@ -644,37 +666,18 @@ static PetscErrorCode FastestLevelPlane(TS ts, Vec P, Vec Q0, PetscReal rho, Vec
    averaged out, whatever its frequency) at four relative phases of the beat (the modes above its
    middle frequency a quarter turn further each time), less their mean, in vs->beat_phase. Only
    where the Arnoldi space is invariant (a few fast modes; P in a band wider than the space is not
-   probed). What that does to the observables is measured by TSVSHMMAdaptUnaveraged_Private(). */
-/* Whether the fastest level's modes may beat at all, without evaluations: its limiting modes hold
-   two distinct fast frequencies a beat apart, and the problem is not declared linear (a linear
-   field holds no product of the modes). */
-static PetscErrorCode MayBeat(TS ts, PetscBool *may)
+   probed). What that does to the observables is measured by TSVSHMMAdaptBeats_Private(), and for
+   fixed savings by the separation check (CheckBeats()). */
+static PetscErrorCode LevelBeats(TS ts, PetscInt K, Vec P, Vec mask)
 {
-  TS_VSHMM      *vs = (TS_VSHMM *)ts->data;
-  const PetscInt K  = (PetscInt)vs->level_end.size() - 1;
-  TSProblemType  type;
+  TS_VSHMM *vs = (TS_VSHMM *)ts->data; /* K: the level looked at (its modes beat; level K - 1's field holds their products) */
+  PetscInt  N, m, k;
+  Vec      *V, Y, Xs, F, Mean;
+  PetscReal beta;
 
   PetscFunctionBegin;
-  *may = PETSC_FALSE;
-  if (K < 1 || !((PetscInt)vs->level_radius.size() > K && vs->level_radius[K] > 0) || (PetscInt)vs->level_limiting.size() <= K) PetscFunctionReturn(0);
-  if (vshmm::beatFrequencies(vs->level_limiting[K], vs->level_radius[K] / kBeatSeparation, kBeatSeparation).empty()) PetscFunctionReturn(0);
-  PetscCall(TSGetProblemType(ts, &type));
-  *may = type == TS_LINEAR ? PETSC_FALSE : PETSC_TRUE;
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode FastestLevelBeats(TS ts, Vec P, Vec mask)
-{
-  TS_VSHMM      *vs = (TS_VSHMM *)ts->data;
-  const PetscInt K  = (PetscInt)vs->level_end.size() - 1;
-  PetscInt       N, m, k;
-  Vec           *V, Y, Xs, F, Mean;
-  PetscReal      beta;
-
-  PetscFunctionBegin;
-  vs->beat_omega.clear();
   PetscBool may;
-  PetscCall(MayBeat(ts, &may));
+  PetscCall(MayBeat(ts, K, &may));
   if (!may) PetscFunctionReturn(0);
   PetscCall(VecNorm(P, NORM_2, &beta));
   if (!(beta > 0)) PetscFunctionReturn(0);
@@ -722,7 +725,7 @@ static PetscErrorCode FastestLevelBeats(TS ts, Vec P, Vec mask)
   PetscReal                hnorm = 0;
   for (PetscInt i = 0; i < k; ++i) hnorm = PetscMax(hnorm, PetscAbsScalar(H[i + (k - 1) * (m + 1)]));
   if (!beats.empty() && k == m && m < N && !(PetscAbsScalar(H[k + (k - 1) * (m + 1)]) <= kInvariantKrylov * hnorm)) {
-    PetscCall(PetscInfo(ts, "The fastest level's own splits' modes beat at %g (the slowest difference of their frequencies), but its oscillation does not lie in an invariant Krylov space of %" PetscInt_FMT " vectors: not probed\n", beats[0].frequency, m));
+    PetscCall(PetscInfo(ts, "Level %" PetscInt_FMT "'s own splits' modes beat at %g (the slowest difference of their frequencies), but its oscillation does not lie in an invariant Krylov space of %" PetscInt_FMT " vectors: not probed\n", K, beats[0].frequency, m));
     beats.clear();
   }
   if (beats.empty()) {
@@ -735,7 +738,7 @@ static PetscErrorCode FastestLevelBeats(TS ts, Vec P, Vec mask)
   PetscCall(VecDuplicate(ts->vec_sol, &Xs));
   PetscCall(VecDuplicate(ts->vec_sol, &F));
   PetscCall(VecDuplicate(ts->vec_sol, &Mean));
-  while (vs->beat_phase.size() < 4 * beats.size()) {
+  while (vs->beat_phase.size() < 4 * (vs->beat_omega.size() + beats.size())) {
     vs->beat_phase.push_back(nullptr);
     PetscCall(VecDuplicate(ts->vec_sol, &vs->beat_phase.back()));
   }
@@ -765,8 +768,9 @@ static PetscErrorCode FastestLevelBeats(TS ts, Vec P, Vec mask)
     if (!finite) continue;
     for (int j = 0; j < 4; ++j) PetscCall(VecAXPY(vs->beat_phase[4 * b + j], -1.0, Mean));
     vs->beat_omega.push_back(beat.frequency);
+    vs->beat_level.push_back(K);
   }
-  PetscCall(PetscInfo(ts, "The fastest level's own splits' modes beat at %g%s (the slowest difference of their frequencies; %" PetscInt_FMT " probed)\n", beats[0].frequency, beats.size() > 1 ? " and more" : "", (PetscInt)vs->beat_omega.size()));
+  PetscCall(PetscInfo(ts, "Level %" PetscInt_FMT "'s own splits' modes beat at %g%s (the slowest difference of their frequencies)\n", K, beats[0].frequency, beats.size() > 1 ? " and more" : ""));
   PetscCall(VecDestroyVecs(m + 1, &V));
   PetscCall(VecDestroy(&Y));
   PetscCall(VecDestroy(&Xs));
@@ -827,7 +831,6 @@ static PetscErrorCode FastestLevelDrive(TS ts, Vec mask, PetscReal n_all)
     PetscCall(VecScale(Q, 1.0 / rho));
   }
   PetscCall(FastestLevelPlane(ts, P, Q, rho, mask));
-  PetscCall(FastestLevelBeats(ts, P, mask));
   PetscCall(VecSet(D, 0.0));
   if (vs->fastest_phase.empty()) {
     vs->fastest_phase.resize(8, nullptr);
@@ -1037,6 +1040,7 @@ PetscErrorCode TSVSHMMLevelOwnRates_Private(TS ts)
   vs->fastest_own_phase = 0.0;
   vs->fastest_phase_now = PETSC_FALSE;
   vs->beat_omega.clear();
+  vs->beat_level.clear();
   for (PetscInt level = 1; level < nscales; ++level) {
     if (!ComponentLevel(vs, level)) { /* additive splits: the fastest level's part of the state as its field sees it, ||G_K(X)|| / (rho_K ||X||) (the stiffest modes count fully) */
       bool oscillates = false;        /* used by -ts_vshmm_adapt's micro step bound only, for oscillating modes */
@@ -1088,7 +1092,9 @@ PetscErrorCode TSVSHMMLevelOwnRates_Private(TS ts)
   }
   PetscCall(LevelTimeRates(ts));
   vs->own_rates_time = vs->spectra_time;
+  if (vs->adapt) PetscCall(TSVSHMMLevelBeats_Private(ts));
   if (vs->adapt) PetscCall(TSVSHMMAdaptUnaveraged_Private(ts));
+  if (vs->adapt) PetscCall(TSVSHMMAdaptBeats_Private(ts));
   PetscFunctionReturn(0);
 }
 
@@ -1438,44 +1444,48 @@ PetscErrorCode TSVSHMMCheckStability_Private(TS ts)
   PetscFunctionReturn(0);
 }
 
-/* The beats of the fastest level's own oscillations for the separation check of fixed savings
-   (FastestLevelBeats(), which -ts_vshmm_adapt runs with each estimate of the spectra): the
-   oscillation's part of the state is the level's own components (component splits) or
-   -J_K^2 X / rho_K^2 (additive splits), as FastestLevelDrive() takes it. Counted as the stability
-   check's evaluations. */
-PetscErrorCode TSVSHMMFastestBeats_Private(TS ts)
+/* The beats of the own oscillations of every faster level l >= 1 (LevelBeats(), in vs->beat_omega,
+   vs->beat_level, vs->beat_phase): the oscillation's part of the state is the level's own
+   components (component splits) or -J_l^2 X / rho_l^2 (additive splits), as FastestLevelDrive()
+   takes the fastest level's. With each estimate of the spectra under -ts_vshmm_adapt
+   (TSVSHMMLevelOwnRates_Private()) and once at set-up for the separation check of fixed savings.
+   Counted as the stability check's evaluations. */
+PetscErrorCode TSVSHMMLevelBeats_Private(TS ts)
 {
-  TS_VSHMM      *vs = (TS_VSHMM *)ts->data;
-  const PetscInt K  = (PetscInt)vs->level_end.size() - 1;
-  Vec            Osc, mask = nullptr;
+  TS_VSHMM      *vs      = (TS_VSHMM *)ts->data;
+  const PetscInt nscales = (PetscInt)vs->level_end.size();
 
   PetscFunctionBegin;
   vs->beat_omega.clear();
-  PetscBool may;
-  PetscCall(MayBeat(ts, &may));
-  if (!may) PetscFunctionReturn(0);
-  const StabilityCounting counting(vs);
-  const PetscReal         rho = vs->level_radius[K];
-  PetscCall(VecDuplicate(ts->vec_sol, &Osc));
-  if (ComponentLevel(vs, K)) {
-    PetscCall(VecDuplicate(ts->vec_sol, &mask));
-    PetscCall(TSVSHMMWrittenComponents_Private(vs, vs->level_end[K - 1], vs->level_end[K], ts->ptime, mask));
-    PetscCall(VecPointwiseMult(Osc, mask, ts->vec_sol));
-  } else {
-    Vec G, Xp, W;
-    PetscCall(VecDuplicate(ts->vec_sol, &G));
-    PetscCall(VecDuplicate(ts->vec_sol, &Xp));
-    PetscCall(VecDuplicate(ts->vec_sol, &W));
-    PetscCall(TSVSHMMEvaluateLevel_Private(vs, K, ts->ptime, ts->vec_sol, G));
-    PetscCall(FastestJacobianApply(ts, ts->vec_sol, G, ts->vec_sol, Xp, W)); /* J X */
-    PetscCall(FastestJacobianApply(ts, ts->vec_sol, G, W, Xp, Osc));         /* J^2 X */
-    PetscCall(VecScale(Osc, -1.0 / (rho * rho)));
-    PetscCall(VecDestroy(&G));
-    PetscCall(VecDestroy(&Xp));
-    PetscCall(VecDestroy(&W));
+  vs->beat_level.clear();
+  for (PetscInt L = 1; L < nscales; ++L) {
+    PetscBool may;
+    Vec       Osc, mask = nullptr;
+    PetscCall(MayBeat(ts, L, &may));
+    if (!may) continue;
+    const StabilityCounting counting(vs);
+    const PetscReal         rho = vs->level_radius[L];
+    PetscCall(VecDuplicate(ts->vec_sol, &Osc));
+    if (ComponentLevel(vs, L)) {
+      PetscCall(VecDuplicate(ts->vec_sol, &mask));
+      PetscCall(TSVSHMMWrittenComponents_Private(vs, vs->level_end[L - 1], vs->level_end[L], ts->ptime, mask));
+      PetscCall(VecPointwiseMult(Osc, mask, ts->vec_sol));
+    } else {
+      Vec G, Xp, W;
+      PetscCall(VecDuplicate(ts->vec_sol, &G));
+      PetscCall(VecDuplicate(ts->vec_sol, &Xp));
+      PetscCall(VecDuplicate(ts->vec_sol, &W));
+      PetscCall(TSVSHMMEvaluateLevel_Private(vs, L, ts->ptime, ts->vec_sol, G));
+      PetscCall(LevelJacobianApply(ts, L, ts->vec_sol, G, ts->vec_sol, Xp, W)); /* J X */
+      PetscCall(LevelJacobianApply(ts, L, ts->vec_sol, G, W, Xp, Osc));         /* J^2 X */
+      PetscCall(VecScale(Osc, -1.0 / (rho * rho)));
+      PetscCall(VecDestroy(&G));
+      PetscCall(VecDestroy(&Xp));
+      PetscCall(VecDestroy(&W));
+    }
+    PetscCall(LevelBeats(ts, L, Osc, mask));
+    PetscCall(VecDestroy(&Osc));
+    PetscCall(VecDestroy(&mask));
   }
-  PetscCall(FastestLevelBeats(ts, Osc, mask));
-  PetscCall(VecDestroy(&Osc));
-  PetscCall(VecDestroy(&mask));
   PetscFunctionReturn(0);
 }

@@ -2386,7 +2386,7 @@ TEST(VSHMMAdapt, AFastLimitCycleIsJudgedOverItsPhases)
 // / eps, p1' = -q1 / eps, q2' = w p2 / eps, p2' = -w q2 / eps (fast), w = 1 + 10 eps, eps = 1e-3,
 // from (0, 1, 0, 1, 0) to t = 2 at 1e-1. q1 q2 holds cos(10 t), a slow process inside the fast
 // level that savings slow with it; frozen, it drove x to 0.37 (x(2) = 0.046: 3 tolerances off,
-// estimate 1.06 tol, silently). FastestLevelBeats() finds the beat in the fast split's own modes
+// estimate 1.06 tol, silently). LevelBeats() finds the beat in the fast split's own modes
 // and its effect on x; the savings then keep it turning once per macro step (none here): x(2)
 // within 1 tol of RK4 references (0.06 tol), with component and additive splits.
 void BeatSlow(const void *, PetscReal, const PetscScalar *x, PetscScalar *f)
@@ -2420,6 +2420,47 @@ TEST(VSHMMAdapt, ABeatOfTwoFastRotationsIsASlowProcess)
     ASSERT_EQ(SolveObservingX0("-ts_vshmm_adapt -ts_vshmm_warnings_viewer none -ts_rtol 1e-1 -ts_atol 1e-1", p, {0.0, 1.0, 0.0, 1.0, 0.0}, {"slow", "fast"}, 0.1, 2, &run, kind), 0);
     EXPECT_LE(std::abs(run.x[0] - ref), 1e-1 * (1 + std::abs(ref))) << (kind == SplitKind::Additive ? "additive" : "component") << " splits: x(2) = " << run.x[0] << ", reference " << ref;
   }
+}
+
+// The same beat in the medium level of three: x' = -x + u1 u2 (slow), (u1, v1)' = (v1, -u1) / 1e-3,
+// (u2, v2)' = 1.01 (v2, -u2) / 1e-3 (medium), w' = -(w - u1) / 1e-5 (fast, decaying), additive
+// splits, from (0, 1, 0, 1, 0, 0) to t = 2 at 1e-2: x(2) within the tolerance of RK4 references.
+// The savings r_0 slow the medium level and its beat; the beats of every faster level are probed.
+void MediumBeatSlow(const void *, PetscReal, const PetscScalar *x, PetscScalar *f)
+{
+  f[0] = -x[0] + x[1] * x[3];
+  f[1] = f[2] = f[3] = f[4] = f[5] = 0;
+}
+void MediumBeatMedium(const void *, PetscReal, const PetscScalar *x, PetscScalar *f)
+{
+  const double eps = 1e-3, w = 1 + 10 * eps;
+  f[0] = f[5] = 0;
+  f[1]        = x[2] / eps;
+  f[2]        = -x[1] / eps;
+  f[3]        = w * x[4] / eps;
+  f[4]        = -w * x[3] / eps;
+}
+void MediumBeatFast(const void *, PetscReal, const PetscScalar *x, PetscScalar *f)
+{
+  f[0] = f[1] = f[2] = f[3] = f[4] = 0;
+  f[5]                             = -(x[5] - x[1]) / 1e-5;
+}
+PetscErrorCode MediumBeatX0(TS, PetscReal, Vec X, PetscReal q[], void *ctx)
+{
+  std::vector<PetscReal> x;
+  PetscCall(GatherState((SplitProblem *)ctx, X, x));
+  q[0] = x[0];
+  return 0;
+}
+
+TEST(VSHMMAdapt, ABeatInAMediumLevelIsASlowProcess)
+{
+  const double ref = ConvergedReference({MediumBeatSlow, MediumBeatMedium, MediumBeatFast}, nullptr, {0.0, 1.0, 0.0, 1.0, 0.0, 0.0}, 2, 5e-6, 2.5e-6, 1e-9);
+  SplitProblem p;
+  AdaptRun     run;
+  p.terms = {MediumBeatSlow, MediumBeatMedium, MediumBeatFast};
+  ASSERT_EQ(SolveObserving("-ts_vshmm_adapt -ts_vshmm_warnings_viewer none -ts_rtol 1e-2 -ts_atol 1e-2", p, {0.0, 1.0, 0.0, 1.0, 0.0, 0.0}, {"slow", "medium", "fast"}, 0.1, 2, &run, SplitKind::Additive, 1, MediumBeatX0, &p), 0);
+  EXPECT_LE(std::abs(run.x[0] - ref), 1e-2 * (1 + std::abs(ref))) << "x(2) = " << run.x[0] << ", reference " << ref;
 }
 
 // The same with fixed savings (savings factor 99, micro step 2e-5, to t = 2: x(2) 0.43 for 0.046): the
