@@ -46,6 +46,7 @@ PROBLEMS = [
     ('two fast rotations 10 apart, their beat drives x (section 26)', 30, 2, 1e-5, ['-eps', '1e-3', '-a', '10']),
     ('a beat in the medium level of three (section 26)', 32, 2, 1e-6, ['-eps', '1e-3', '-eps2', '1e-6', '-a', '10']),
     ('three fast rotations in a triad resonance (section 26: not detected)', 31, 2, 1e-6, ['-eps', '1e-3', '-a', '10']),
+    ('the beat through squares, 8 q1^2 q2^2 - 2 (section 26)', 33, 2, 1e-6, ['-eps', '1e-3', '-a', '5']),
 ]
 
 

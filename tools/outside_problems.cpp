@@ -197,6 +197,13 @@ static void Field(Ctx *c, PetscReal t, const PetscScalar *u, PetscScalar *f)
     f[4] = -(1 + a * e) * u[3] / e;
     f[5] = -(u[5] - u[1]) / e2;
     break;
+  case 33: /* the beat of problem 30 through squares: x' = -x + 8 q1^2 q2^2 - 2 (the mean of 8 q1^2 q2^2 over the fast phases is 2 + cos(2 a t)) */
+    f[0] = -u[0] + 8 * u[1] * u[1] * u[3] * u[3] - 2;
+    f[1] = u[2] / e;
+    f[2] = -u[1] / e;
+    f[3] = (1 + a * e) * u[4] / e;
+    f[4] = -(1 + a * e) * u[3] / e;
+    break;
   case 19: /* three-level chemistry: A' = -A + B ; B' = (A - 2 B + C)/eps ; C' = (B - C - C^3)/eps2 */
     f[0] = -u[0] + u[1];
     f[1] = (u[0] - 2 * u[1] + u[2]) / e;
@@ -355,6 +362,7 @@ static const Setup kSetups[] = {
   {30, 1, {{0}, {1, 2, 3, 4}}, {0, 1, 0, 1, 0}},
   {31, 1, {{0}, {1, 2, 3, 4, 5, 6}}, {0, 1, 0, 1, 0, 1, 0}},
   {32, 1, {{0}, {1, 2, 3, 4}, {5}}, {0, 1, 0, 1, 0, 0}},
+  {33, 1, {{0}, {1, 2, 3, 4}}, {0, 1, 0, 1, 0}},
 };
 
 int main(int argc, char **argv)
@@ -387,7 +395,7 @@ int main(int argc, char **argv)
   const Setup *setup = nullptr;
   for (const Setup &st : kSetups)
     if (st.prob == c.prob) setup = &st;
-  PetscCheck(setup, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "-prob %d: no such problem (0-32, the cases of Field())", (int)c.prob);
+  PetscCheck(setup, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "-prob %d: no such problem (0-33, the cases of Field())", (int)c.prob);
   c.n      = (PetscInt)setup->u0.size();
   c.nobs   = setup->nobs;
   c.nsplit = (PetscInt)setup->splits.size();
