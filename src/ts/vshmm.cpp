@@ -691,7 +691,7 @@ static PetscErrorCode TSView_VSHMM(TS ts, PetscViewer viewer)
                                                                                                                        : " (nonlinear; the mean does not oscillate: the Jacobian at the state judged)"));
   for (size_t L = 1; vs->adapt && L < vs->beat_bound.size(); ++L) {
     if (vs->beat_bound[L] > 0)
-      PetscCall(PetscViewerASCIIPrintf(viewer, "  level %d's own oscillations beat at %.3g (a slow process inside it; one relative phase held moves the observables by %.3g tolerances): savings keep it turning once per macro step, r_0 ... r_%d at most %.3g\n", (int)L,
+      PetscCall(PetscViewerASCIIPrintf(viewer, "  level %d's own oscillations beat at %.3g (a slow process inside it; one relative phase held moves the observables by %.3g tolerances): savings keep it turning once per macro step, the time ratios up to r_%d in product at most %.3g\n", (int)L,
                                        (double)vs->beat_bound[L], (double)vs->beat_effect[L], (int)L - 1, (double)PetscMax(1.0, vs->beat_bound[L] * ts->time_step / (2 * PETSC_PI))));
   }
   if (!vs->separations.empty()) {

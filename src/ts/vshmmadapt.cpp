@@ -490,11 +490,12 @@ PetscErrorCode TSVSHMMAdaptBeats_Private(TS ts)
     if (!vs->beat_warned && vs->savings.empty()) {                                                                            /* (savings the user set: the separation check says it, CheckBeats()) */
       const PetscReal speedup = PetscMax(1.0, vs->beat_bound[L] * ts->time_step / (2 * PETSC_PI));
       vs->beat_warned         = PETSC_TRUE;
-      PetscCall(TSVSHMMWarn_Private(ts,
-                                    "TSVSHMM warning (-ts_vshmm_adapt): at t = %g two oscillations of level %d's own splits beat at frequency %g (the difference of their frequencies), a slow process inside that level: savings slow it with the "
-                                    "level, and one relative phase "
-                                    "of it held moves the observables by %g times the tolerance. The savings now keep it turning at least once per macro step (r_0 ... r_%d at most %g%s). %s This warning is given once per solve.\n",
-                                    (double)ts->ptime, (int)L, (double)vs->beat_bound[L], (double)vs->beat_effect[L], (int)L - 1, (double)speedup, speedup > 1 ? "" : ": none", speedup > 1 || L + 1 < (PetscInt)vs->level_end.size() ? "" : "Without savings a single-rate TS type (-ts_type rk) does the same work without VSHMM's estimates."));
+      PetscCall(
+        TSVSHMMWarn_Private(ts,
+                            "TSVSHMM warning (-ts_vshmm_adapt): at t = %g two oscillations of level %d's own splits beat at frequency %g (the difference of their frequencies), a slow process inside that level: savings slow it with the "
+                            "level, and one relative phase "
+                            "of it held moves the observables by %g times the tolerance. The savings now keep it turning at least once per macro step (the time ratios up to r_%d in product at most %g%s). %s This warning is given once per solve.\n",
+                            (double)ts->ptime, (int)L, (double)vs->beat_bound[L], (double)vs->beat_effect[L], (int)L - 1, (double)speedup, speedup > 1 ? "" : ": none", speedup > 1 || L + 1 < (PetscInt)vs->level_end.size() ? "" : "Without savings a single-rate TS type (-ts_type rk) does the same work without VSHMM's estimates."));
     }
   }
   PetscCall(VecDestroy(&Xs));
@@ -1140,9 +1141,9 @@ static PetscErrorCode CheckBeats(TS ts)
     }
     PetscCall(PetscInfo(ts, "Separation check at t = %g: level %" PetscInt_FMT "'s own oscillations beat at %g; one relative phase of it held over %g moves the state by %g relative to 1 + |x_i|\n", (double)ts->ptime, L, (double)g, (double)reach, (double)swing));
     if (!(swing > kFixedSwing)) continue;
-    PetscCheck(vs->check_separation != TSVSHMM_SEPARATION_ERROR, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_INCOMP, "TSVSHMM separation check at t = %g: two oscillations of level %d's own splits beat at frequency %g (the difference of their frequencies), a slow process inside that level, and the savings factors slow it %g times, to less than a turn per macro step (r_0 ... r_%d at most %g keep one): one relative phase of the beat held moves the state by %g relative to 1 + |x_i|, so the answer will be wrong by an amount VSHMM cannot estimate. Use smaller savings factors, -ts_vshmm_adapt without them, or a single-rate TS type (-ts_type rk); -ts_vshmm_check_separation warn runs anyway",
+    PetscCheck(vs->check_separation != TSVSHMM_SEPARATION_ERROR, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_INCOMP, "TSVSHMM separation check at t = %g: two oscillations of level %d's own splits beat at frequency %g (the difference of their frequencies), a slow process inside that level, and the savings factors slow it %g times, to less than a turn per macro step (the time ratios up to r_%d in product at most %g keep one): one relative phase of the beat held moves the state by %g relative to 1 + |x_i|, so the answer will be wrong by an amount VSHMM cannot estimate. Use smaller savings factors, -ts_vshmm_adapt without them, or a single-rate TS type (-ts_type rk); -ts_vshmm_check_separation warn runs anyway",
                (double)ts->ptime, (int)L, (double)g, (double)speedup, (int)L - 1, (double)allowed, (double)swing);
-    PetscCall(TSVSHMMWarn_Private(ts, "TSVSHMM warning: separation check at t = %g: two oscillations of level %d's own splits beat at frequency %g (the difference of their frequencies), a slow process inside that level, and the savings factors slow it %g times, to less than a turn per macro step (r_0 ... r_%d at most %g keep one): one relative phase of the beat held moves the state by %g relative to 1 + |x_i|, so the answer will be wrong by an amount VSHMM cannot estimate. Use smaller savings factors, -ts_vshmm_adapt without them, or a single-rate TS type (-ts_type rk). (-ts_vshmm_check_separation error makes this an error, off silences it.)\n",
+    PetscCall(TSVSHMMWarn_Private(ts, "TSVSHMM warning: separation check at t = %g: two oscillations of level %d's own splits beat at frequency %g (the difference of their frequencies), a slow process inside that level, and the savings factors slow it %g times, to less than a turn per macro step (the time ratios up to r_%d in product at most %g keep one): one relative phase of the beat held moves the state by %g relative to 1 + |x_i|, so the answer will be wrong by an amount VSHMM cannot estimate. Use smaller savings factors, -ts_vshmm_adapt without them, or a single-rate TS type (-ts_type rk). (-ts_vshmm_check_separation error makes this an error, off silences it.)\n",
                                   (double)ts->ptime, (int)L, (double)g, (double)speedup, (int)L - 1, (double)allowed, (double)swing));
     break;
   }
