@@ -444,26 +444,35 @@ PetscErrorCode TSVSHMMAdaptUnaveraged_Private(TS ts)
     PetscCall(ObservableDifference(ts, ts->ptime, ts->vec_sol, Xs, &d, PETSC_FALSE));
     if (std::isfinite(d)) worst = PetscMax(worst, d);
   }
+  PetscCall(VecDestroy(&Xs));
   vs->unaveraged     = worst;
   vs->unaveraged_max = PetscMax(vs->unaveraged_max, worst);
   PetscCall(PetscInfo(ts, "Adapt: a macro step that leaves the fastest level's oscillation (slowest frequency %g) unaveraged moves the observables by %g of the tolerance\n", (double)omega, (double)worst));
-  PetscCall(VecDestroy(&Xs));
   PetscFunctionReturn(0);
 }
 
+/* How long one relative phase of beat b (vs->beat_omega[b], of level L = vs->beat_level[b]) counts as
+   held where savings slow it below a turn per macro step: its part of the field adds up over the
+   steps until the slower levels forget it, over at least 1 / rho_{L-1}, their fastest rate (at
+   least DeltaT, at most half the run); a beat turning slower than the run moves a relative phase
+   only g span of a half turn, so its part is counted at that fraction. */
+static PetscReal BeatReach(TS ts, size_t b)
+{
+  const TS_VSHMM *vs     = (TS_VSHMM *)ts->data;
+  const PetscInt  L      = vs->beat_level[b];
+  const PetscReal span   = TSVSHMMAmplitudeSpan_Private(ts);
+  const PetscReal memory = PetscMin(0.5 * span, PetscMax(ts->time_step, vs->level_radius[L - 1] > 0 ? 1.0 / vs->level_radius[L - 1] : 0.5 * span));
+  return memory * PetscMin(1.0, vs->beat_omega[b] * span / PETSC_PI);
+}
+
 /* What the beats of the faster levels' own oscillations do to the observables (TSVSHMMLevelBeats_Private():
-   the slower field at four relative phases of each beat, less their mean). A beat that savings slow
-   below a turn per macro step holds one relative phase from step to step, and its part of the field
-   adds up over the steps until the slower levels forget it: over at least 1 / rho_{L-1}, their
-   fastest rate (at least DeltaT, at most half the run); a beat turning slower than the run moves a
-   relative phase only g span of a half turn, so its part is counted at that fraction. Where that
-   moves the observables by more than kUnaveragedShare, level L's beat bounds the savings
+   the slower field at four relative phases of each beat, less their mean), held as BeatReach() holds
+   it. Where that moves the observables by more than kUnaveragedShare, level L's beat bounds the savings
    (vs->beat_bound[L], Bounds()): it turns at least once per macro step in micro time. */
 PetscErrorCode TSVSHMMAdaptBeats_Private(TS ts)
 {
-  TS_VSHMM       *vs   = (TS_VSHMM *)ts->data;
-  const PetscReal span = TSVSHMMAmplitudeSpan_Private(ts);
-  Vec             Xs;
+  TS_VSHMM *vs = (TS_VSHMM *)ts->data;
+  Vec       Xs;
 
   PetscFunctionBegin;
   if (!vs->adapt || vs->beat_omega.empty()) PetscFunctionReturn(0);
@@ -471,9 +480,8 @@ PetscErrorCode TSVSHMMAdaptBeats_Private(TS ts)
   vs->beat_effect.resize(vs->level_end.size(), 0.0);
   PetscCall(VecDuplicate(ts->vec_sol, &Xs));
   for (size_t b = 0; b < vs->beat_omega.size() && b < vs->beat_level.size() && 4 * b + 3 < vs->beat_phase.size(); ++b) {
-    const PetscInt  L      = vs->beat_level[b];
-    const PetscReal memory = PetscMin(0.5 * span, PetscMax(ts->time_step, vs->level_radius[L - 1] > 0 ? 1.0 / vs->level_radius[L - 1] : 0.5 * span));
-    const PetscReal g = vs->beat_omega[b], reach = memory * PetscMin(1.0, g * span / PETSC_PI);
+    const PetscInt  L = vs->beat_level[b];
+    const PetscReal g = vs->beat_omega[b], reach = BeatReach(ts, b);
     PetscReal       beat = 0;
     for (int j = 0; j < 4; ++j) {
       PetscReal d;
@@ -1120,12 +1128,10 @@ static PetscErrorCode CheckBeats(TS ts)
   if (!(all > 1.0 + kNegligibleSavings)) PetscFunctionReturn(0);
   PetscCall(TSVSHMMLevelBeats_Private(ts));
   if (vs->beat_omega.empty()) PetscFunctionReturn(0);
-  const PetscReal span = TSVSHMMAmplitudeSpan_Private(ts);
   PetscCall(VecDuplicate(ts->vec_sol, &D));
   for (size_t b = 0; b < vs->beat_omega.size() && b < vs->beat_level.size() && 4 * b + 3 < vs->beat_phase.size(); ++b) {
-    const PetscInt  L      = vs->beat_level[b];
-    const PetscReal memory = PetscMin(0.5 * span, PetscMax(ts->time_step, vs->level_radius[L - 1] > 0 ? 1.0 / vs->level_radius[L - 1] : 0.5 * span));
-    const PetscReal g = vs->beat_omega[b], allowed = PetscMax(1.0, g * ts->time_step / (2 * PETSC_PI)), reach = memory * PetscMin(1.0, g * span / PETSC_PI);
+    const PetscInt  L = vs->beat_level[b];
+    const PetscReal g = vs->beat_omega[b], allowed = PetscMax(1.0, g * ts->time_step / (2 * PETSC_PI)), reach = BeatReach(ts, b);
     PetscReal       speedup = 1; /* level L's: r_0 ... r_{L-1} */
     for (PetscInt l = 0; l < L && l < (PetscInt)r.size(); ++l) speedup *= r[l];
     if (!(speedup > allowed)) continue;

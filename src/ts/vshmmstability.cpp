@@ -490,6 +490,25 @@ static PetscErrorCode FastestJacobianApply(TS ts, Vec X, Vec G, Vec V, Vec Xp, V
   return LevelJacobianApply(ts, (PetscInt)((TS_VSHMM *)ts->data)->level_end.size() - 1, X, G, V, Xp, W);
 }
 
+/* Level K's oscillation's part of the state X, P: its own components (mask; component splits) or
+   -J_K^2 X / rho_K^2 (additive splits: the oscillating modes at rate rho_K, the slower ones weighed
+   by their squared frequency over rho_K^2, the slow ones not at all). G: level K's field at X
+   (used without a mask); Xp, W work vectors. */
+static PetscErrorCode LevelOscillationPart(TS ts, PetscInt K, Vec mask, Vec G, Vec Xp, Vec W, Vec P)
+{
+  TS_VSHMM *vs = (TS_VSHMM *)ts->data;
+
+  PetscFunctionBegin;
+  if (mask) PetscCall(VecPointwiseMult(P, mask, ts->vec_sol));
+  else {
+    const PetscReal rho = vs->level_radius[K];
+    PetscCall(LevelJacobianApply(ts, K, ts->vec_sol, G, ts->vec_sol, Xp, W)); /* J X */
+    PetscCall(LevelJacobianApply(ts, K, ts->vec_sol, G, W, Xp, P));           /* J^2 X */
+    PetscCall(VecScale(P, -1.0 / (rho * rho)));
+  }
+  PetscFunctionReturn(0);
+}
+
 /* The largest slowest rate (vshmm::slowestRate()) of level `level`'s own block (mask) at the three
    phases X - P + cos(theta) P + sin(theta) Q, theta a quarter, half and three quarters turn, of a
    nonlinear oscillation, and `slowest` (its rate at X): a slow process inside the level is slow at
@@ -819,17 +838,10 @@ static PetscErrorCode FastestLevelDrive(TS ts, Vec mask, PetscReal n_all)
   PetscCall(VecDuplicate(ts->vec_sol, &Gm));
   PetscCall(VecDuplicate(ts->vec_sol, &D));
   PetscCall(TSVSHMMEvaluateLevel_Private(vs, K, ts->ptime, ts->vec_sol, G));
-  if (mask) {
-    PetscCall(VecPointwiseMult(P, mask, ts->vec_sol));
-    PetscCall(VecPointwiseMult(Q, mask, G));
-    PetscCall(VecScale(Q, 1.0 / rho));
-  } else {
-    PetscCall(FastestJacobianApply(ts, ts->vec_sol, G, ts->vec_sol, Xs, Q)); /* J X */
-    PetscCall(FastestJacobianApply(ts, ts->vec_sol, G, Q, Xs, P));           /* J^2 X */
-    PetscCall(VecScale(P, -1.0 / (rho * rho)));
-    PetscCall(FastestJacobianApply(ts, ts->vec_sol, G, P, Xs, Q));
-    PetscCall(VecScale(Q, 1.0 / rho));
-  }
+  PetscCall(LevelOscillationPart(ts, K, mask, G, Xs, Q, P));
+  if (mask) PetscCall(VecPointwiseMult(Q, mask, G)); /* a quarter turn on: G_K(X) / rho_K on the own components, or J_K P / rho_K */
+  else PetscCall(FastestJacobianApply(ts, ts->vec_sol, G, P, Xs, Q));
+  PetscCall(VecScale(Q, 1.0 / rho));
   PetscCall(FastestLevelPlane(ts, P, Q, rho, mask));
   PetscCall(VecSet(D, 0.0));
   if (vs->fastest_phase.empty()) {
@@ -1445,9 +1457,8 @@ PetscErrorCode TSVSHMMCheckStability_Private(TS ts)
 }
 
 /* The beats of the own oscillations of every faster level l >= 1 (LevelBeats(), in vs->beat_omega,
-   vs->beat_level, vs->beat_phase): the oscillation's part of the state is the level's own
-   components (component splits) or -J_l^2 X / rho_l^2 (additive splits), as FastestLevelDrive()
-   takes the fastest level's. With each estimate of the spectra under -ts_vshmm_adapt
+   vs->beat_level, vs->beat_phase), started at each level's LevelOscillationPart() (as
+   FastestLevelDrive() takes the fastest level's). With each estimate of the spectra under -ts_vshmm_adapt
    (TSVSHMMLevelOwnRates_Private()) and once at set-up for the separation check of fixed savings.
    Counted as the stability check's evaluations. */
 PetscErrorCode TSVSHMMLevelBeats_Private(TS ts)
@@ -1464,25 +1475,21 @@ PetscErrorCode TSVSHMMLevelBeats_Private(TS ts)
     PetscCall(MayBeat(ts, L, &may));
     if (!may) continue;
     const StabilityCounting counting(vs);
-    const PetscReal         rho = vs->level_radius[L];
+    Vec                     G = nullptr, Xp, W;
     PetscCall(VecDuplicate(ts->vec_sol, &Osc));
+    PetscCall(VecDuplicate(ts->vec_sol, &Xp));
+    PetscCall(VecDuplicate(ts->vec_sol, &W));
     if (ComponentLevel(vs, L)) {
       PetscCall(VecDuplicate(ts->vec_sol, &mask));
       PetscCall(TSVSHMMWrittenComponents_Private(vs, vs->level_end[L - 1], vs->level_end[L], ts->ptime, mask));
-      PetscCall(VecPointwiseMult(Osc, mask, ts->vec_sol));
     } else {
-      Vec G, Xp, W;
       PetscCall(VecDuplicate(ts->vec_sol, &G));
-      PetscCall(VecDuplicate(ts->vec_sol, &Xp));
-      PetscCall(VecDuplicate(ts->vec_sol, &W));
       PetscCall(TSVSHMMEvaluateLevel_Private(vs, L, ts->ptime, ts->vec_sol, G));
-      PetscCall(LevelJacobianApply(ts, L, ts->vec_sol, G, ts->vec_sol, Xp, W)); /* J X */
-      PetscCall(LevelJacobianApply(ts, L, ts->vec_sol, G, W, Xp, Osc));         /* J^2 X */
-      PetscCall(VecScale(Osc, -1.0 / (rho * rho)));
-      PetscCall(VecDestroy(&G));
-      PetscCall(VecDestroy(&Xp));
-      PetscCall(VecDestroy(&W));
     }
+    PetscCall(LevelOscillationPart(ts, L, mask, G, Xp, W, Osc));
+    PetscCall(VecDestroy(&G));
+    PetscCall(VecDestroy(&Xp));
+    PetscCall(VecDestroy(&W));
     PetscCall(LevelBeats(ts, L, Osc, mask));
     PetscCall(VecDestroy(&Osc));
     PetscCall(VecDestroy(&mask));
