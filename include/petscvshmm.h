@@ -90,7 +90,8 @@ PETSC_EXTERN const char *const TSVSHMMSeparationChecks[];
 .  adapt_layer_estimates - tries of the first macro step estimated again from a second comparison (an initial layer, where the error grows faster than the error model's terms)
 .  adapt_single_rate_from - the time from which -ts_vshmm_adapt took no savings because the tolerance was out of reach with them (finer savings did not lower the estimate, a single-rate step did), -1 if it did not happen
 .  global_estimate  - with -ts_vshmm_adapt_global_estimate, the error at the last sampled time estimated from the carried comparison (a second solution with every error term doubled), in the TS's weighted norm (1 = the tolerance); -1 without it
--  global_estimate_max - the largest global_estimate of the run (since TSVSHMMResetStatistics()); -1 without it
+.  global_estimate_max - the largest global_estimate of the run (since TSVSHMMResetStatistics()); -1 without it
+-  single_rate_evaluations - split RHS evaluations a single-rate TSRK of the same tableau would take over the same macro steps at each one's micro step (every split at every stage); rhs_evaluations plus adapt_evaluations above it means the savings did not pay for themselves
 
    Level: intermediate
 
@@ -117,6 +118,7 @@ typedef struct {
   PetscReal         adapt_single_rate_from;
   PetscReal         global_estimate;
   PetscReal         global_estimate_max;
+  PetscInt64        single_rate_evaluations;
 } TSVSHMMStatistics;
 
 PETSC_EXTERN PetscErrorCode TSVSHMMInitializePackage(void);

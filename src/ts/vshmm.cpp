@@ -230,8 +230,13 @@ static PetscErrorCode StartRun(TS ts)
   vs->level_time_rate_max.clear();
   vs->beat_bound.clear(); /* a beat found in an earlier run does not bound this one's savings */
   vs->beat_effect.clear();
-  vs->beat_warned   = PETSC_FALSE;
-  vs->beats_checked = PETSC_FALSE;
+  vs->beat_warned           = PETSC_FALSE;
+  vs->beats_checked         = PETSC_FALSE;
+  vs->cost_warned           = PETSC_FALSE; /* this run's work against single-rate steps (TSVSHMMAdaptCheckCost_Private()) */
+  vs->run_largest_ratio     = 1;
+  vs->run_start_single_rate = vs->single_rate_evaluations;
+  vs->run_start_work        = vs->adapt_evaluations;
+  for (PetscInt64 n : vs->rhs_evaluations) vs->run_start_work += n;
   for (Vec &v : vs->radius_vecs) PetscCall(VecDestroy(&v)); /* the power method's start vectors */
   vs->radius_vecs.clear();
   if (vs->check_stability) PetscCall(TSVSHMMCheckStability_Private(ts));
@@ -421,7 +426,17 @@ static PetscErrorCode TSStep_VSHMM(TS ts)
     PetscCall(TSVSHMMWarn_Private(ts, "TSVSHMM: split '%s' (scale %d) produced Inf or NaN at t = %.17g, evaluated for level %d; the solve stops with TS_DIVERGED_STEP_REJECTED at t = %g\n", name, scale, (double)t_fault, level, (double)t0));
     PetscFunctionReturn(0);
   }
+  { /* what a single-rate TSRK of the same tableau takes over this macro step at its micro step */
+    const PetscReal h = vs->adapt ? vs->adapt_used.microStep : dt;
+    vs->single_rate_evaluations += (PetscInt64)std::ceil(DeltaT / h - 1e-9) * vs->tableau->stages * nsplits;
+    if (vs->adapt) {
+      PetscReal ratio = 1;
+      for (double r : vs->adapt_used.ratios) ratio *= r;
+      vs->run_largest_ratio = PetscMax(vs->run_largest_ratio, ratio);
+    }
+  }
   ts->ptime = last ? ts->max_time : t0 + DeltaT;
+  if (vs->adapt && (ts->ptime >= ts->max_time - 1e-10 * DeltaT || ts->steps + 1 >= ts->max_steps)) PetscCall(TSVSHMMAdaptCheckCost_Private(ts)); /* the solve's last macro step */
   PetscFunctionReturn(0);
 }
 
@@ -610,6 +625,11 @@ static PetscErrorCode TSView_VSHMM(TS ts, PetscViewer viewer)
   for (PetscInt64 n : vs->level_steps) steps += n;
   for (PetscInt64 n : vs->rhs_evaluations) evals += n;
   PetscCall(PetscViewerASCIIPrintf(viewer, "  work: %" PetscInt64_FMT " macro steps, %" PetscInt64_FMT " micro cycles, %" PetscInt64_FMT " Runge-Kutta steps, %" PetscInt64_FMT " split RHS evaluations\n", vs->macro_steps, vs->micro_cycles, steps, evals));
+  if (vs->single_rate_evaluations > 0) {
+    const PetscInt64 all = evals + (vs->adapt ? vs->adapt_evaluations : 0);
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  single-rate TSRK %s steps at the micro step of each macro step would take %" PetscInt64_FMT " split RHS evaluations: this run's work%s is %.3g times that\n", vs->tableau->name.c_str(), vs->single_rate_evaluations, vs->adapt ? " with its estimates and rejected tries" : "",
+                                     (double)all / (double)vs->single_rate_evaluations));
+  }
   if (vs->adapt) {
     std::string admitted; /* scales not separated: the time ratios a single-rate step admitted */
     for (PetscReal r : vs->adapt_verified) admitted += (admitted.empty() ? "" : ", ") + std::to_string(r).substr(0, 6);
@@ -994,26 +1014,27 @@ static PetscErrorCode TSVSHMMGetStatistics_VSHMM(TS ts, TSVSHMMStatistics *stats
   TS_VSHMM *vs = (TS_VSHMM *)ts->data;
 
   PetscFunctionBegin;
-  stats->macro_steps            = vs->macro_steps;
-  stats->micro_cycles           = vs->micro_cycles;
-  stats->nsplits                = (PetscInt)vs->rhs_evaluations.size();
-  stats->nscales                = (PetscInt)vs->level_steps.size();
-  stats->rhs_evaluations        = vs->rhs_evaluations.empty() ? nullptr : vs->rhs_evaluations.data();
-  stats->level_steps            = vs->level_steps.empty() ? nullptr : vs->level_steps.data();
-  stats->level_evaluations      = vs->level_evaluations.empty() ? nullptr : vs->level_evaluations.data();
-  stats->stability_checks       = vs->stability_checks;
-  stats->stability_evaluations  = vs->stability_evaluations;
-  stats->stability_warnings     = vs->stability_warnings;
-  stats->error_estimate         = vs->error_estimate;
-  stats->error_estimate_total   = vs->error_estimate_total;
-  stats->adapt_evaluations      = vs->adapt_evaluations;
-  stats->adapt_rejections       = vs->adapt_rejections;
-  stats->adapt_calibrations     = vs->adapt_calibrations;
-  stats->adapt_uncompared       = vs->adapt_uncompared_total;
-  stats->adapt_layer_estimates  = vs->adapt_layer_fits;
-  stats->adapt_single_rate_from = vs->adapt_single_rate_from;
-  stats->global_estimate        = vs->adapt_global ? vs->global_estimate : -1;
-  stats->global_estimate_max    = vs->adapt_global ? vs->global_estimate_max : -1;
+  stats->macro_steps             = vs->macro_steps;
+  stats->micro_cycles            = vs->micro_cycles;
+  stats->nsplits                 = (PetscInt)vs->rhs_evaluations.size();
+  stats->nscales                 = (PetscInt)vs->level_steps.size();
+  stats->rhs_evaluations         = vs->rhs_evaluations.empty() ? nullptr : vs->rhs_evaluations.data();
+  stats->level_steps             = vs->level_steps.empty() ? nullptr : vs->level_steps.data();
+  stats->level_evaluations       = vs->level_evaluations.empty() ? nullptr : vs->level_evaluations.data();
+  stats->stability_checks        = vs->stability_checks;
+  stats->stability_evaluations   = vs->stability_evaluations;
+  stats->stability_warnings      = vs->stability_warnings;
+  stats->error_estimate          = vs->error_estimate;
+  stats->error_estimate_total    = vs->error_estimate_total;
+  stats->adapt_evaluations       = vs->adapt_evaluations;
+  stats->adapt_rejections        = vs->adapt_rejections;
+  stats->adapt_calibrations      = vs->adapt_calibrations;
+  stats->adapt_uncompared        = vs->adapt_uncompared_total;
+  stats->adapt_layer_estimates   = vs->adapt_layer_fits;
+  stats->adapt_single_rate_from  = vs->adapt_single_rate_from;
+  stats->global_estimate         = vs->adapt_global ? vs->global_estimate : -1;
+  stats->global_estimate_max     = vs->adapt_global ? vs->global_estimate_max : -1;
+  stats->single_rate_evaluations = vs->single_rate_evaluations;
   PetscFunctionReturn(0);
 }
 
@@ -1023,20 +1044,21 @@ static PetscErrorCode TSVSHMMResetStatistics_VSHMM(TS ts)
   size_t    n = vs->splits.size(), nscales = vs->level_end.size();
 
   PetscFunctionBegin;
-  vs->macro_steps            = 0;
-  vs->micro_cycles           = 0;
-  vs->stability_checks       = 0;
-  vs->stability_evaluations  = 0;
-  vs->stability_warnings     = 0;
-  vs->error_estimate         = 0;
-  vs->error_estimate_total   = 0;
-  vs->global_estimate_max    = 0;
-  vs->adapt_evaluations      = 0;
-  vs->adapt_rejections       = 0;
-  vs->adapt_calibrations     = 0;
-  vs->adapt_uncompared_total = 0;
-  vs->adapt_layer_fits       = 0;
-  vs->slow_led               = 0;
+  vs->macro_steps             = 0;
+  vs->micro_cycles            = 0;
+  vs->stability_checks        = 0;
+  vs->stability_evaluations   = 0;
+  vs->stability_warnings      = 0;
+  vs->error_estimate          = 0;
+  vs->error_estimate_total    = 0;
+  vs->global_estimate_max     = 0;
+  vs->adapt_evaluations       = 0;
+  vs->adapt_rejections        = 0;
+  vs->adapt_calibrations      = 0;
+  vs->adapt_uncompared_total  = 0;
+  vs->adapt_layer_fits        = 0;
+  vs->single_rate_evaluations = 0;
+  vs->slow_led                = 0;
   vs->warned_ratio.assign(nscales, 0.0);
   vs->fast_energy_min    = 0;
   vs->fast_energy_warned = 0;

@@ -2156,6 +2156,31 @@ static PetscErrorCode RecheckSeparation(TS ts)
   PetscFunctionReturn(0);
 }
 
+/* At a solve's last macro step (-ts_vshmm_adapt): the run's work, its estimates and rejected tries
+   included, against what a single-rate TSRK of the same tableau takes at the micro step of each
+   accepted macro step (vs->single_rate_evaluations). Single-rate steps at the micro step are stable
+   for every level and have no averaging error, so a run that cost more saved nothing: the savings
+   the tolerance allowed were too small to pay for their comparisons (a faster level with a band of
+   rates whose slowest one is a few tens of times the slow level's: separated, yet time ratios about
+   1.6 at 1e-1). Said once per run, not where the separation check, a beat or the accuracy control
+   already took the savings away and said so. */
+PetscErrorCode TSVSHMMAdaptCheckCost_Private(TS ts)
+{
+  TS_VSHMM *vs = (TS_VSHMM *)ts->data;
+
+  PetscFunctionBegin;
+  if (vs->cost_warned || vs->no_separation || vs->adapt_single_rate_from >= 0 || vs->beat_warned) PetscFunctionReturn(0); /* said already, with the single-rate type */
+  PetscInt64 work = vs->adapt_evaluations - vs->run_start_work;
+  for (PetscInt64 n : vs->rhs_evaluations) work += n;
+  const PetscInt64 single = vs->single_rate_evaluations - vs->run_start_single_rate;
+  PetscCall(PetscInfo(ts, "Adapt: this run to t = %g took %" PetscInt64_FMT " split RHS evaluations (estimates included); single-rate TSRK %s steps at its micro steps %" PetscInt64_FMT "\n", (double)ts->ptime, work, vs->tableau->name.c_str(), single));
+  if (work <= single) PetscFunctionReturn(0);
+  vs->cost_warned = PETSC_TRUE;
+  PetscCall(TSVSHMMWarn_Private(ts, "TSVSHMM warning (-ts_vshmm_adapt): this run to t = %g took %" PetscInt64_FMT " split RHS evaluations, its error estimates and rejected tries included: %.3g times what single-rate TSRK %s steps at its micro steps take over the same span (%" PetscInt64_FMT "), which are stable for every level and have no averaging error. The savings the tolerance allowed (time ratios at most %.3g in product) did not pay for their comparisons: at this tolerance and sampling interval a single-rate TS type (-ts_type rk, with its own step control) is the better tool for this problem.\n",
+                                (double)ts->ptime, work, (double)work / (double)single, vs->tableau->name.c_str(), single, (double)vs->run_largest_ratio));
+  PetscFunctionReturn(0);
+}
+
 /* The periodic separation check of TSStep_VSHMM() with -ts_vshmm_adapt: the check, and adapt's
    parameters where its verdict changed. */
 PetscErrorCode TSVSHMMAdaptCheckSeparation_Private(TS ts)

@@ -169,8 +169,13 @@ struct TS_VSHMM {
   PetscInt               adapt_start_accepted = 0;   // those accepted before adapt started again (SeparationChanged())
   PetscReal              error_estimate = 0, error_estimate_total = 0;
   PetscInt64             adapt_evaluations = 0, adapt_rejections = 0, adapt_calibrations = 0;
-  PetscInt64             adapt_uncompared_total = 0; // accepted steps whose comparison was left out (statistics)
-  PetscInt64             adapt_layer_fits       = 0; // tries estimated again from a second comparison (LayerEstimate(); statistics)
+  PetscInt64             adapt_uncompared_total  = 0; // accepted steps whose comparison was left out (statistics)
+  PetscInt64             adapt_layer_fits        = 0; // tries estimated again from a second comparison (LayerEstimate(); statistics)
+  PetscInt64             single_rate_evaluations = 0; // what a single-rate TSRK of the same tableau would take at the micro step of each accepted macro step (statistics, -ts_view, TSVSHMMAdaptCheckCost_Private())
+  PetscInt64             run_start_work          = 0; // the split evaluations (steps and estimates) and single_rate_evaluations when this run started (StartRun())
+  PetscInt64             run_start_single_rate   = 0;
+  PetscReal              run_largest_ratio       = 1;           // -ts_vshmm_adapt: the largest product of time ratios of this run's accepted macro steps
+  PetscBool              cost_warned             = PETSC_FALSE; // told in this run that it cost more than single-rate steps
 
   // Statistics since set-up
   enum Counter {
@@ -236,6 +241,7 @@ PETSC_INTERN PetscErrorCode TSVSHMMFastQuantities_Private(TS, PetscReal, Vec, Pe
 PETSC_INTERN PetscErrorCode TSVSHMMCheckSeparation_Private(TS);
 PETSC_INTERN PetscErrorCode TSVSHMMLevelRadius_Private(TS, PetscInt, PetscReal *, PetscReal *, PetscReal *);
 PETSC_INTERN PetscErrorCode TSVSHMMAdaptCheckSeparation_Private(TS);
+PETSC_INTERN PetscErrorCode TSVSHMMAdaptCheckCost_Private(TS); /* at a solve's last macro step: more work than single-rate steps? */
 PETSC_INTERN PetscErrorCode TSVSHMMAdaptStep_Private(TS, PetscReal, PetscReal);
 PETSC_INTERN PetscErrorCode TSVSHMMAdaptSetUp_Private(TS);
 PETSC_INTERN PetscErrorCode TSVSHMMAdaptReset_Private(TS);
