@@ -204,6 +204,13 @@ static void Field(Ctx *c, PetscReal t, const PetscScalar *u, PetscScalar *f)
     f[3] = (1 + a * e) * u[4] / e;
     f[4] = -(1 + a * e) * u[3] / e;
     break;
+  case 34: /* a fast band: x' = -x + 2 m + sin t, m the mean of u_1..u_7 ; u_i' = (u_{i-1} - 2 u_i + u_{i+1})/eps + a (x - u_i) (a no-flux chain: rates a to a + 4/eps, the slowest, the mean's, a = 30 times the slow one) */
+  {
+    PetscReal m = 0;
+    for (PetscInt i = 1; i <= 7; i++) m += u[i] / 7;
+    f[0] = -u[0] + 2 * m + PetscSinReal(t);
+    for (PetscInt i = 1; i <= 7; i++) f[i] = (u[i > 1 ? i - 1 : 1] - 2 * u[i] + u[i < 7 ? i + 1 : 7]) / e + a * (u[0] - u[i]);
+  } break;
   case 19: /* three-level chemistry: A' = -A + B ; B' = (A - 2 B + C)/eps ; C' = (B - C - C^3)/eps2 */
     f[0] = -u[0] + u[1];
     f[1] = (u[0] - 2 * u[1] + u[2]) / e;
@@ -309,7 +316,7 @@ static PetscErrorCode Mon(TS ts, PetscInt step, PetscReal t, Vec X, void *ctx)
   PetscFunctionReturn(0);
 }
 
-/* "LABEL steps steps+estimates est_total E" for a TSVSHMM run (tools/adapt_outside.py reads it) */
+/* "LABEL steps steps+estimates est_total E single_rate S" for a TSVSHMM run (S: single-rate TSRK steps at its micro steps) (tools/adapt_outside.py reads it) */
 static PetscErrorCode PrintWork(TS ts, const char *label)
 {
   TSVSHMMStatistics st;
@@ -317,7 +324,7 @@ static PetscErrorCode PrintWork(TS ts, const char *label)
   PetscFunctionBeginUser;
   PetscCall(TSVSHMMGetStatistics(ts, &st));
   for (PetscInt i = 0; i < st.nsplits; i++) tot += st.rhs_evaluations[i];
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%s %lld %lld est_total %g\n", label, (long long)tot, (long long)(tot + st.adapt_evaluations), (double)st.error_estimate_total));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%s %lld %lld est_total %g single_rate %lld\n", label, (long long)tot, (long long)(tot + st.adapt_evaluations), (double)st.error_estimate_total, (long long)st.single_rate_evaluations));
   PetscFunctionReturn(0);
 }
 
@@ -363,6 +370,7 @@ static const Setup kSetups[] = {
   {31, 1, {{0}, {1, 2, 3, 4, 5, 6}}, {0, 1, 0, 1, 0, 1, 0}},
   {32, 1, {{0}, {1, 2, 3, 4}, {5}}, {0, 1, 0, 1, 0, 0}},
   {33, 1, {{0}, {1, 2, 3, 4}}, {0, 1, 0, 1, 0}},
+  {34, 1, {{0}, {1, 2, 3, 4, 5, 6, 7}}, {1, 0.97, 0.78, 0.43, 0, -0.43, -0.78, -0.97}},
 };
 
 int main(int argc, char **argv)
@@ -395,7 +403,7 @@ int main(int argc, char **argv)
   const Setup *setup = nullptr;
   for (const Setup &st : kSetups)
     if (st.prob == c.prob) setup = &st;
-  PetscCheck(setup, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "-prob %d: no such problem (0-33, the cases of Field())", (int)c.prob);
+  PetscCheck(setup, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "-prob %d: no such problem (0-34, the cases of Field())", (int)c.prob);
   c.n      = (PetscInt)setup->u0.size();
   c.nobs   = setup->nobs;
   c.nsplit = (PetscInt)setup->splits.size();
