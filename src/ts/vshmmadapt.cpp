@@ -95,9 +95,10 @@ static constexpr PetscReal kLagSaturated           = 8;   /* a comparison whose 
 /* The difference to a run that blew up: IEEE infinity, which std::isfinite() rejects (PETSC_INFINITY
    is PETSC_MAX_REAL / 4, a finite number, and was once read as an estimate of 4.5e307 tolerances) */
 static constexpr PetscReal kPhaseSwing = 1; /* tolerances: where a faster level's phase swings the sampled quantities by more, its savings go (NoteFastQuantities(); a ripple below it, as the paper's oscillators' I1 at eps = 5e-3, 0.52 tolerances at 1e-3, is left to the comparisons) */
-static constexpr PetscReal kStiffFirst      = 0.5; /* the slowest level's spectral radius at least this part of the whole field's: the stiff split may have come first */
-static constexpr PetscReal kFixedSwing      = 0.1; /* fixed parameters: a faster level's phase in the sampled quantities is said where it swings them by this much relative to 1 + |q| */
-static constexpr PetscReal kPhaseProjection = 0.5; /* of a step's coherent share where the sampled quantities carry an oscillation's phase: the comparison sees the phase error projected at one phase */
+static constexpr PetscReal kStiffFirst      = 0.5;  /* the slowest level's spectral radius at least this part of the whole field's: the stiff split may have come first */
+static constexpr PetscReal kFixedSwing      = 0.1;  /* fixed parameters: a faster level's phase in the sampled quantities is said where it swings them by this much relative to 1 + |q| */
+static constexpr PetscReal kBlindTurn       = 0.35; /* radians per macro step of the slowest level's oscillation beyond which its signed errors cannot show coherence (OwnStepBudget()) */
+static constexpr PetscReal kPhaseProjection = 0.5;  /* of a step's coherent share where the sampled quantities carry an oscillation's phase: the comparison sees the phase error projected at one phase */
 static constexpr PetscReal kBlownUp         = std::numeric_limits<PetscReal>::infinity();
 static constexpr PetscReal kAmplified       = 4;    /* the carried comparison's estimate above this many times the steps' sum: errors grown by the dynamics (StepBudget()) */
 static constexpr PetscReal kMinGlobalScale  = 1e-3; /* a step's share shrinks by that at most to this part of it */
@@ -1412,6 +1413,29 @@ static PetscReal StepBudget(TS ts, PetscReal DeltaT)
   return own;
 }
 
+/* Whether the slowest level oscillates, undamped over the run, by more than kBlindTurn radians
+   per macro step (its limiting Ritz values): its errors in phase add up step by step, while their
+   projection on the observables turns sign within a few steps, so that the signed sums of
+   OwnStepBudget() never exceed a random walk's (at 8 steps, 2 sqrt(8) e needs a turn below 0.35
+   per step: the sum of a turning projection stays below e / sin(turn / 2)). */
+static bool SlowestLevelTurns(TS_VSHMM *vs, PetscReal DeltaT, PetscReal span)
+{
+  if (vs->level_limiting.empty()) return false;
+  for (const std::complex<double> &z : vs->level_limiting[0])
+    if (vshmm::oscillates(z) && std::abs(z.imag()) * DeltaT > kBlindTurn && std::abs(z.real()) * span < 1) return true;
+  return false;
+}
+
+/* Whether parameters take no savings (every time ratio 1): their only error is the Runge-Kutta
+   steps' at the micro step, which on an undamped oscillation is a phase error of one sign. */
+static bool SingleRate(const vshmm::AdaptParameters &p)
+{
+  if (p.ratios.empty()) return false;
+  for (double r : p.ratios)
+    if (r != 1.0) return false;
+  return true;
+}
+
 /* Each macro step's own share of the tolerance (the weighted norm's 1 over the run), (DeltaT / span)^gamma: gamma = 1/2 where the steps'
    errors add like a random walk (the sum of N of them grows like sqrt(N)), gamma = 1 where they add
    coherently (like N: a drift, the stiff-spring chain's I, the dissipative example's xi at eps =
@@ -1419,7 +1443,12 @@ static PetscReal StepBudget(TS ts, PetscReal DeltaT)
    sum S against their mean size e over k >= 4 steps, S ~ e k^gamma, the largest significant
    gamma so far kept (vs->adapt_coherence); without observables, and before, 1/2. Where the slow
    components (SlowComponentsSetUp()) have led an accepted step's estimate and the slowest level
-   oscillates, 1: their signed sums cannot show a velocity error rotated into the position. */
+   oscillates, 1: their signed sums cannot show a velocity error rotated into the position. And 1
+   where the last step was single-rate and the slowest level turns by more than kBlindTurn per
+   macro step (SlowestLevelTurns()): the steps' phase errors add up while the signed sums stay
+   within a random walk's (x1' = 20 x2 + z, x2' = -20 x1, z' = -(z - x1^2) / 1e-2, not separated,
+   single-rate: 3.9 tol at 1e-3 with estimates summing to 2.3, silently; docs/accuracy.md section
+   28). */
 static PetscReal OwnStepBudget(TS ts, PetscReal DeltaT)
 {
   TS_VSHMM       *vs   = (TS_VSHMM *)ts->data;
@@ -1427,6 +1456,7 @@ static PetscReal OwnStepBudget(TS ts, PetscReal DeltaT)
 
   if (!(span > 0)) return 1.0;
   if (vs->slow_steps > 0 && !LevelDecays(vs, 0)) return PetscMin(1.0, DeltaT / span);
+  if (SlowestLevelTurns(vs, DeltaT, span) && SingleRate(vs->adapt_used)) return PetscMin(1.0, DeltaT / span);
   for (PetscReal from : vs->adapt_phase) /* the sampled quantities carry an oscillation's phase (NoteFastQuantities()): its error, a phase drift, adds up step by step while its sign turns with the oscillation, and a comparison sees it projected on the quantities at one phase (between none and all of it, half on the average) */
     if (from >= 0) return PetscMin(1.0, kPhaseProjection * DeltaT / span);
   PetscReal gamma = 0.5;
