@@ -49,6 +49,9 @@ PROBLEMS = [
     ('three fast rotations in a triad resonance (section 26: not detected)', 31, 2, 1e-6, ['-eps', '1e-3', '-a', '10']),
     ('the beat through squares, 8 q1^2 q2^2 - 2 (section 26)', 33, 2, 1e-6, ['-eps', '1e-3', '-a', '5']),
     ('a fast band whose slowest rate is 30 (section 27: savings that do not pay)', 34, 2, 1e-5, ['-eps', '1e-3', '-a', '30']),
+    ('a slow rotation at 20, 2 radians a macro step, scales not separated (section 28)', 35, 2, 1e-5, ['-eps', '1e-2', '-a', '20']),
+    ('the same at 40, 4 radians a macro step (section 28)', 35, 2, 1e-5, ['-eps', '1e-2', '-a', '40']),
+    ('the same at 40, additive splits (section 28)', 35, 2, 1e-5, ['-eps', '1e-2', '-a', '40', '-additive']),
 ]
 
 

@@ -211,6 +211,11 @@ static void Field(Ctx *c, PetscReal t, const PetscScalar *u, PetscScalar *f)
     f[0] = -u[0] + 2 * m + PetscSinReal(t);
     for (PetscInt i = 1; i <= 7; i++) f[i] = (u[i > 1 ? i - 1 : 1] - 2 * u[i] + u[i < 7 ? i + 1 : 7]) / e + a * (u[0] - u[i]);
   } break;
+  case 35: /* a slow rotation at frequency a, turning within a few macro steps, driven by a slaved fast variable: x1' = a x2 + z, x2' = -a x1 ; z' = -(z - x1^2)/eps (x1 and x2 observed) */
+    f[0] = a * u[1] + u[2];
+    f[1] = -a * u[0];
+    f[2] = -(u[2] - u[0] * u[0]) / e;
+    break;
   case 19: /* three-level chemistry: A' = -A + B ; B' = (A - 2 B + C)/eps ; C' = (B - C - C^3)/eps2 */
     f[0] = -u[0] + u[1];
     f[1] = (u[0] - 2 * u[1] + u[2]) / e;
@@ -277,6 +282,7 @@ static void Obs(Ctx *c, PetscReal t, const PetscScalar *u, PetscReal *q)
   case 4:
   case 13:
   case 15:
+  case 35:
     q[1] = u[1];
     break;
   case 7:
@@ -371,6 +377,7 @@ static const Setup kSetups[] = {
   {32, 1, {{0}, {1, 2, 3, 4}, {5}}, {0, 1, 0, 1, 0, 0}},
   {33, 1, {{0}, {1, 2, 3, 4}}, {0, 1, 0, 1, 0}},
   {34, 1, {{0}, {1, 2, 3, 4, 5, 6, 7}}, {1, 0.97, 0.78, 0.43, 0, -0.43, -0.78, -0.97}},
+  {35, 2, {{0, 1}, {2}}, {1, 0, 0}},
 };
 
 int main(int argc, char **argv)
@@ -403,7 +410,7 @@ int main(int argc, char **argv)
   const Setup *setup = nullptr;
   for (const Setup &st : kSetups)
     if (st.prob == c.prob) setup = &st;
-  PetscCheck(setup, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "-prob %d: no such problem (0-34, the cases of Field())", (int)c.prob);
+  PetscCheck(setup, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "-prob %d: no such problem (0-35, the cases of Field())", (int)c.prob);
   c.n      = (PetscInt)setup->u0.size();
   c.nobs   = setup->nobs;
   c.nsplit = (PetscInt)setup->splits.size();
