@@ -97,6 +97,8 @@ static constexpr PetscReal kLagSaturated           = 8;   /* a comparison whose 
 static constexpr PetscReal kPhaseSwing = 1; /* tolerances: where a faster level's phase swings the sampled quantities by more, its savings go (NoteFastQuantities(); a ripple below it, as the paper's oscillators' I1 at eps = 5e-3, 0.52 tolerances at 1e-3, is left to the comparisons) */
 static constexpr PetscReal kStiffFirst      = 0.5;  /* the slowest level's spectral radius at least this part of the whole field's: the stiff split may have come first */
 static constexpr PetscReal kFixedSwing      = 0.1;  /* fixed parameters: a faster level's phase in the sampled quantities is said where it swings them by this much relative to 1 + |q| */
+static constexpr PetscReal kSpuriousMove    = 0.05; /* a micro step that moves the state by less than this times h |G|: a spurious rest (SpuriousRest()) */
+static constexpr PetscReal kRestField       = 1e-6; /* unless h |G| is below this times |X| (a state at rest) */
 static constexpr PetscReal kBlindTurn       = 0.35; /* radians per macro step of the slowest level's oscillation beyond which its signed errors cannot show coherence (OwnStepBudget()) */
 static constexpr PetscReal kPhaseProjection = 0.5;  /* of a step's coherent share where the sampled quantities carry an oscillation's phase: the comparison sees the phase error projected at one phase */
 static constexpr PetscReal kBlownUp         = std::numeric_limits<PetscReal>::infinity();
@@ -749,6 +751,39 @@ static PetscErrorCode KeepRelaxing(TS ts, PetscReal DeltaT, PetscBool *redo)
    and docs/accuracy.md section 17), for the fastest level and each decaying medium one. */
 static PetscErrorCode NoteLostSeparation(TS, PetscReal);
 
+/* Whether a try's micro steps came to a spurious rest: a fixed point of the Runge-Kutta map where
+   the field is not zero. Past the stability limit of a state that a nonlinear stiff term makes
+   stiffer (C' = (B - C - C^3) / 1e-5, rate 1e5 (1 + 3 C^2): within the limit at C = 0, past it on
+   the slow manifold at C = 0.78) the micro steps can settle at a state where the step maps X to
+   itself while G(X) is large, and the rate there looks stable (the three-level chemistry at
+   DeltaT = 0.5, 1e-2: C = 0.47 for 0.78, 3.5 tol, silently; its comparison rests there too). A
+   consistent step moves the state by (R(z) - 1) / z times h |G|: at least 0.14 within 0.9 of RK4's
+   real limit, 0.26-0.32 for fast variables that follow their slow manifold with savings, and
+   0.002-0.03 at those rests. The try's last micro step (kept by TSVSHMMRunMacroStep_Private():
+   its move and first stage, no evaluation) moving by less than kSpuriousMove h |G|, with h |G|
+   not negligible against the state, is a rest. */
+static PetscErrorCode SpuriousRest(TS ts, PetscReal t0, PetscReal t1, PetscBool *spurious)
+{
+  TS_VSHMM *vs = (TS_VSHMM *)ts->data;
+  PetscReal norms[3];
+
+  PetscFunctionBegin;
+  *spurious = PETSC_FALSE;
+  if (!(vs->rest_h > 0) || !FasterLevelsDecay(vs)) PetscFunctionReturn(0);
+  PetscCall(VecNormBegin(vs->rest_move, NORM_2, &norms[0]));
+  PetscCall(VecNormBegin(vs->rest_field, NORM_2, &norms[1]));
+  PetscCall(VecNormBegin(vs->Xbase, NORM_2, &norms[2]));
+  PetscCall(VecNormEnd(vs->rest_move, NORM_2, &norms[0]));
+  PetscCall(VecNormEnd(vs->rest_field, NORM_2, &norms[1]));
+  PetscCall(VecNormEnd(vs->Xbase, NORM_2, &norms[2]));
+  const PetscReal field = vs->rest_h * norms[1];
+  if (!(field > kRestField * norms[2]) || !std::isfinite(norms[0])) PetscFunctionReturn(0);
+  *spurious = norms[0] < kSpuriousMove * field ? PETSC_TRUE : PETSC_FALSE;
+  if (*spurious)
+    PetscCall(PetscInfo(ts, "Adapt: macro step [%g, %g]: its last micro step %g moved the state by %g of h |G| = %g (|X| %g): a spurious rest of the micro steps, the try is redone with half the micro step\n", (double)t0, (double)t1, (double)vs->rest_h, (double)(norms[0] / field), (double)field, (double)norms[2]));
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode FollowRatesAtTryEnd(TS ts, PetscReal t1, PetscBool *redo)
 {
   TS_VSHMM                                      *vs = (TS_VSHMM *)ts->data;
@@ -1213,6 +1248,9 @@ PetscErrorCode TSVSHMMAdaptReset_Private(TS ts)
 
   PetscFunctionBegin;
   PetscCall(VecDestroy(&vs->Xtrial));
+  PetscCall(VecDestroy(&vs->rest_move));
+  PetscCall(VecDestroy(&vs->rest_field));
+  vs->rest_found = PETSC_FALSE;
   PetscCall(VecDestroy(&vs->Xcarried));
   PetscCall(VecDestroy(&vs->Xbase));
   PetscCall(VecDestroy(&vs->slow_mask));
@@ -2274,7 +2312,8 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
      at 0.9 of the initial limit its comparisons ran at the limit until the next calibration).
      A first step accepted as it was tried is no layer, and the estimate (an Arnoldi run per
      level, 12% of the sparse-spectral diffusion scenes' work at 1e-2) is not made again. */
-  if (calibrate || (vs->adapt_accepted == 1 && vs->adapt_rejections > 0) || RateFell(vs)) PetscCall(UpdateStableSteps(ts));
+  if (calibrate || (vs->adapt_accepted == 1 && vs->adapt_rejections > 0) || RateFell(vs) || vs->rest_found) PetscCall(UpdateStableSteps(ts));
+  vs->rest_found = PETSC_FALSE;
   vs->adapt_end_rates.assign(vs->level_end.size(), 0.0);
   if (vs->spectra_time == ts->ptime) {
     PetscCall(RecheckSeparation(ts));
@@ -2305,7 +2344,12 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
     const std::vector<PetscInt64>              rhs0 = vs->rhs_evaluations, lev0 = vs->level_evaluations;
     PetscCall(Schedule(ts, p, schedule));
     PetscCall(VecCopy(vs->X0, vs->Xbase));
+    if (!vs->rest_move) PetscCall(VecDuplicate(vs->Xbase, &vs->rest_move));
+    if (!vs->rest_field) PetscCall(VecDuplicate(vs->Xbase, &vs->rest_field));
+    vs->rest_track = PETSC_TRUE;
+    vs->rest_h     = 0;
     PetscCall(TSVSHMMRunMacroStep_Private(ts, *schedule, t0, DeltaT, vs->Xbase, &counts));
+    vs->rest_track = PETSC_FALSE;
     PetscReal xnorm;
     PetscCall(VecNorm(vs->Xbase, NORM_1, &xnorm));
     if (!std::isfinite(xnorm) && attempt + 1 < kMaxAttempts) { /* blew up: redo within the stable steps of the present state, or with every parameter finer */
@@ -2561,6 +2605,18 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
       predicted = vs->adapt_model.total(next);
       p         = next;
       continue;
+    }
+    if (!bounds.fixedMicroStep && attempt + 1 < kMaxAttempts) { /* a try about to be accepted: at a spurious rest of its micro steps? */
+      PetscBool spurious;
+      PetscCall(SpuriousRest(ts, t0, t1, &spurious));
+      if (spurious) {
+        PetscCall(MonitorTry(ts, "rejected (a spurious rest of the micro steps)", t0, DeltaT, attempt, p, counts.cycles, E, budget));
+        DiscardTry(vs, rhs0, lev0);
+        vs->rest_found = PETSC_TRUE;
+        p.microStep *= 0.5;
+        predicted = PETSC_MAX_REAL;
+        continue;
+      }
     }
     if (E > budget) {
       /* the next macro step starts from the parameters accepted here (the refinement that did

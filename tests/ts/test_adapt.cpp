@@ -487,6 +487,41 @@ TEST(VSHMMAdapt, AFastTurningSlowRotationAddsItsPhaseErrors)
   }
 }
 
+// Micro steps that come to a spurious rest: A' = -A + B, B' = (A - 2 B + C) / 3e-3, C' = (B - C -
+// C^3) / 1e-5 (component splits slow {A}, medium {B}, fast {C}) from (2, 0, 0), A observed,
+// DeltaT = 0.5, tol 1e-2, to t = 1. The fast rate 1e5 (1 + 3 C^2) grows from 1e5 to 2.8e5 on the
+// slow manifold, and the first step's micro step, within RK4's limit at C = 0, came to rest at a
+// fixed point of the RK4 map where C' is 5e4 and the rate looks stable: A(1) 7.1 tol off, silently.
+// The try's last micro step now shows the rest (it moves the state by 0.002 of h |G|) and the try
+// is redone with half the micro step: 0.54 tol. RK4 references at 2e-6 and 4e-6.
+void RestSlow(const void *, PetscReal, const PetscScalar *x, PetscScalar *f)
+{
+  f[0] = -x[0] + x[1];
+  f[1] = 0;
+  f[2] = 0;
+}
+void RestMedium(const void *, PetscReal, const PetscScalar *x, PetscScalar *f)
+{
+  f[0] = 0;
+  f[1] = (x[0] - 2 * x[1] + x[2]) / 3e-3;
+  f[2] = 0;
+}
+void RestFast(const void *, PetscReal, const PetscScalar *x, PetscScalar *f)
+{
+  f[0] = 0;
+  f[1] = 0;
+  f[2] = (x[1] - x[2] - x[2] * x[2] * x[2]) / 1e-5;
+}
+TEST(VSHMMAdapt, MicroStepsAtASpuriousRestAreRedone)
+{
+  const double ref = ConvergedReference({RestSlow, RestMedium, RestFast}, nullptr, {2, 0, 0}, 1, 2e-6, 4e-6, 1e-9), tol = 1e-2;
+  SplitProblem p;
+  AdaptRun     run;
+  p.terms = {RestSlow, RestMedium, RestFast};
+  ASSERT_EQ(SolveObservingX0("-ts_vshmm_adapt -ts_rtol 1e-2 -ts_atol 1e-2 -ts_vshmm_warnings_viewer none", p, {2, 0, 0}, {"slow", "medium", "fast"}, 0.5, 1, &run), 0);
+  EXPECT_LE(std::abs(run.x[0] - ref), tol * (1 + std::abs(ref))) << "A(1) = " << run.x[0] << ", reference " << ref;
+}
+
 // A micro step the user sets is kept, but where it damps the fast rotation beyond the tolerance
 // over the run (omega dt = 2.5: half the amplitude per step) the user is told at set-up; a micro
 // step within the bound raises nothing.
