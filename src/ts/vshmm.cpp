@@ -235,8 +235,7 @@ static PetscErrorCode StartRun(TS ts)
   vs->cost_warned           = PETSC_FALSE; /* this run's work against single-rate steps (TSVSHMMAdaptCheckCost_Private()) */
   vs->run_largest_ratio     = 1;
   vs->run_start_single_rate = vs->single_rate_evaluations;
-  vs->run_start_work        = vs->adapt_evaluations;
-  for (PetscInt64 n : vs->rhs_evaluations) vs->run_start_work += n;
+  vs->run_start_work        = TSVSHMMWork_Private(vs);
   for (Vec &v : vs->radius_vecs) PetscCall(VecDestroy(&v)); /* the power method's start vectors */
   vs->radius_vecs.clear();
   if (vs->check_stability) PetscCall(TSVSHMMCheckStability_Private(ts));

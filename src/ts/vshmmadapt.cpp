@@ -759,22 +759,27 @@ static PetscErrorCode NoteLostSeparation(TS, PetscReal);
    DeltaT = 0.5, 1e-2: C = 0.47 for 0.78, 3.5 tol, silently; its comparison rests there too). A
    consistent step moves the state by (R(z) - 1) / z times h |G|: at least 0.14 within 0.9 of RK4's
    real limit, 0.26-0.32 for fast variables that follow their slow manifold with savings, and
-   0.002-0.03 at those rests. The try's last micro step (kept by TSVSHMMRunMacroStep_Private():
-   its move and first stage, no evaluation) moving by less than kSpuriousMove h |G|, with h |G|
-   not negligible against the state, is a rest. */
+   0.002-0.03 at those rests. The try's last micro step (its stages, swapped out of the way by
+   TSVSHMMRunMacroStep_Private(): no copy, no evaluation) moving by less than kSpuriousMove h |G|,
+   with h |G| not negligible against the state, is a rest. */
 static PetscErrorCode SpuriousRest(TS ts, PetscReal t0, PetscReal t1, PetscBool *spurious)
 {
-  TS_VSHMM *vs = (TS_VSHMM *)ts->data;
-  PetscReal norms[3];
+  TS_VSHMM      *vs     = (TS_VSHMM *)ts->data;
+  const PetscInt stages = vs->tableau->stages;
+  PetscReal      norms[3];
+  PetscScalar    w[vshmm::Tableau::kMaxStages];
 
   PetscFunctionBegin;
   *spurious = PETSC_FALSE;
   if (!(vs->rest_h > 0) || !FasterLevelsDecay(vs)) PetscFunctionReturn(0);
-  PetscCall(VecNormBegin(vs->rest_move, NORM_2, &norms[0]));
-  PetscCall(VecNormBegin(vs->rest_field, NORM_2, &norms[1]));
+  for (PetscInt i = 0; i < stages; ++i) w[i] = vs->rest_h * vs->tableau->b[i];
+  PetscCall(VecSet(vs->Xtrial, 0.0)); /* the step's move, h sum_i b_i k_i */
+  PetscCall(VecMAXPY(vs->Xtrial, stages, w, vs->rest_stages.data()));
+  PetscCall(VecNormBegin(vs->Xtrial, NORM_2, &norms[0]));
+  PetscCall(VecNormBegin(vs->rest_stages[0], NORM_2, &norms[1]));
   PetscCall(VecNormBegin(vs->Xbase, NORM_2, &norms[2]));
-  PetscCall(VecNormEnd(vs->rest_move, NORM_2, &norms[0]));
-  PetscCall(VecNormEnd(vs->rest_field, NORM_2, &norms[1]));
+  PetscCall(VecNormEnd(vs->Xtrial, NORM_2, &norms[0]));
+  PetscCall(VecNormEnd(vs->rest_stages[0], NORM_2, &norms[1]));
   PetscCall(VecNormEnd(vs->Xbase, NORM_2, &norms[2]));
   const PetscReal field = vs->rest_h * norms[1];
   if (!(field > kRestField * norms[2]) || !std::isfinite(norms[0])) PetscFunctionReturn(0);
@@ -1248,8 +1253,8 @@ PetscErrorCode TSVSHMMAdaptReset_Private(TS ts)
 
   PetscFunctionBegin;
   PetscCall(VecDestroy(&vs->Xtrial));
-  PetscCall(VecDestroy(&vs->rest_move));
-  PetscCall(VecDestroy(&vs->rest_field));
+  for (Vec &k : vs->rest_stages) PetscCall(VecDestroy(&k));
+  vs->rest_stages.clear();
   vs->rest_found = PETSC_FALSE;
   PetscCall(VecDestroy(&vs->Xcarried));
   PetscCall(VecDestroy(&vs->Xbase));
@@ -2238,8 +2243,7 @@ PetscErrorCode TSVSHMMAdaptCheckCost_Private(TS ts)
 
   PetscFunctionBegin;
   if (vs->cost_warned || vs->no_separation || vs->adapt_single_rate_from >= 0 || vs->beat_warned) PetscFunctionReturn(0); /* said already, with the single-rate type */
-  PetscInt64 work = vs->adapt_evaluations - vs->run_start_work;
-  for (PetscInt64 n : vs->rhs_evaluations) work += n;
+  const PetscInt64 work   = TSVSHMMWork_Private(vs) - vs->run_start_work;
   const PetscInt64 single = vs->single_rate_evaluations - vs->run_start_single_rate;
   PetscCall(PetscInfo(ts, "Adapt: this run to t = %g took %" PetscInt64_FMT " split RHS evaluations (estimates included); single-rate TSRK %s steps at its micro steps %" PetscInt64_FMT "\n", (double)ts->ptime, work, vs->tableau->name.c_str(), single));
   if (work <= single) PetscFunctionReturn(0);
@@ -2344,8 +2348,10 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
     const std::vector<PetscInt64>              rhs0 = vs->rhs_evaluations, lev0 = vs->level_evaluations;
     PetscCall(Schedule(ts, p, schedule));
     PetscCall(VecCopy(vs->X0, vs->Xbase));
-    if (!vs->rest_move) PetscCall(VecDuplicate(vs->Xbase, &vs->rest_move));
-    if (!vs->rest_field) PetscCall(VecDuplicate(vs->Xbase, &vs->rest_field));
+    if (vs->rest_stages.size() != vs->K.size()) {
+      vs->rest_stages.assign(vs->K.size(), nullptr);
+      for (Vec &k : vs->rest_stages) PetscCall(VecDuplicate(vs->Xbase, &k));
+    }
     vs->rest_track = PETSC_TRUE;
     vs->rest_h     = 0;
     PetscCall(TSVSHMMRunMacroStep_Private(ts, *schedule, t0, DeltaT, vs->Xbase, &counts));

@@ -102,17 +102,17 @@ struct TS_VSHMM {
   PetscReal              spectra_time       = PETSC_MIN_REAL; // when they were estimated
 
   // Accuracy control (-ts_vshmm_adapt)
-  vshmm::AdaptParameters adapt_params;                              // micro step and time ratios for the next macro step
-  vshmm::AdaptParameters adapt_used;                                // those of the last accepted macro step
-  PetscReal              adapt_last_ratio   = PETSC_MAX_REAL;       // the last accepted step's estimate over its share
-  PetscReal              adapt_prev_ratio   = PETSC_MAX_REAL;       // the one before it
-  PetscInt               adapt_uncompared   = 0;                    // accepted steps in a row whose comparison was left out
-  PetscBool              adapt_off_manifold = PETSC_FALSE;          // the last try ended with a decaying fast variable off its slow manifold (its comparison is made)
-  PetscBool              rest_track         = PETSC_FALSE;          // -ts_vshmm_adapt: a try keeps its last micro step's move and first stage (SpuriousRest())
-  Vec                    rest_move = nullptr, rest_field = nullptr; // that move, X_after - X_before, and the field at X_before
-  PetscReal              rest_h     = 0;                            // and its micro step
-  PetscBool              rest_found = PETSC_FALSE;                  // a try came to a spurious rest: the stable steps are estimated again at the next macro step
-  std::vector<PetscReal> adapt_end_rates; // per level: its radius at the last try's end where a decaying level's fell there (the spectra are estimated again at the next step) (bounds the savings of the step's tries; 0: none)
+  vshmm::AdaptParameters adapt_params;                        // micro step and time ratios for the next macro step
+  vshmm::AdaptParameters adapt_used;                          // those of the last accepted macro step
+  PetscReal              adapt_last_ratio   = PETSC_MAX_REAL; // the last accepted step's estimate over its share
+  PetscReal              adapt_prev_ratio   = PETSC_MAX_REAL; // the one before it
+  PetscInt               adapt_uncompared   = 0;              // accepted steps in a row whose comparison was left out
+  PetscBool              adapt_off_manifold = PETSC_FALSE;    // the last try ended with a decaying fast variable off its slow manifold (its comparison is made)
+  PetscBool              rest_track         = PETSC_FALSE;    // -ts_vshmm_adapt: a try keeps its last micro step's stages (SpuriousRest())
+  std::vector<Vec>       rest_stages;                         // they, swapped with K after each of its micro steps (no copy)
+  PetscReal              rest_h     = 0;                      // and its micro step
+  PetscBool              rest_found = PETSC_FALSE;            // a try came to a spurious rest: the stable steps are estimated again at the next macro step
+  std::vector<PetscReal> adapt_end_rates;                     // per level: its radius at the last try's end where a decaying level's fell there (the spectra are estimated again at the next step) (bounds the savings of the step's tries; 0: none)
   vshmm::ErrorModel      adapt_model;
   PetscBool              adapt_ready = PETSC_FALSE; // initial parameters chosen
   std::vector<PetscBool> adapt_no_savings;          // per time ratio: no savings for the rest of the solve (they were negligible)
@@ -227,6 +227,13 @@ PETSC_INTERN PetscErrorCode TSVSHMMAddSplit_Private(TS_VSHMM *, PetscInt, PetscR
 PETSC_INTERN PetscErrorCode TSVSHMMWrittenComponents_Private(TS_VSHMM *, PetscInt, PetscInt, PetscReal, Vec); /* mask = 0, then += 1 on every component splits [first, end) write */
 PETSC_INTERN PetscErrorCode TSVSHMMCreateSchedule_Private(TS, PetscReal, std::unique_ptr<vshmm::MesoscopicSchedule> &);
 PETSC_INTERN PetscErrorCode TSVSHMMRunMacroStep_Private(TS, const vshmm::MesoscopicSchedule &, PetscReal, PetscReal, Vec, vshmm::MacroStepCounts *);
+/* the split evaluations of the steps and of -ts_vshmm_adapt's estimates and rejected tries so far */
+static inline PetscInt64 TSVSHMMWork_Private(const TS_VSHMM *vs)
+{
+  PetscInt64 work = vs->adapt_evaluations;
+  for (PetscInt64 n : vs->rhs_evaluations) work += n;
+  return work;
+}
 /* a macro step's micro cycles and level steps added to the statistics */
 static inline void TSVSHMMAddCounts_Private(TS_VSHMM *vs, const vshmm::MacroStepCounts &counts)
 {

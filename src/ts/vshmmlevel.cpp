@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <utility>
 
 static std::vector<PetscLogEvent> TSVSHMMLevelEvents; /* one per level, registered on demand */
 
@@ -197,14 +198,11 @@ PetscErrorCode TSVSHMMRunMacroStep_Private(TS ts, const vshmm::MesoscopicSchedul
   int err = vshmm::runMacroStep(
     schedule, DeltaT,
     [&](int level, double tau, double h) -> int {
-      const bool rest = vs->rest_track && level + 1 == (int)vs->level_end.size(); /* a micro step of an adaptive try: its move and first stage kept (SpuriousRest()) */
-      ops.level       = level;
+      ops.level = level;
       PetscCall(PetscLogEventBegin(vs->level_events[level], ts, 0, 0, 0));
-      if (rest) PetscCall(VecCopy(X, vs->rest_move));
       PetscCall(vshmm::explicitRungeKuttaStep(*vs->tableau, ops, t0 + tau, h));
-      if (rest) {
-        PetscCall(VecAYPX(vs->rest_move, -1.0, X));
-        PetscCall(VecCopy(vs->K[0], vs->rest_field));
+      if (vs->rest_track && level + 1 == (int)vs->level_end.size()) { /* a micro step of an adaptive try: its stages kept, by a swap (SpuriousRest()) */
+        std::swap(vs->K, vs->rest_stages);
         vs->rest_h = h;
       }
       PetscCall(PetscLogEventEnd(vs->level_events[level], ts, 0, 0, 0));

@@ -222,6 +222,18 @@ PetscErrorCode SolveObserving(const char *options, SplitProblem &p, const std::v
   PetscFunctionReturn(0);
 }
 
+// x[0] and x[1] as the observables.
+PetscErrorCode X0X1Observables(TS, PetscReal, Vec X, PetscReal q[], void *ctx)
+{
+  std::vector<PetscReal> x;
+
+  PetscFunctionBeginUser;
+  PetscCall(GatherState((SplitProblem *)ctx, X, x));
+  q[0] = x[0];
+  q[1] = x[1];
+  PetscFunctionReturn(0);
+}
+
 // The same with x[0] the observable.
 PetscErrorCode SolveObservingX0(const char *options, SplitProblem &p, const std::vector<PetscReal> &x0, const std::vector<std::string> &names, PetscReal DeltaT, PetscReal T, AdaptRun *run, SplitKind kind = SplitKind::Component)
 {
@@ -459,16 +471,6 @@ void TurnFast(const void *params, PetscReal, const PetscScalar *x, PetscScalar *
   f[0] = 0;
   f[1] = 0;
   f[2] = -(x[2] - x[0] * x[0]) / *(const double *)params;
-}
-PetscErrorCode X0X1Observables(TS, PetscReal, Vec X, PetscReal q[], void *ctx)
-{
-  std::vector<PetscReal> x;
-
-  PetscFunctionBeginUser;
-  PetscCall(GatherState((SplitProblem *)ctx, X, x));
-  q[0] = x[0];
-  q[1] = x[1];
-  PetscFunctionReturn(0);
 }
 TEST(VSHMMAdapt, AFastTurningSlowRotationAddsItsPhaseErrors)
 {
@@ -1565,21 +1567,11 @@ void MediumPhaseFast(const void *, PetscReal, const PetscScalar *x, PetscScalar 
   f[0] = f[1] = f[2] = 0;
   f[3]               = -(x[3] - x[1]) / 1e-5;
 }
-PetscErrorCode MediumPhaseObservables(TS, PetscReal, Vec X, PetscReal q[], void *ctx)
-{
-  std::vector<PetscReal> x;
-
-  PetscFunctionBeginUser;
-  PetscCall(GatherState((SplitProblem *)ctx, X, x));
-  q[0] = x[0];
-  q[1] = x[1];
-  PetscFunctionReturn(0);
-}
 PetscErrorCode SolveMediumPhase(const char *options, AdaptRun *run)
 {
   SplitProblem p;
   p.terms = {MediumPhaseSlow, MediumPhaseMedium, MediumPhaseFast};
-  return SolveObserving(options, p, {0.0, 1.0, 0.0, 1.0}, {"slow", "medium", "fast"}, 0.1, 0.9, run, SplitKind::Additive, 2, MediumPhaseObservables, &p);
+  return SolveObserving(options, p, {0.0, 1.0, 0.0, 1.0}, {"slow", "medium", "fast"}, 0.1, 0.9, run, SplitKind::Additive, 2, X0X1Observables, &p);
 }
 
 TEST(VSHMMSeparation, AMediumPhaseUnderADecayingFastLevelIsFound)
