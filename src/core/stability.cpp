@@ -35,6 +35,26 @@ std::complex<double> StabilityFunction::operator()(std::complex<double> z) const
   return R;
 }
 
+std::complex<double> StabilityFunction::relativeDefect(std::complex<double> z) const
+{
+  if (std::abs(z) > 0.5) return 1.0 - (*this)(z)*std::exp(-z);
+  /* exp(z) - R(z) = sum_k (1/k! - gamma_k) z^k + sum_{k > s} z^k / k!: a coefficient within
+     roundoff of 1/k! is the order condition met exactly; |z| <= 1/2, so 30 more terms are exact
+     to double precision */
+  std::complex<double> D = 0.0, zk = 1.0;
+  double               factorial = 1.0;
+  for (int k = 0; k <= s_ + 30; ++k) {
+    if (k > 0) {
+      zk *= z;
+      factorial *= k;
+    }
+    const double c    = 1.0 / factorial;
+    const double diff = k <= s_ ? c - gamma_[k] : c;
+    if (std::fabs(diff) > 64 * std::numeric_limits<double>::epsilon() * c) D += diff * zk;
+  }
+  return D * std::exp(-z);
+}
+
 double StabilityFunction::rayLimit(std::complex<double> direction) const
 {
   const std::complex<double> d   = direction / std::abs(direction);
@@ -180,14 +200,24 @@ double slowestRate(const std::vector<std::complex<double>> &modes, double noise)
 
 double amplitudeError(const StabilityFunction &R, std::complex<double> lambda, double h)
 {
-  const double a = std::abs(R(h * lambda));
+  const std::complex<double> z = h * lambda;
+  if (std::abs(z) <= 0.5) { /* log |R exp(-z)| = log |1 - u| = log1p(|1 - u|^2 - 1) / 2, accurate for small u */
+    const std::complex<double> u = R.relativeDefect(z);
+    return std::fabs(0.5 * std::log1p(std::norm(u) - 2 * u.real()));
+  }
+  const double a = std::abs(R(z));
   if (!(a > 0)) return std::numeric_limits<double>::infinity();
-  return std::fabs(std::log(a) - h * lambda.real());
+  return std::fabs(std::log(a) - z.real());
 }
 
 double phaseError(const StabilityFunction &R, std::complex<double> lambda, double h)
 {
-  const std::complex<double> r = R(h * lambda);
+  const std::complex<double> z = h * lambda;
+  if (std::abs(z) <= 0.5) { /* arg (R exp(-z)) = arg (1 - u), accurate for small u */
+    const std::complex<double> u = R.relativeDefect(z);
+    return std::fabs(std::atan2(-u.imag(), 1.0 - u.real()));
+  }
+  const std::complex<double> r = R(z);
   if (!(std::abs(r) > 0)) return std::numeric_limits<double>::infinity();
   const double d = std::remainder(std::arg(r) - h * lambda.imag(), 2 * 3.14159265358979323846); /* in [-pi, pi] */
   return std::fabs(d);

@@ -239,7 +239,7 @@ TEST(LargestAccurateStep, KeepsTheAmplitudeOverTheSpan)
   const std::complex<double> omega(0, 1e3);
   // RK4 on a rotation: 1 - |R(iy)| = y^6 / 144 + O(y^8)
   EXPECT_NEAR(vshmm::amplitudeError(R, omega, 1e-4), std::pow(0.1, 6) / 144, 1e-2 * std::pow(0.1, 6) / 144);
-  EXPECT_EQ(vshmm::amplitudeError(R, std::complex<double>(-50, 0), 1e-3), std::fabs(std::log(std::abs(R(-0.05))) + 0.05));
+  EXPECT_NEAR(vshmm::amplitudeError(R, std::complex<double>(-50, 0), 1e-3), std::fabs(std::log(std::abs(R(-0.05))) + 0.05), 1e-6 * std::pow(0.05, 5) / 120);
   // 2 / h steps (span 2, cycle = h) with at most 1e-2 of amplitude lost in all
   const double h = vshmm::largestAccurateStep(R, {omega}, 2.5e-3, 2.0, 1e-2);
   EXPECT_LT(h, 2.5e-3);
@@ -269,6 +269,35 @@ TEST(LargestAccurateStep, CountsThePhaseWhereTheValuesHoldTheMode)
   EXPECT_LE(error(withPhase), 1e-2);
   EXPECT_GT(error(1.01 * withPhase), 1e-2);
   EXPECT_EQ(vshmm::largestAccurateStep(R, {omega}, 2.5e-3, 2.0, 1e-2, 0.0), amplitudeOnly);
+}
+
+// At steps far below the accuracy bound the errors (y^6 / 144 and y^5 / 120 per step, y = h |lambda|)
+// are far below the roundoff of R(z) - exp(z) in floating point (about 1e-16 per step); summed over
+// many steps that roundoff read as an error that grows as the step falls, and a tolerance of 1e-9
+// took the step from 5e-10 down to 1e-12 of it (the oscillators at -ts_rtol 1e-9: 4.7e-22, a run
+// without end). The errors come from the Taylor terms above the method's order.
+TEST(LargestAccurateStep, StepsFarBelowTheLimitKeepTheirErrorsAboveRoundoff)
+{
+  vshmm::StabilityFunction   R(RK4());
+  const std::complex<double> omega(0, 1e6);
+  for (double h : {1e-9, 1e-11, 1e-13}) {
+    const double y = h * 1e6;
+    EXPECT_NEAR(vshmm::amplitudeError(R, omega, h), std::pow(y, 6) / 144, 1e-2 * std::pow(y, 6) / 144) << h;
+    EXPECT_NEAR(vshmm::phaseError(R, omega, h), std::pow(y, 5) / 120, 1e-2 * std::pow(y, 5) / 120) << h;
+  }
+  /* a decay: exp(-y) - R(-y) = y^5 / 120 - ... of exp(-y) */
+  EXPECT_NEAR(vshmm::amplitudeError(R, std::complex<double>(-1e6, 0), 1e-9), std::pow(1e-3, 5) / 120, 1e-2 * std::pow(1e-3, 5) / 120);
+  /* the step for 1e-9 of amplitude and phase over 7.3e-3 of time: y^5 (1/144 y + 1/120) 7.3e-3 / h = 1e-9,
+     h about 1.1e-9, a step where the roundoff alone would read 1e-16 x 7e6 steps = 7e-10 */
+  const double h = vshmm::largestAccurateStep(R, {omega}, 5e-7, 7.3e-3, 1e-9, 1.0);
+  EXPECT_GT(h, 5e-10);
+  EXPECT_LT(h, 5e-9);
+  const auto error = [&](double k) { return (vshmm::amplitudeError(R, omega, k) + vshmm::phaseError(R, omega, k)) * 7.3e-3 / k; };
+  EXPECT_LE(error(h), 1e-9);
+  EXPECT_GT(error(1.01 * h), 1e-9);
+  /* the same step from either side of |z| = 1/2 (the accurate sum and the direct formula agree there) */
+  EXPECT_NEAR(vshmm::amplitudeError(R, omega, 0.4999e-6), vshmm::amplitudeError(R, omega, 0.5001e-6), 5e-3 * vshmm::amplitudeError(R, omega, 0.5e-6)); /* y^6 changes by 2.4e-3 between them */
+  EXPECT_NEAR(vshmm::phaseError(R, omega, 0.4999e-6), vshmm::phaseError(R, omega, 0.5001e-6), 5e-3 * vshmm::phaseError(R, omega, 0.5e-6));
 }
 
 // An oscillation that restores its amplitude (a limit cycle) keeps an amplitude error only over the
