@@ -11,6 +11,7 @@
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
+#include <cstdio>
 #include <string>
 
 const char *const TSVSHMMKernelTypes[] = {"cosine", "constant", "polynomial", "exponential", "TSVSHMMKernelType", "TSVSHMM_KERNEL_", nullptr};
@@ -216,6 +217,39 @@ static PetscErrorCode TSVSHMMCheckSupported_Private(TS ts)
   PetscFunctionReturn(0);
 }
 
+/* Fixed parameters whose mean micro cycle, dt (1 + alpha_1 + ... + alpha_K), is longer than the
+   shortest kernel period DeltaT / m_j: less than one micro cycle per period, so the mesoscopic
+   steps are cut at the period's end and the savings factors do not act as given, and the kernel
+   does not average (the dissipative example with savings factors 1000, 10 and the micro step
+   1e-4, one cycle of 0.1 per macro step of 0.1: xi(2) 4.8% off, against 0.6% with 100, 10).
+   Said at set-up; -ts_vshmm_adapt keeps at least five cycles per macro step itself. */
+static PetscErrorCode CheckCycleLength(TS ts)
+{
+  TS_VSHMM *vs = (TS_VSHMM *)ts->data;
+
+  PetscFunctionBegin;
+  if (vs->adapt || vs->savings.empty()) PetscFunctionReturn(0);
+  const PetscReal dt    = vs->micro_dt > 0 ? vs->micro_dt : ts->time_step / kDefaultMicroStepsPerMacroStep;
+  PetscReal       cycle = dt;
+  PetscInt        m     = 1;
+  for (PetscReal a : vs->savings_used) cycle += a * dt;
+  for (PetscInt mj : vs->subintervals_used) m = PetscMax(m, mj);
+  const PetscReal period = ts->time_step / (PetscReal)m;
+  if (!(cycle > period)) PetscFunctionReturn(0);
+  std::string savings;
+  for (size_t j = 0; j < vs->savings_used.size(); ++j) {
+    char value[32];
+    std::snprintf(value, sizeof(value), "%s%g", j ? "," : "", (double)vs->savings_used[j]);
+    savings += value;
+  }
+  PetscCall(TSVSHMMWarn_Private(ts,
+                                "TSVSHMM warning: the savings factors (-ts_vshmm_savings_factors %s) with the micro step dt = %g make a mean micro cycle dt (1 + alpha_1 + ... + alpha_K) = %g, longer than the kernel's period DeltaT / m = %g "
+                                "(sampling interval %g%s): %g micro cycles per period, so the mesoscopic steps are cut at the period's end, the savings factors do not act as given and the kernel does not average. "
+                                "Use savings factors or a micro step (-ts_vshmm_micro_dt) that give many cycles per period, a longer sampling interval (-ts_dt), or -ts_vshmm_adapt.\n",
+                                savings.c_str(), (double)dt, (double)cycle, (double)period, (double)ts->time_step, m > 1 ? ", subintervals" : "", (double)(period / cycle)));
+  PetscFunctionReturn(0);
+}
+
 /* What a run starts from, at set-up and where the time is set back (TSStep_VSHMM()): the levels'
    spectra and the checks at the present state, and the accuracy control. */
 static PetscErrorCode StartRun(TS ts)
@@ -239,6 +273,7 @@ static PetscErrorCode StartRun(TS ts)
   for (Vec &v : vs->radius_vecs) PetscCall(VecDestroy(&v)); /* the power method's start vectors */
   vs->radius_vecs.clear();
   if (vs->check_stability) PetscCall(TSVSHMMCheckStability_Private(ts));
+  PetscCall(CheckCycleLength(ts));
   PetscCall(TSVSHMMCheckSeparation_Private(ts));
   PetscCall(TSVSHMMAdaptSetUp_Private(ts));
   PetscFunctionReturn(0);

@@ -403,6 +403,30 @@ TEST(VSHMMStabilityCheck, WarningsGoToTheWarningsViewer)
   if (rank == 0) std::remove(file.c_str());
 }
 
+TEST(VSHMMSolver, AMicroCycleLongerThanTheKernelPeriodIsSaid)
+{
+  // Savings factors 1000, 10 at the micro step 1e-4 make a mean micro cycle of 0.1011, longer than
+  // the sampling interval 0.1: one cycle per macro step (xi(2) 4.8% off, silently, before); the
+  // paper's 100, 10 (0.0111) and 500, 10 (0.0511) are not said; with two subintervals the period is
+  // 0.05, and 500, 10 is.
+  const char *warning = "TSVSHMM warning: the savings factors (-ts_vshmm_savings_factors ";
+  PetscMPIInt rank;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  for (const char *options : {"-ts_vshmm_savings_factors 1000,10 -ts_vshmm_micro_dt 1e-4", "-ts_vshmm_savings_factors 100,10 -ts_vshmm_micro_dt 1e-4", "-ts_vshmm_savings_factors 500,10 -ts_vshmm_micro_dt 1e-4", "-ts_vshmm_savings_factors 500,10 -ts_vshmm_micro_dt 1e-4 -ts_vshmm_subintervals 2,2"}) {
+    SolveResult run;
+    testing::internal::CaptureStderr();
+    const PetscErrorCode ierr = SolveDissipative(PETSC_COMM_WORLD, SplitKind::Component, 0.2, 0.1, &run, options);
+    const std::string    err  = testing::internal::GetCapturedStderr();
+    ASSERT_EQ(ierr, 0) << options;
+    const std::string o          = options;
+    const bool        long_cycle = o.find("1000,10") != std::string::npos, two_periods = o.find("2,2") != std::string::npos;
+    if (rank == 0 && (long_cycle || two_periods)) {
+      EXPECT_NE(err.find(warning), std::string::npos) << options << ": " << err;
+      EXPECT_NE(err.find(two_periods ? "period DeltaT / m = 0.05" : "mean micro cycle dt (1 + alpha_1 + ... + alpha_K) = 0.1011"), std::string::npos) << err;
+    } else EXPECT_EQ(err.find(warning), std::string::npos) << options << ": " << err;
+  }
+}
+
 TEST(VSHMMStabilityCheck, PaperParametersPassAtEveryMacroStep)
 {
   // The peak mesoscopic steps of level 1 exceed RK4's limit for a while (t = 0.1 to 0.5, where the
