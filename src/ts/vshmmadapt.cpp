@@ -726,8 +726,10 @@ static PetscErrorCode KeepRelaxing(TS ts, PetscReal DeltaT, PetscBool *redo)
   const vshmm::AdaptBounds b  = Bounds(ts, DeltaT);
 
   PetscFunctionBegin;
-  if (b.fixedRatios)
-    PetscFunctionReturn(0); /* savings factors the user set stay as set: brought down here, they came back at the next step (LimitToStableSteps()), and the retry between took the micro step made for them, 1e-9 for a DeltaT of 0.1 (docs/accuracy.md section 30) */
+  /* savings factors the user set stay as set: brought down here, they came back at the next step
+     (LimitToStableSteps()), and the retry between took the micro step made for them, 1e-9 for a
+     DeltaT of 0.1 (docs/accuracy.md section 30) */
+  if (b.fixedRatios) PetscFunctionReturn(0);
   for (size_t l = 0; l < b.maxRatio.size() && l < vs->adapt_params.ratios.size(); ++l)
     if (vs->adapt_params.ratios[l] > 1.001 * PetscMax(1.0, b.maxRatio[l])) {
       vs->adapt_params.ratios[l] = PetscMax(1.0, b.maxRatio[l]);

@@ -1392,8 +1392,16 @@ PetscErrorCode TSVSHMMCheckStability_Private(TS ts)
   PetscFunctionBegin;
   PetscCall(TSVSHMMLevelSpectra_Private(ts));
   vs->stability_checks++;
-  if (vs->adapt) PetscFunctionReturn(0); /* the adaptive choice keeps every step stable itself */
   const PetscReal dt = vs->micro_dt > 0 ? vs->micro_dt : DeltaT / kDefaultMicroStepsPerMacroStep;
+  if (vs->adapt) {
+    /* the adaptive choice keeps every step stable itself, but a micro step the user set stays as set:
+       beyond the fastest level's stable step no choice of savings helps (the dissipative example
+       with -ts_vshmm_micro_dt 1e-2 tried twelve times and stopped with NaN blamed on the slow split) */
+    if (vs->micro_dt > 0 && !vs->level_limiting.empty() && !vs->level_limiting[top].empty())
+      PetscCheck(dt <= vs->level_max_step[top] * (1 + 1e-10), comm, PETSC_ERR_ARG_OUTOFRANGE, "TSVSHMM stability check at t = %g: level %" PetscInt_FMT " (all splits: %s) is unstable with the micro step dt = %g that -ts_vshmm_micro_dt (TSVSHMMSetMicroStep()) sets: the estimated eigenvalue %g%+gi (spectral radius %g) needs dt <= %g for TSRK %s. Use a smaller -ts_vshmm_micro_dt, or leave the micro step to -ts_vshmm_adapt", (double)t, top,
+                 LevelSplits(vs, top).c_str(), (double)dt, vs->level_worst[top].real(), vs->level_worst[top].imag(), vs->level_radius[top], vs->level_max_step[top], rk);
+    PetscFunctionReturn(0);
+  }
   PetscCall(TSVSHMMCreateSchedule_Private(ts, dt, schedule));
   for (PetscInt level = 0; level <= top; ++level) {
     const std::vector<std::complex<double>> &limiting = vs->level_limiting[level];

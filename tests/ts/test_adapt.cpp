@@ -2651,6 +2651,22 @@ TEST(VSHMMAdapt, SavingsFactorsTheUserSetStayAsSetWhereATryBlowsUp)
   ASSERT_EQ(DestroySplitTS(&p, &ts, &x), 0);
 }
 
+// A micro step the user set beyond the fastest level's stable step is an error at set-up under
+// -ts_vshmm_adapt as without it: no savings can make it stable (the dissipative example with
+// -ts_vshmm_micro_dt 1e-2 tried twelve times, accepted a step with an infinite estimate and
+// stopped with NaN blamed on the slow split). 1e-4, within the step 3.06e-4, runs.
+TEST(VSHMMAdapt, AMicroStepTheUserSetBeyondTheStableStepIsAnErrorAtSetUp)
+{
+  AdaptRun            run;
+  const CapturedError e = CaptureError([&] { return SolveDissipativeAdapt("-ts_vshmm_adapt -ts_rtol 1e-2 -ts_atol 1e-2 -ts_vshmm_micro_dt 1e-2 -ts_vshmm_warnings_viewer none", 0.2, &run, true); });
+  EXPECT_EQ(e.code, PETSC_ERR_ARG_OUTOFRANGE);
+  EXPECT_NE(e.message.find("-ts_vshmm_micro_dt"), std::string::npos) << e.message;
+  EXPECT_NE(e.message.find("needs dt <= 0.000306"), std::string::npos) << e.message;
+  EXPECT_EQ(run.evaluations, 0);
+  ASSERT_EQ(SolveDissipativeAdapt("-ts_vshmm_adapt -ts_rtol 1e-2 -ts_atol 1e-2 -ts_vshmm_micro_dt 1e-4 -ts_vshmm_warnings_viewer none", 0.2, &run, true), 0);
+  EXPECT_EQ(run.micro_dt, 1e-4);
+}
+
 // A final time inside a macro step with -ts_exact_final_time interpolate: x' = -y + sin 9t (slow
 // {x}), y' = -(y - cos(t) sin x) / 1e-3 (fast {y}) from (1, 0) to t = 1.05, DeltaT = 0.1, at 1e-3.
 // The state at 1.05 is sampled by a macro step of 0.05 from the one at 1.0: x(1.05) within 1 tol
