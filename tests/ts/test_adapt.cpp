@@ -626,6 +626,35 @@ TEST(VSHMMAdapt, AToleranceOutOfReachWithSavingsIsMetWithout)
   }
 }
 
+// A tolerance far out of reach with savings: the rotation at eps = 1e-3 at tol 1e-8 to t = 0.1, whose
+// slow y carries a ripple of u^2's fast phase far larger than that. Three tries with savings all far
+// above their shares (kOutOfReach) take single-rate steps where they cost at most kOutOfReachDearer
+// times the last try: y(0.1) within 2e-12, 345,784 evaluations. Before, the tries halved the savings
+// and doubled the work each, to the twelfth: 1.1e8 evaluations, y 8.8e-5 (5,800 tol) off.
+TEST(VSHMMAdapt, AToleranceFarOutOfReachGoesSingleRate)
+{
+  RotationParams params;
+  const double   T = 0.1, ref = RotationReference(params, T, 1.25e-6);
+  ASSERT_NEAR(ref, RotationReference(params, T, 2.5e-6), 1e-11) << "the RK4 reference is not converged";
+  AdaptRun run;
+  ASSERT_EQ(SolveRotation("-ts_vshmm_adapt -ts_rtol 1e-8 -ts_atol 1e-8 -ts_vshmm_warnings_viewer none", params, T, &run), 0);
+  EXPECT_LE(std::abs(run.x[0] - ref), 1e-8 * (1 + std::abs(ref))) << "y(0.1) = " << run.x[0] << ", reference " << ref;
+  EXPECT_EQ(run.stats.adapt_single_rate_from, 0.0);
+  EXPECT_LT(run.evaluations + run.stats.adapt_evaluations, 2000000); /* 345,784; 1.1e8 before, 5,800 tol off */
+}
+
+// Far out of reach, the single-rate step is tried only where it costs at most 16 times the last try:
+// the dissipative example at eps = 1e-4, 1e-3 to t = 2 has three first-step tries above 100 shares
+// (its initial layer) and single-rate steps far dearer; tried at any cost they took 2.4e8
+// evaluations (4.4e5 with the bound, the same as before the far-out rule).
+TEST(VSHMMAdapt, FarOutOfReachSingleRateStepsAreTriedOnlyWhereAffordable)
+{
+  AdaptRun run;
+  ASSERT_EQ(SolveDissipativeAdapt("-ts_vshmm_adapt -ts_rtol 1e-3 -ts_atol 1e-3 -ts_vshmm_warnings_viewer none", 2.0, &run, true, 1e-4), 0);
+  EXPECT_LT(run.evaluations + run.stats.adapt_evaluations, 2000000);
+  EXPECT_EQ(run.stats.adapt_single_rate_from, -1.0);
+}
+
 // Where every faster level decays, a scheduled calibration the model predicted (the step's
 // estimate within 2x of its prediction) is skipped; where a level oscillates its estimates scatter
 // by about 3x with the phase, within 2x by chance, and every scheduled calibration is made: the
