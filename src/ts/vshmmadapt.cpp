@@ -2581,7 +2581,7 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
     /* far out of reach: three tries with savings, each refined, none within kOutOfReach shares (the
        oscillators at 1e-9, whose I1 swings with the fast phase by 2e6 tolerances: estimates of
        4e4-5e5 shares while the savings halved and the work doubled each try, a run without end) */
-    const bool farOut = savings && !singleRate && attempt >= 2 && Emin > kOutOfReach * budget;
+    const bool farOut = savings && !singleRate && attempt >= 2 && std::isfinite(E) && Emin > kOutOfReach * budget; /* (a finite estimate: comparisons that blew up have their own path) */
     if ((floor || farOut) && savings && E > budget && !singleRate && attempt + 1 < kMaxAttempts) {
       /* a floor above the share while savings are left: their limit, none (every time ratio 1, the
          same micro step: a single-rate Runge-Kutta step of the whole field), is tried where it
