@@ -2655,29 +2655,12 @@ TEST(VSHMMAdapt, FixedSavingsThatFreezeABeatAreSaid)
 // its share with these savings). With the fault back the test does not end (CTest's timeout).
 TEST(VSHMMAdapt, SavingsFactorsTheUserSetStayAsSetWhereATryBlowsUp)
 {
-  Guard             guard("-ts_vshmm_adapt -ts_rtol 1e-2 -ts_atol 1e-2 -ts_vshmm_savings_factors 1e6,1e6 -ts_vshmm_warnings_viewer none");
-  DissipativeParams params;
-  SplitProblem      p;
-  TS                ts;
-  Vec               x;
-  PetscInt          n;
-  const PetscReal  *a;
-  TSVSHMMStatistics stats;
-
-  DissipativeProblem(&p, &params);
-  ASSERT_EQ(CreateSplitTS(PETSC_COMM_WORLD, &p, SplitKind::Component, {5, -10, 5}, {"slow", "medium", "fast"}, &ts, &x), 0);
-  ASSERT_EQ(TSSetTimeStep(ts, 0.1), 0);
-  ASSERT_EQ(TSSetMaxTime(ts, 0.3), 0);
-  ASSERT_EQ(TSSetFromOptions(ts), 0);
-  const CapturedError e = CaptureError([&] { return TSSolve(ts, x); });
-  EXPECT_EQ(e.code, 0) << e.message;
-  ASSERT_EQ(TSVSHMMGetSavingsFactors(ts, &n, &a), 0);
-  ASSERT_EQ(n, 2);
-  EXPECT_EQ(a[0], 1e6);
-  EXPECT_EQ(a[1], 1e6);
-  ASSERT_EQ(TSVSHMMGetStatistics(ts, &stats), 0);
-  EXPECT_LT(stats.adapt_evaluations, 1000000);
-  ASSERT_EQ(DestroySplitTS(&p, &ts, &x), 0);
+  AdaptRun run;
+  ASSERT_EQ(SolveDissipativeAdapt("-ts_vshmm_adapt -ts_rtol 1e-2 -ts_atol 1e-2 -ts_vshmm_savings_factors 1e6,1e6 -ts_vshmm_warnings_viewer none", 0.3, &run), 0);
+  ASSERT_EQ(run.savings.size(), 2u);
+  EXPECT_EQ(run.savings[0], 1e6);
+  EXPECT_EQ(run.savings[1], 1e6);
+  EXPECT_LT(run.stats.adapt_evaluations, 1000000);
 }
 
 // A micro step the user set beyond the fastest level's stable step is an error at set-up under
