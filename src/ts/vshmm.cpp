@@ -11,7 +11,6 @@
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
-#include <cstdio>
 #include <string>
 
 const char *const TSVSHMMKernelTypes[] = {"cosine", "constant", "polynomial", "exponential", "TSVSHMMKernelType", "TSVSHMM_KERNEL_", nullptr};
@@ -236,17 +235,11 @@ static PetscErrorCode CheckCycleLength(TS ts)
   for (PetscInt mj : vs->subintervals_used) m = PetscMax(m, mj);
   const PetscReal period = ts->time_step / (PetscReal)m;
   if (!(cycle > period)) PetscFunctionReturn(0);
-  std::string savings;
-  for (size_t j = 0; j < vs->savings_used.size(); ++j) {
-    char value[32];
-    std::snprintf(value, sizeof(value), "%s%g", j ? "," : "", (double)vs->savings_used[j]);
-    savings += value;
-  }
   PetscCall(TSVSHMMWarn_Private(ts,
-                                "TSVSHMM warning: the savings factors (-ts_vshmm_savings_factors %s) with the micro step dt = %g make a mean micro cycle dt (1 + alpha_1 + ... + alpha_K) = %g, longer than the kernel's period DeltaT / m = %g "
+                                "TSVSHMM warning: the savings factors (-ts_vshmm_savings_factors) with the micro step dt = %g make a mean micro cycle dt (1 + alpha_1 + ... + alpha_K) = %g, longer than the kernel's period DeltaT / m = %g "
                                 "(sampling interval %g%s): %g micro cycles per period, so the mesoscopic steps are cut at the period's end, the savings factors do not act as given and the kernel does not average. "
                                 "Use savings factors or a micro step (-ts_vshmm_micro_dt) that give many cycles per period, a longer sampling interval (-ts_dt), or -ts_vshmm_adapt.\n",
-                                savings.c_str(), (double)dt, (double)cycle, (double)period, (double)ts->time_step, m > 1 ? ", subintervals" : "", (double)(period / cycle)));
+                                (double)dt, (double)cycle, (double)period, (double)ts->time_step, m > 1 ? ", subintervals" : "", (double)(period / cycle)));
   PetscFunctionReturn(0);
 }
 

@@ -409,7 +409,7 @@ TEST(VSHMMSolver, AMicroCycleLongerThanTheKernelPeriodIsSaid)
   // the sampling interval 0.1: one cycle per macro step (xi(2) 4.8% off, silently, before); the
   // paper's 100, 10 (0.0111) and 500, 10 (0.0511) are not said; with two subintervals the period is
   // 0.05, and 500, 10 is.
-  const char *warning = "TSVSHMM warning: the savings factors (-ts_vshmm_savings_factors ";
+  const char *warning = "TSVSHMM warning: the savings factors (-ts_vshmm_savings_factors) with the micro step dt = 0.0001";
   PetscMPIInt rank;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
   for (const char *options : {"-ts_vshmm_savings_factors 1000,10 -ts_vshmm_micro_dt 1e-4", "-ts_vshmm_savings_factors 100,10 -ts_vshmm_micro_dt 1e-4", "-ts_vshmm_savings_factors 500,10 -ts_vshmm_micro_dt 1e-4", "-ts_vshmm_savings_factors 500,10 -ts_vshmm_micro_dt 1e-4 -ts_vshmm_subintervals 2,2"}) {
