@@ -142,6 +142,8 @@ PETSC_EXTERN PetscErrorCode TSVSHMMSetStabilityCheck(TS, PetscBool, PetscInt);
 PETSC_EXTERN PetscErrorCode TSVSHMMGetStabilityCheck(TS, PetscBool *, PetscInt *);
 PETSC_EXTERN PetscErrorCode TSVSHMMSetAdapt(TS, PetscBool);
 PETSC_EXTERN PetscErrorCode TSVSHMMGetAdapt(TS, PetscBool *);
+PETSC_EXTERN PetscErrorCode TSVSHMMSetSplitCheck(TS, PetscBool);
+PETSC_EXTERN PetscErrorCode TSVSHMMGetSplitCheck(TS, PetscBool *);
 PETSC_EXTERN PetscErrorCode TSVSHMMSetAdaptSlowComponents(TS, PetscBool);
 PETSC_EXTERN PetscErrorCode TSVSHMMGetAdaptSlowComponents(TS, PetscBool *);
 PETSC_EXTERN PetscErrorCode TSVSHMMSetAdaptGlobalEstimate(TS, PetscBool);

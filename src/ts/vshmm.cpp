@@ -332,6 +332,7 @@ static PetscErrorCode TSSetUp_VSHMM(TS ts)
   vs->level_events.resize(nscales);
   for (PetscInt l = 0; l < nscales; ++l) PetscCall(TSVSHMMGetLevelEvent_Private(l, &vs->level_events[l]));
   PetscCall(TSVSHMMResetStatistics(ts));
+  PetscCall(TSVSHMMCheckSplitsSum_Private(ts));
   PetscCall(StartRun(ts));
   PetscFunctionReturn(0);
 }
@@ -572,6 +573,10 @@ static PetscErrorCode TSSetFromOptions_VSHMM(TS ts, PetscOptionItems *PetscOptio
     PetscCall(VSHMMOptionsInt(PetscOptionsObject, obj, "-ts_vshmm_check_stability_interval", "Also check every this many macro steps (0: only at set-up)", "TSVSHMMSetStabilityCheck", &interval, &iset));
     if (set || iset) PetscCall(TSVSHMMSetStabilityCheck(ts, check, interval));
 
+    PetscBool splits = vs->check_splits;
+    PetscCall(VSHMMOptionsBool(PetscOptionsObject, obj, "-ts_vshmm_check_splits", "Check at set-up that the RHS splits add up to the TS's RHS function", "TSVSHMMSetSplitCheck", &splits, &set));
+    if (set) PetscCall(TSVSHMMSetSplitCheck(ts, splits));
+
     PetscBool adapt = vs->adapt;
     PetscCall(VSHMMOptionsBool(PetscOptionsObject, obj, "-ts_vshmm_adapt", "Choose the micro step and savings factors not set from the TS tolerances -ts_rtol, -ts_atol", "TSVSHMMSetAdapt", &adapt, &set));
     if (set) PetscCall(TSVSHMMSetAdapt(ts, adapt));
@@ -750,6 +755,11 @@ static PetscErrorCode TSView_VSHMM(TS ts, PetscViewer viewer)
     }
     PetscCall(PetscViewerASCIIPrintf(viewer, "  scale separations (set, TSVSHMMSetScaleSeparations()):%s\n", list.c_str()));
   }
+  if (!vs->check_splits) PetscCall(PetscViewerASCIIPrintf(viewer, "  split check: off\n"));
+  else if (!ts->setupcalled) PetscCall(PetscViewerASCIIPrintf(viewer, "  split check: at set-up\n"));
+  else if (vs->splits_difference < 0) PetscCall(PetscViewerASCIIPrintf(viewer, "  split check: none (the TS has no RHS function to check the splits' sum against)\n"));
+  else
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  split check at set-up: the splits' sum differs from the RHS function by %g of the largest split output%s\n", (double)vs->splits_difference, vs->splits_difference > kSplitsSumTolerance ? " (warned: they do not add up)" : ""));
   if (!vs->check_stability && vs->stability_interval == 0) PetscCall(PetscViewerASCIIPrintf(viewer, "  stability check: off\n"));
   else if (vs->stability_interval > 0)
     PetscCall(PetscViewerASCIIPrintf(viewer, "  stability check: %s set-up and every %" PetscInt_FMT " macro steps; %" PetscInt64_FMT " checks, %" PetscInt64_FMT " split RHS evaluations, %" PetscInt64_FMT " warnings\n", vs->check_stability ? "at" : "not at", vs->stability_interval, vs->stability_checks, vs->stability_evaluations, vs->stability_warnings));
@@ -961,6 +971,21 @@ static PetscErrorCode TSVSHMMSetObservables_VSHMM(TS ts, PetscInt n, PetscErrorC
   PetscFunctionReturn(0);
 }
 
+static PetscErrorCode TSVSHMMSetSplitCheck_VSHMM(TS ts, PetscBool flg)
+{
+  PetscFunctionBegin;
+  ((TS_VSHMM *)ts->data)->check_splits = flg;
+  PetscCall(TSVSHMMInvalidateSetUp_Private(ts));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode TSVSHMMGetSplitCheck_VSHMM(TS ts, PetscBool *flg)
+{
+  PetscFunctionBegin;
+  *flg = ((TS_VSHMM *)ts->data)->check_splits;
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode TSVSHMMSetAdaptSlowComponents_VSHMM(TS ts, PetscBool flg)
 {
   PetscFunctionBegin;
@@ -1112,6 +1137,8 @@ static PetscErrorCode TSVSHMMResetStatistics_VSHMM(TS ts)
   X(TSVSHMMGetSplitOrder) \
   X(TSVSHMMSetStabilityCheck) \
   X(TSVSHMMGetStabilityCheck) \
+  X(TSVSHMMSetSplitCheck) \
+  X(TSVSHMMGetSplitCheck) \
   X(TSVSHMMSetAdapt) \
   X(TSVSHMMGetAdapt) \
   X(TSVSHMMSetObservables) \
@@ -1177,6 +1204,7 @@ $    h_j(t) = alpha_j dt K(Theta^{-1}(((t - t_n) mod P_j) / P_j)),   P_j = Delta
 .  -ts_vshmm_splits <a,b+c,...> - the scales, slowest first: split names, or groups joined by '+' (default: each split a scale, in creation order)
 .  -ts_vshmm_check_stability <true,false> - check the steps against the stability region at set-up (default true)
 .  -ts_vshmm_check_stability_interval <N> - also check every N macro steps (default 0: never)
+.  -ts_vshmm_check_splits <true,false> - check at set-up that the RHS splits add up to the TS's RHS function (default true)
 .  -ts_vshmm_adapt <true,false> - choose the micro step and savings factors not set from -ts_rtol, -ts_atol (default false)
 .  -ts_vshmm_adapt_slow_components <true,false> - with observables, control the slow components too (default true)
 .  -ts_vshmm_adapt_global_estimate <true,false> - with -ts_vshmm_adapt, estimate the error at each sampled time with a carried comparison (default false; `TSGetTimeError()`)

@@ -517,6 +517,68 @@ PetscErrorCode TSVSHMMResetStatistics(TS ts)
 }
 
 /*@
+   TSVSHMMSetSplitCheck - Sets whether TSVSHMM checks at set-up that its RHS splits add up to the TS's right-hand side function
+
+   Logically Collective
+
+   Input Parameters:
++  ts  - the `TS` of type `TSVSHMM`
+-  flg - `PETSC_TRUE` (the default) to check, `PETSC_FALSE` to skip the check
+
+   Options Database Key:
+.  -ts_vshmm_check_splits <true,false> - check at set-up
+
+   Notes:
+   TSVSHMM steps the RHS splits (`TSRHSSplitSetRHSFunction()`) and never calls the TS's own
+   right-hand side function (`TSSetRHSFunction()`), which every other TS type integrates. Where
+   the splits' sum is not that function (a component that no split writes, a term in two splits
+   or in none, an IS that names other components than the split function writes), TSVSHMM solves
+   another problem than `-ts_type rk` would, without any other sign. At set-up, at the initial
+   state, the function and each split are evaluated once (counted with the stability check's
+   split evaluations); where they differ by more than 1e-10 of the largest split output, a
+   warning names the component with the largest difference and both values (on the warnings
+   viewer, `TSVSHMMSetWarningsViewer()`); `-ts_view` prints the relative difference. A TS without
+   an RHS function (an `IFunction` alone) is not checked. Differences that vanish at the initial
+   state (a term that is zero there) are not seen.
+
+   Level: intermediate
+
+.seealso: `TSVSHMM`, `TSVSHMMGetSplitCheck()`, `TSVSHMMSetStabilityCheck()`, `TSRHSSplitSetIS()`, `TSRHSSplitSetRHSFunction()`
+@*/
+PetscErrorCode TSVSHMMSetSplitCheck(TS ts, PetscBool flg)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  PetscValidLogicalCollectiveBool(ts, flg, 2);
+  PetscTryMethod(ts, "TSVSHMMSetSplitCheck_C", (TS, PetscBool), (ts, flg));
+  PetscFunctionReturn(0);
+}
+
+/*@
+   TSVSHMMGetSplitCheck - Tells whether TSVSHMM checks at set-up that its RHS splits add up to the TS's right-hand side function
+
+   Not Collective
+
+   Input Parameter:
+.  ts - the `TS` of type `TSVSHMM`
+
+   Output Parameter:
+.  flg - `PETSC_TRUE` if it does
+
+   Level: intermediate
+
+.seealso: `TSVSHMM`, `TSVSHMMSetSplitCheck()`
+@*/
+PetscErrorCode TSVSHMMGetSplitCheck(TS ts, PetscBool *flg)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  PetscValidBoolPointer(flg, 2);
+  PetscUseMethod(ts, "TSVSHMMGetSplitCheck_C", (TS, PetscBool *), (ts, flg));
+  PetscFunctionReturn(0);
+}
+
+/*@
    TSVSHMMSetAdapt - Makes TSVSHMM choose its micro step and savings factors from the TS tolerances
 
    Logically Collective

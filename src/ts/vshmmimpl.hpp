@@ -44,6 +44,8 @@ struct TS_VSHMM {
   std::vector<std::string>  split_order;                                                // one entry per scale, "a" or "a+b"; empty: creation order
   std::vector<std::string>  split_order_out;                                            // for TSVSHMMGetSplitOrder()
   PetscBool                 check_stability    = PETSC_TRUE;                            // at set-up
+  PetscBool                 check_splits       = PETSC_TRUE;                            // the splits' sum against the RHS function, at set-up
+  PetscReal                 splits_difference  = -1;                                    // its result: |sum of the splits - RHS function| / largest split output (-1: not checked)
   PetscInt                  stability_interval = 0;                                     // also every that many macro steps (0: never)
   std::vector<const char *> split_order_c;                                              // for TSVSHMMGetSplitOrder()
   PetscBool                 adapt                                        = PETSC_FALSE; // choose the parameters not set from the TS tolerances
@@ -215,6 +217,7 @@ static inline bool TSVSHMMSavingsAdmitted_Private(const TS_VSHMM *vs)
 
 static constexpr PetscInt  kDefaultMicroStepsPerMacroStep = 100;
 static constexpr PetscReal kMinMicroStepFraction          = 1e-13; /* dt / DeltaT below this cannot advance time */
+static constexpr PetscReal kSplitsSumTolerance            = 1e-10; /* the splits' sum against the RHS function, relative to the largest output (TSVSHMMCheckSplitsSum_Private()) */
 
 /* vshmm.cpp: the type */
 PETSC_INTERN PetscErrorCode TSCreate_VSHMM(TS);
@@ -244,6 +247,7 @@ PETSC_INTERN PetscErrorCode TSVSHMMGetLevelEvent_Private(PetscInt, PetscLogEvent
 PETSC_INTERN PetscErrorCode TSVSHMMResetLevelEvents_Private(void);
 /* vshmmstability.cpp: spectra of the levels, the stability check */
 PETSC_INTERN PetscErrorCode TSVSHMMCheckStability_Private(TS);
+PETSC_INTERN PetscErrorCode TSVSHMMCheckSplitsSum_Private(TS); /* at set-up: the splits' sum against the TS's RHS function */
 PETSC_INTERN PetscErrorCode TSVSHMMLevelSpectra_Private(TS);
 PETSC_INTERN PetscErrorCode TSVSHMMLevelOwnRates_Private(TS);
 PETSC_INTERN PetscErrorCode TSVSHMMLevelOwnSlowest_Private(TS, PetscInt, PetscReal *);                                                      /* the slowest own rate of a level at ts->vec_sol (component splits; 0 otherwise), not stored */

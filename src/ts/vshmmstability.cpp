@@ -1504,3 +1504,83 @@ PetscErrorCode TSVSHMMLevelBeats_Private(TS ts)
   }
   PetscFunctionReturn(0);
 }
+
+/* The splits against the TS's right-hand side function (TSSetRHSFunction()), once at set-up, at the
+   initial state: TSVSHMM steps the splits only, so where their sum is not the function that every
+   other TS type integrates (a component that no split writes, a term in two splits or in none, an
+   IS that names the wrong components) it solves another problem, silently. Their difference is
+   judged against the roundoff of the terms it sums: the largest output of any split. Counted as
+   the stability check's evaluations; nothing when the TS has no RHS function (an IFunction alone). */
+PetscErrorCode TSVSHMMCheckSplitsSum_Private(TS ts)
+{
+  TS_VSHMM     *vs    = (TS_VSHMM *)ts->data;
+  TSRHSFunction f     = nullptr;
+  Vec           X     = ts->vec_sol, F, G, W;
+  PetscReal     scale = 0, diff, fmax, gmax, fval = 0, gval = 0;
+  PetscInt      at;
+
+  PetscFunctionBegin;
+  vs->splits_difference = -1;
+  if (!vs->check_splits) PetscFunctionReturn(0);
+  PetscCall(TSGetRHSFunction(ts, nullptr, &f, nullptr));
+  if (!f) {
+    PetscCall(PetscInfo(ts, "TSVSHMM: the TS has no RHS function, so the splits are not checked against it\n"));
+    PetscFunctionReturn(0);
+  }
+  StabilityCounting counting(vs);
+  PetscCall(VecDuplicate(X, &F));
+  PetscCall(VecDuplicate(X, &G));
+  PetscCall(VecDuplicate(X, &W));
+  PetscCall(TSComputeRHSFunction(ts, ts->ptime, X, F));
+  PetscCall(VecZeroEntries(G));
+  for (PetscInt k = 0; k < (PetscInt)vs->splits.size(); ++k) {
+    PetscReal norm;
+
+    PetscCall(VecZeroEntries(W));
+    PetscCall(TSComputeRHSFunction(vs->splits[k].subts, ts->ptime, X, vs->splits[k].F));
+    vs->stability_evaluations++;
+    PetscCall(TSVSHMMAddSplit_Private(vs, k, ts->ptime, vs->splits[k].F, W));
+    PetscCall(VecNorm(W, NORM_INFINITY, &norm));
+    scale = PetscMax(scale, norm);
+    PetscCall(VecAXPY(G, 1.0, W));
+  }
+  PetscCall(VecNorm(F, NORM_INFINITY, &fmax));
+  PetscCall(VecNorm(G, NORM_INFINITY, &gmax));
+  PetscCall(VecWAXPY(W, -1.0, G, F));
+  PetscCall(VecAbs(W));
+  PetscCall(VecMax(W, &at, &diff));
+  vs->splits_difference = diff / PetscMax(PetscMax(scale, fmax), PETSC_SMALL * PETSC_SMALL);
+  if (std::isfinite(fmax) && std::isfinite(gmax) && diff > kSplitsSumTolerance * PetscMax(scale, fmax)) {
+    PetscInt rstart, rend;
+
+    PetscCall(VecGetOwnershipRange(X, &rstart, &rend));
+    PetscReal local[2] = {0, 0}, both[2];
+    if (at >= rstart && at < rend) {
+      const PetscScalar *a, *b;
+
+      PetscCall(VecGetArrayRead(F, &a));
+      PetscCall(VecGetArrayRead(G, &b));
+      local[0] = PetscRealPart(a[at - rstart]);
+      local[1] = PetscRealPart(b[at - rstart]);
+      PetscCall(VecRestoreArrayRead(F, &a));
+      PetscCall(VecRestoreArrayRead(G, &b));
+    }
+    PetscCall(MPIU_Allreduce(local, both, 2, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)ts)));
+    fval = both[0];
+    gval = both[1];
+    std::string names;
+    for (const VSHMMSplit &s : vs->splits) names += (names.empty() ? "" : ", ") + s.name;
+    PetscCall(TSVSHMMWarn_Private(ts,
+                                  "TSVSHMM warning: the RHS splits (%s) do not add up to the TS's right-hand side function (TSSetRHSFunction()) at the initial state, t = %g: at component %" PetscInt_FMT
+                                  " the function gives %g and the splits' sum %g, a difference of %g against split outputs up to %g in size. "
+                                  "TSVSHMM steps the splits alone, so it would solve another problem than the one the function describes and other TS types (-ts_type rk) integrate. Check each split's IS (TSRHSSplitSetIS()) and terms: a component "
+                                  "that no split writes, "
+                                  "a term in two splits or in none. "
+                                  "(-ts_vshmm_check_splits false skips this check.)\n",
+                                  names.c_str(), (double)ts->ptime, at, (double)fval, (double)gval, (double)diff, (double)PetscMax(scale, fmax)));
+  } else PetscCall(PetscInfo(ts, "TSVSHMM: the RHS splits add up to the RHS function at t = %g: largest difference %g, split outputs up to %g\n", (double)ts->ptime, (double)diff, (double)scale));
+  PetscCall(VecDestroy(&F));
+  PetscCall(VecDestroy(&G));
+  PetscCall(VecDestroy(&W));
+  PetscFunctionReturn(0);
+}

@@ -90,7 +90,9 @@ PetscErrorCode FullFunction(TS, PetscReal t, Vec X, Vec F, void *vctx)
   PetscCall(VecScatterBegin(p->gather, X, p->xall, INSERT_VALUES, SCATTER_FORWARD));
   PetscCall(VecScatterEnd(p->gather, X, p->xall, INSERT_VALUES, SCATTER_FORWARD));
   PetscCall(VecGetArrayRead(p->xall, &xa));
-  for (auto term : p->terms) {
+  std::vector<SplitProblem::Term> terms = p->terms;
+  terms.insert(terms.end(), p->full_extra.begin(), p->full_extra.end());
+  for (auto term : terms) {
     term(p->params, t, xa, full.data());
     for (PetscInt i = 0; i < p->n; ++i) sum[i] += full[i];
   }
@@ -141,6 +143,9 @@ PetscErrorCode CreateSplitTS(MPI_Comm comm, SplitProblem *p, SplitKind kind, con
       /* all of them listed on the last rank, in decreasing order: owned by other ranks, and unsorted */
       if (rank == size - 1)
         for (PetscInt i = hi - 1; i >= lo; --i) comps.push_back(i);
+    } else if (kind == SplitKind::Component && !p->components.empty()) {
+      for (PetscInt i : p->components[k])
+        if (i >= rstart && i < rend) comps.push_back(i);
     } else {
       for (PetscInt i = PetscMax(lo, rstart); i < PetscMin(hi, rend); ++i) comps.push_back(i);
     }

@@ -30,13 +30,15 @@ struct SplitCall {
 // A small ODE dx/dt = sum_k f_k(x) whose split k writes the terms of scale k. The state lives on
 // `comm` (spread over its ranks); split functions gather it to every rank.
 struct SplitProblem {
-  using Term          = void (*)(const void *params, PetscReal t, const PetscScalar *x, PetscScalar *f); // f_k for all components
-  PetscInt          n = 0;
-  std::vector<Term> terms; // scale k's term, written for every component
-  const void       *params          = nullptr;
-  long              nan_after_calls = -1;             // test hook: the fastest split returns NaN after this many calls
-  PetscReal         nan_after_time  = PETSC_MAX_REAL; // test hook: ... or at times past this one
-  long              calls           = 0;
+  using Term                           = void (*)(const void *params, PetscReal t, const PetscScalar *x, PetscScalar *f); // f_k for all components
+  PetscInt                           n = 0;
+  std::vector<Term>                  terms;      // scale k's term, written for every component
+  std::vector<Term>                  full_extra; // terms the TS's RHS function adds to the splits' sum (a program whose splits miss them)
+  std::vector<std::vector<PetscInt>> components; // SplitKind::Component: scale k's components where set (default: component k, the last scale the rest)
+  const void                        *params          = nullptr;
+  long                               nan_after_calls = -1;             // test hook: the fastest split returns NaN after this many calls
+  PetscReal                          nan_after_time  = PETSC_MAX_REAL; // test hook: ... or at times past this one
+  long                               calls           = 0;
   // Test hooks that follow every split call (only when set): `trace` records each call; split
   // nan_split returns NaN in all its entries on its nan_call-th call. The level is found from the
   // TSVSHMM statistics of `ts` (set by CreateSplitTS): the level whose evaluation count moved.

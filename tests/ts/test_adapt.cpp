@@ -340,7 +340,9 @@ PetscErrorCode SolveRotation(const char *options, const RotationParams &params, 
 // First-order upwind advection (a = 1, periodic) on [0, 1) with 16 coarse cells (h = 1/20) and, in
 // place of 4 of them, 48 cells 12 times finer: the slow split writes the coarse cells, the fast
 // split the fine ones (as PETSc's multirate finite-volume tutorials with -hratio 12). The radii of
-// the two levels are about 12 apart, but the fine cells carry the transported solution.
+// the two levels are about 12 apart, but the fine cells carry the transported solution. (Until the
+// split check of TSVSHMMSetSplitCheck(), the slow split's IS was component 0 alone, the default of
+// CreateSplitTS(): the splits did not add up to the RHS function, and the check said so.)
 constexpr int kCoarse = 16, kFine = 48, kFvCells = kCoarse + kFine;
 bool          FineCell(int i)
 {
@@ -369,6 +371,8 @@ PetscErrorCode SetUpFv(const char *options)
   PetscFunctionBeginUser;
   p.n     = kFvCells;
   p.terms = {FvSlow, FvFast};
+  p.components.resize(2);
+  for (int i = 0; i < kFvCells; ++i) p.components[FineCell(i) ? 1 : 0].push_back(i);
   std::vector<PetscReal> u0(kFvCells);
   double                 xc = 0;
   for (int i = 0; i < kFvCells; ++i) u0[i] = std::sin(2 * M_PI * (xc + 0.5 * CellWidth(i))), xc += CellWidth(i);

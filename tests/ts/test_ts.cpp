@@ -427,6 +427,53 @@ TEST(VSHMMSolver, AMicroCycleLongerThanTheKernelPeriodIsSaid)
   }
 }
 
+// A term of the RHS function that no split has (a forcing 7 on eta, component 1): TSVSHMM steps
+// the splits alone, so it would integrate another problem than -ts_type rk, with no other sign. Said
+// at set-up with the component and both values, for every kind of split (in place, scattered); not
+// said where the splits add up (exactly, or to 1e-14 of the largest split output), nor with
+// -ts_vshmm_check_splits false. The check's evaluations (one
+// per split) count as the stability check's.
+static void ForcingOnEta(const void *, PetscReal, const PetscScalar *, PetscScalar *f)
+{
+  f[0] = f[2] = 0;
+  f[1]        = 7;
+}
+
+static void RoundingOnEta(const void *, PetscReal, const PetscScalar *, PetscScalar *f)
+{
+  f[0] = f[2] = 0;
+  f[1]        = 1e-9; /* 1e-14 of the largest split output, 1e5: a rounding difference, not said */
+}
+
+TEST(VSHMMSolver, SplitsThatDoNotAddUpToTheRHSFunctionAreSaid)
+{
+  const char *warning = "TSVSHMM warning: the RHS splits (slow, medium, fast) do not add up to the TS's right-hand side function (TSSetRHSFunction()) at the initial state, t = 0.: at component 1 the function gives ";
+  PetscMPIInt rank;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  for (SplitKind kind : {SplitKind::Component, SplitKind::Additive, SplitKind::Mixed, SplitKind::Scattered}) {
+    for (const int variant : {0, 1, 2}) {
+      SolveResult  checked, unchecked;
+      SplitProblem p;
+      const bool   extra = variant == 1;
+      if (variant == 1) p.full_extra = {ForcingOnEta};
+      if (variant == 2) p.full_extra = {RoundingOnEta};
+      testing::internal::CaptureStderr();
+      ASSERT_EQ(SolveDissipative(PETSC_COMM_WORLD, kind, 0.2, 0.1, &checked, "-ts_vshmm_check_stability false", &p), 0);
+      const std::string err = testing::internal::GetCapturedStderr();
+      if (rank == 0 && extra) {
+        EXPECT_NE(err.find(warning), std::string::npos) << (int)kind << ": " << err;
+        /* eta' = (3 xi^2 - eta^2 + zeta^2) / eps is 0 at (5, -10, 5); the largest split output is zeta' = 1e5 */
+        EXPECT_NE(err.find("the function gives 7. and the splits' sum 0., a difference of 7. against split outputs up to 100000. in size"), std::string::npos) << err;
+      } else EXPECT_EQ(err.find("do not add up"), std::string::npos) << (int)kind << ": " << err;
+      testing::internal::CaptureStderr();
+      ASSERT_EQ(SolveDissipative(PETSC_COMM_WORLD, kind, 0.2, 0.1, &unchecked, "-ts_vshmm_check_stability false -ts_vshmm_check_splits false", &p), 0);
+      EXPECT_EQ(testing::internal::GetCapturedStderr().find("do not add up"), std::string::npos);
+      EXPECT_EQ(checked.stability_evaluations - unchecked.stability_evaluations, 3) << (int)kind;
+      for (int i = 0; i < 3; ++i) EXPECT_EQ(checked.x[i], unchecked.x[i]) << "the check does not change the run";
+    }
+  }
+}
+
 TEST(VSHMMStabilityCheck, PaperParametersPassAtEveryMacroStep)
 {
   // The peak mesoscopic steps of level 1 exceed RK4's limit for a while (t = 0.1 to 0.5, where the
