@@ -212,6 +212,11 @@ static PetscErrorCode TSVSHMMCheckSupported_Private(TS ts)
   PetscCheck(!ts->vecs_sensi, comm, PETSC_ERR_SUP, "TSVSHMM does not support adjoint sensitivities (TSSetCostGradients(), TSAdjointSolve()): VSHMM does not form the derivative of its macro step. Use a TSRK type for adjoint sensitivities");
   PetscCheck(!ts->forward_solve && !ts->mat_sensip, comm, PETSC_ERR_SUP, "TSVSHMM does not support forward sensitivities (TSForwardSetSensitivities()): VSHMM does not form the derivative of its macro step. Use a TSRK type for forward sensitivities");
   PetscCheck(!ts->costintegralfwd, comm, PETSC_ERR_SUP, "TSVSHMM does not support evaluating a cost integral in the forward run (TSCreateQuadratureTS() with fwd = PETSC_TRUE): integrate the quantity in a TSMonitor on the sampled states instead");
+  TSIFunction ifunction = nullptr;
+  DM          dm;
+  PetscCall(TSGetDM(ts, &dm));
+  PetscCall(DMTSGetIFunction(dm, &ifunction, nullptr));
+  PetscCheck(!ifunction, comm, PETSC_ERR_ARG_INCOMP, "TSVSHMM is an explicit integrator: it steps the RHS splits (TSRHSSplitSetRHSFunction()) and cannot use an implicit function definition (TSSetIFunction()), which it would ignore. Give the right-hand side with TSSetRHSFunction() and its splits, or use an implicit TS type (-ts_type arkimex, bdf)");
   PetscCheck(!ts->prestage && !ts->poststage, comm, PETSC_ERR_SUP, "TSVSHMM does not call pre-stage or post-stage functions (TSSetPreStage(), TSSetPostStage()): a macro step has no stages of its own, its inner Runge-Kutta stages belong to the levels' fields. Use TSSetPreStep() / TSSetPostStep(), called around every macro step");
   PetscFunctionReturn(0);
 }
@@ -1234,5 +1239,13 @@ PETSC_INTERN PetscErrorCode TSCreate_VSHMM(TS ts)
 #define VSHMM_COMPOSE(name) PetscCall(PetscObjectComposeFunction((PetscObject)ts, #name "_C", name##_VSHMM));
   VSHMM_METHODS(VSHMM_COMPOSE)
 #undef VSHMM_COMPOSE
+  PetscContainer observables = nullptr; /* set with TSVSHMMSetObservables() while the TS had another type */
+  PetscCall(PetscObjectQuery((PetscObject)ts, kTSVSHMMObservablesKey, (PetscObject *)&observables));
+  if (observables) {
+    TSVSHMMObservablesRecord *record;
+
+    PetscCall(PetscContainerGetPointer(observables, (void **)&record));
+    PetscCall(TSVSHMMSetObservables_VSHMM(ts, record->n, record->f, record->ctx));
+  }
   PetscFunctionReturn(0);
 }

@@ -538,7 +538,8 @@ PetscErrorCode TSVSHMMResetStatistics(TS ts)
    split evaluations); where they differ by more than 1e-10 of the largest split output, a
    warning names the component with the largest difference and both values (on the warnings
    viewer, `TSVSHMMSetWarningsViewer()`); `-ts_view` prints the relative difference. A TS without
-   an RHS function (an `IFunction` alone) is not checked. Differences that vanish at the initial
+   an RHS function (splits only) is not checked; an implicit function (`TSSetIFunction()`) is an
+   error at set-up, as for PETSc's explicit types. Differences that vanish at the initial
    state (a term that is zero there) are not seen.
 
    Level: intermediate
@@ -648,7 +649,7 @@ PetscErrorCode TSVSHMMGetAdapt(TS ts, PetscBool *flg)
    Logically Collective
 
    Input Parameters:
-+  ts  - the `TS` of type `TSVSHMM`
++  ts  - the `TS` (of any type; see the notes)
 .  n   - the number of quantities (at least 1)
 .  f   - the function that computes them: f(ts, t, X, q, ctx) fills q[0..n-1] from the state X at time t; it must give the same values on every rank (it is collective)
 -  ctx - its context (may be NULL)
@@ -659,7 +660,12 @@ PetscErrorCode TSVSHMMGetAdapt(TS ts, PetscBool *flg)
    (dissipative scales). Where they oscillate, the state at a sampled time carries the fast phases,
    which VSHMM does not compute accurately: name the slow quantities (for two oscillators, their
    energies or amplitudes). Each quantity q_i is weighed by atol + rtol |q_i|. Pass f = NULL to go
-   back to the whole state. The components that only the slowest scale's splits write are
+   back to the whole state.
+
+   Unlike the other TSVSHMM setters (which, as for `TSRK`, act only on a `TS` that is already of
+   type `TSVSHMM`), this one may be called on a `TS` of any type, before `TSSetType()` or
+   `TSSetFromOptions()`: the quantities belong to the problem, and they are kept on the `TS` for
+   the `TSVSHMM` it becomes, so that `-ts_type vshmm` on the command line finds them. The components that only the slowest scale's splits write are
    controlled together with the observables (`TSVSHMMSetAdaptSlowComponents()`).
 
    Level: intermediate
@@ -671,6 +677,21 @@ PetscErrorCode TSVSHMMSetObservables(TS ts, PetscInt n, PetscErrorCode (*f)(TS, 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
   PetscCheck(!f || n >= 1, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "TSVSHMMSetObservables(): the number of observables is %" PetscInt_FMT ": it must be at least 1", n);
+  /* kept on the TS whatever its type, for a TSVSHMM it becomes later (TSCreate_VSHMM()) */
+  if (f) {
+    TSVSHMMObservablesRecord *record;
+    PetscContainer            container;
+
+    PetscCall(PetscNew(&record));
+    record->n   = n;
+    record->f   = f;
+    record->ctx = ctx;
+    PetscCall(PetscContainerCreate(PetscObjectComm((PetscObject)ts), &container));
+    PetscCall(PetscContainerSetPointer(container, record));
+    PetscCall(PetscContainerSetUserDestroy(container, PetscContainerUserDestroyDefault));
+    PetscCall(PetscObjectCompose((PetscObject)ts, kTSVSHMMObservablesKey, (PetscObject)container));
+    PetscCall(PetscContainerDestroy(&container));
+  } else PetscCall(PetscObjectCompose((PetscObject)ts, kTSVSHMMObservablesKey, nullptr));
   PetscTryMethod(ts, "TSVSHMMSetObservables_C", (TS, PetscInt, PetscErrorCode(*)(TS, PetscReal, Vec, PetscReal[], void *), void *), (ts, n, f, ctx));
   PetscFunctionReturn(0);
 }

@@ -220,7 +220,14 @@ static constexpr PetscReal kMinMicroStepFraction          = 1e-13; /* dt / Delta
 static constexpr PetscReal kSplitsSumTolerance            = 1e-10; /* the splits' sum against the RHS function, relative to the largest output (TSVSHMMCheckSplitsSum_Private()) */
 
 /* vshmm.cpp: the type */
-PETSC_INTERN PetscErrorCode TSCreate_VSHMM(TS);
+/* TSVSHMMSetObservables() on a TS of any type: composed on the TS under this key, read by TSCreate_VSHMM() */
+struct TSVSHMMObservablesRecord {
+  PetscInt n;
+  PetscErrorCode (*f)(TS, PetscReal, Vec, PetscReal[], void *);
+  void *ctx;
+};
+static constexpr const char *kTSVSHMMObservablesKey = "TSVSHMMObservables";
+PETSC_INTERN PetscErrorCode  TSCreate_VSHMM(TS);
 /* vshmmwarnings.cpp: the one channel of the warnings a user must see without asking */
 PETSC_INTERN PetscErrorCode TSVSHMMWarn_Private(TS, const char[], ...) PETSC_ATTRIBUTE_FORMAT(2, 3);
 /* vshmmlevel.cpp: the levels' fields and steps, their log events */

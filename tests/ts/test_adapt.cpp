@@ -2649,6 +2649,68 @@ TEST(VSHMMAdapt, FixedSavingsThatFreezeABeatAreSaid)
   EXPECT_GE(stability[0] - stability[1], 30) << "probed " << stability[0] << ", affine " << stability[1];
 }
 
+// TSVSHMMSetObservables() on a TS that is not a TSVSHMM yet (a program that names its quantities of
+// interest and takes the type from -ts_type vshmm, set after the call): the quantities are kept for
+// the TSVSHMM the TS becomes, the same run as with the type set first. Before, the setter did
+// nothing on another type (as the method parameters' setters, PETSc's way) and the tolerance
+// applied to the whole state, silently. Cleared (f = NULL) before the type, they stay cleared.
+struct CountedXi {
+  SplitProblem *p     = nullptr;
+  int           calls = 0;
+};
+PetscErrorCode CountingXiObservable(TS ts, PetscReal t, Vec X, PetscReal q[], void *ctx)
+{
+  PetscFunctionBeginUser;
+  ((CountedXi *)ctx)->calls++;
+  PetscCall(XiObservable(ts, t, X, q, ((CountedXi *)ctx)->p));
+  PetscFunctionReturn(0);
+}
+PetscErrorCode SolveObservablesSetAround(int when, std::vector<PetscReal> &xout, int *calls)
+{
+  Guard             guard("-ts_vshmm_adapt -ts_rtol 1e-2 -ts_atol 1e-2");
+  DissipativeParams params;
+  SplitProblem      p;
+  CountedXi         counted;
+  TS                ts;
+  Vec               x;
+
+  PetscFunctionBeginUser;
+  DissipativeProblem(&p, &params);
+  counted.p = &p;
+  PetscCall(CreateSplitTS(PETSC_COMM_WORLD, &p, SplitKind::Component, {5, -10, 5}, {"slow", "medium", "fast"}, &ts, &x));
+  PetscCall(TSSetTimeStep(ts, 0.1));
+  PetscCall(TSSetMaxTime(ts, 0.3));
+  if (when == 0) { /* before the type: set on a TSRK */
+    PetscCall(TSSetType(ts, TSRK));
+    PetscCall(TSVSHMMSetObservables(ts, 1, CountingXiObservable, &counted));
+    PetscCall(TSSetType(ts, TSVSHMM));
+  } else if (when == 1) PetscCall(TSVSHMMSetObservables(ts, 1, CountingXiObservable, &counted)); /* on the TSVSHMM */
+  else { /* set, then cleared, before the type */ PetscCall(TSSetType(ts, TSRK));
+    PetscCall(TSVSHMMSetObservables(ts, 1, CountingXiObservable, &counted));
+    PetscCall(TSVSHMMSetObservables(ts, 0, nullptr, nullptr));
+    PetscCall(TSSetType(ts, TSVSHMM));
+  }
+  PetscCall(TSSetFromOptions(ts));
+  PetscCall(TSSolve(ts, x));
+  PetscCall(GatherState(&p, x, xout));
+  *calls = counted.calls;
+  PetscCall(DestroySplitTS(&p, &ts, &x));
+  PetscFunctionReturn(0);
+}
+
+TEST(VSHMMAdapt, ObservablesSetBeforeTheTypeAreKept)
+{
+  std::vector<PetscReal> before, on, cleared;
+  int                    calls_before = 0, calls_on = 0, calls_cleared = 0;
+  ASSERT_EQ(SolveObservablesSetAround(0, before, &calls_before), 0);
+  ASSERT_EQ(SolveObservablesSetAround(1, on, &calls_on), 0);
+  ASSERT_EQ(SolveObservablesSetAround(2, cleared, &calls_cleared), 0);
+  EXPECT_GT(calls_on, 0);
+  EXPECT_EQ(calls_before, calls_on);
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(before[i], on[i]) << "component " << i;
+  EXPECT_EQ(calls_cleared, 0);
+}
+
 // Savings factors the user set stay as set under -ts_vshmm_adapt, also where a try with them blows
 // up: the dissipative example with -ts_vshmm_savings_factors 1e6,1e6 (a mean cycle of 200 at the
 // micro step 1e-4, far beyond the sampling interval 0.1). Its second macro step's tries ended with

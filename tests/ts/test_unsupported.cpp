@@ -1,7 +1,8 @@
 // PETSc features that TSVSHMM does not support are refused at set-up with an error that names
 // the feature, before any split function is called: an adaptive TSAdapt (once accepted and
 // ignored), events, TSTrajectory and adjoint or forward sensitivities (once PETSc's generic
-// "No method ..." in mid-run), forward cost integrals, and pre-/post-stage functions.
+// "No method ..." in mid-run), forward cost integrals, pre-/post-stage functions, and an implicit
+// function definition (as PETSc's explicit types refuse it).
 #include <gtest/gtest.h>
 
 #include <functional>
@@ -139,6 +140,22 @@ TEST(VSHMMUnsupported, StageHooksAreRefusedAtSetUp)
   const char *what = "TSVSHMM does not call pre-stage or post-stage functions (TSSetPreStage(), TSSetPostStage())";
   ExpectRefused(SolveWith(nullptr, [](TS ts, Vec) { return TSSetPreStage(ts, Hook); }), what);
   ExpectRefused(SolveWith(nullptr, [](TS ts, Vec) { return TSSetPostStage(ts, PostStageHook); }), what);
+}
+
+// An implicit function definition (TSSetIFunction()), which TSVSHMM, explicit, steps past: it ran
+// the splits and ignored it (a mass matrix, or a term only there, silently lost). Refused at set-up
+// as PETSc's explicit types refuse it (PETSC_ERR_ARG_INCOMP), before any split call.
+PetscErrorCode ImplicitFunction(TS, PetscReal, Vec, Vec Xdot, Vec F, void *)
+{
+  return VecCopy(Xdot, F);
+}
+
+TEST(VSHMMUnsupported, AnImplicitFunctionIsRefusedAtSetUp)
+{
+  const UnsupportedRun run = SolveWith(nullptr, [](TS ts, Vec) { return TSSetIFunction(ts, nullptr, ImplicitFunction, nullptr); });
+  EXPECT_EQ(run.error.code, PETSC_ERR_ARG_INCOMP) << run.error.message;
+  EXPECT_NE(run.error.message.find("TSVSHMM is an explicit integrator: it steps the RHS splits (TSRHSSplitSetRHSFunction()) and cannot use an implicit function definition (TSSetIFunction())"), std::string::npos) << run.error.message;
+  EXPECT_EQ(run.split_calls, 0);
 }
 
 } // namespace
