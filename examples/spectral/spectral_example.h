@@ -388,7 +388,7 @@ static PetscErrorCode StableMicroStep(SpectralRun *run, TS ts)
       PetscCall(PetscFPrintf(PETSC_COMM_WORLD, PETSC_STDERR, "Warning: -%sts_vshmm_micro_dt %g exceeds the stable step %g of the fastest level (the whole operator on the clusters, inner RK %s; VSHMMSpectralGetStableTimeStep(), 0.9 of the estimated stability limit %g): the micro steps are likely unstable; use -%sts_vshmm_micro_dt %g or less\n", prefix ? prefix : "", (double)mdt, (double)h, rk, (double)(h / 0.9), prefix ? prefix : "", (double)h));
     PetscFunctionReturn(0);
   }
-  if (PetscIsInfReal(h)) PetscFunctionReturn(0); /* no eigenvalue limits it: adapt chooses */
+  if (h >= PETSC_INFINITY) PetscFunctionReturn(0); /* no eigenvalue limits it (PETSC_INFINITY, a finite number): adapt chooses */
   PetscCall(PetscStrcmp(rk, TSRK3, &rk3));
   if (rk3) h3 = h; /* the same estimate */
   else PetscCall(VSHMMSpectralGetStableTimeStep(run->sp, TSRK3, &h3));
@@ -470,7 +470,7 @@ static PetscErrorCode SetDefaultSteps(SpectralRun *run, TS ts)
   if (isrk) PetscCall(TSRKGetType(ts, &rk));
   if (iseuler) rk = TSRK1FE;
   PetscCall(VSHMMSpectralGetStableTimeStep(run->sp, rk, &h));
-  if (PetscIsInfReal(h)) PetscFunctionReturn(0); /* no eigenvalue limits it: keep tfinal / 100 */
+  if (h >= PETSC_INFINITY) PetscFunctionReturn(0); /* no eigenvalue limits it (PETSC_INFINITY, a finite number): keep the TS's step */
   PetscCall(TSSetTimeStep(ts, h));
   run->recheck    = PETSC_TRUE;
   run->recheck_rk = rk;

@@ -11,6 +11,8 @@
 #include <memory>
 #include <sstream>
 
+static constexpr double kNegativeDiffusionTolerance = 1e-12; /* d below -this times max |d| is negative (rounding of a field that touches 0 is not) */
+
 static spc::Planner CorePlanner(VSHMMSpectralPlanner p)
 {
   return p == VSHMMSPECTRAL_PLANNER_ESTIMATE ? spc::Planner::Estimate : p == VSHMMSPECTRAL_PLANNER_PATIENT ? spc::Planner::Patient : spc::Planner::Measure;
@@ -24,8 +26,20 @@ PetscErrorCode VSHMMSpectralBuildCoefficients_Private(VSHMMSpectral sp, std::vec
   D.clear();
   A.clear();
   for (const std::string &t : s->terms) {
-    if (t == "diffusion") PetscCall(VSHMMSpectralSampleField_Private(sp, "diffusion_coefficient", s->diff, D));
-    else if (t == "advection") {
+    if (t == "diffusion") {
+      PetscCall(VSHMMSpectralSampleField_Private(sp, "diffusion_coefficient", s->diff, D));
+      /* d < 0 somewhere is backward diffusion there: an ill-posed problem whose modes grow the
+         faster the higher they are (no time step resolves them; the stable-step estimate found no
+         limit and the solve took one step over the whole interval, silently) */
+      double dmax = 0;
+      size_t at   = 0;
+      for (size_t i = 0; i < D.size(); ++i) {
+        dmax = std::max(dmax, std::fabs(D[i]));
+        if (D[i] < D[at]) at = i;
+      }
+      PetscCheck(D.empty() || D[at] >= -kNegativeDiffusionTolerance * dmax, PetscObjectComm((PetscObject)sp), PETSC_ERR_ARG_OUTOFRANGE, "-%sspectral_diffusion_coefficient: the diffusion coefficient is negative: d = %g at x = %g (its smallest value on the grid); the term u_t += (d u_x)_x needs d >= 0 everywhere (a negative d is backward diffusion, an ill-posed problem)", VSHMMSpectralPrefix(sp), D[at],
+                 2 * PETSC_PI * (double)at / (double)D.size());
+    } else if (t == "advection") {
       PetscCall(VSHMMSpectralSampleField_Private(sp, "velocity", s->vel, A));
       for (double &a : A) a = -a;
     }
