@@ -109,6 +109,47 @@ static constexpr PetscReal kMinGlobalScale  = 1e-3; /* a step's share shrinks by
 
 const char *const TSVSHMMSeparationChecks[] = {"off", "warn", "error", "TSVSHMMSeparationCheck", "TSVSHMM_SEPARATION_", nullptr};
 
+/* The observables of X at t: the user's function, and on several ranks a check that it is
+   collective (every rank the same values): a function that returns each rank's local part
+   (forgetting the reduction) made the ranks take different decisions and the solve hang. Rank 0's
+   values are then given to all, so that rounding differences of the user's reductions cannot part
+   the ranks either. */
+PetscErrorCode TSVSHMMObservables_Private(TS ts, PetscReal t, Vec X, PetscReal q[])
+{
+  TS_VSHMM   *vs   = (TS_VSHMM *)ts->data;
+  MPI_Comm    comm = PetscObjectComm((PetscObject)ts);
+  PetscMPIInt size;
+  const auto  n = (size_t)vs->nobservables;
+
+  PetscFunctionBegin;
+  PetscCall(vs->observables(ts, t, X, q, vs->observables_ctx));
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  if (size == 1) PetscFunctionReturn(0);
+  std::vector<PetscReal> range(2 * n + 2); /* max over the ranks of q_i, of -q_i, of "not finite" and of its negation */
+  bool                   nonfinite = false;
+  for (size_t i = 0; i < n; ++i) {
+    const bool finite = std::isfinite(q[i]);
+    range[i]          = finite ? q[i] : -PETSC_MAX_REAL;
+    range[n + i]      = finite ? -q[i] : -PETSC_MAX_REAL;
+    nonfinite |= !finite;
+  }
+  range[2 * n]     = nonfinite ? 1 : 0;
+  range[2 * n + 1] = nonfinite ? 0 : -1;
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, range.data(), (PetscMPIInt)range.size(), MPIU_REAL, MPIU_MAX, comm));
+  const bool some = range[2 * n] > 0, all = range[2 * n + 1] == 0;
+  PetscCheck(some == all, comm, PETSC_ERR_ARG_WRONG, "TSVSHMMSetObservables(): the observables function gave Inf or NaN on some ranks and finite values on others at t = %g: it is collective and must return the same values on every rank", (double)t);
+  for (size_t i = 0; i < n && !some; ++i) {
+    const PetscReal hi = range[i], lo = -range[n + i];
+    PetscCheck(hi - lo <= kObservablesAgreement * PetscMax(PetscAbsReal(hi), PetscAbsReal(lo)), comm, PETSC_ERR_ARG_WRONG,
+               "TSVSHMMSetObservables(): the observables function gave different values on different ranks at t = %g: observable %d (of %d) from %g to %g. It is collective and must return the same values on every rank: reduce the ranks' "
+               "contributions "
+               "(MPI_Allreduce(), or VecSum(), VecDot(), VecNorm(), which do); otherwise the ranks take different decisions",
+               (double)t, (int)i, (int)n, (double)lo, (double)hi);
+  }
+  PetscCallMPI(MPI_Bcast(q, (PetscMPIInt)n, MPIU_REAL, 0, comm));
+  PetscFunctionReturn(0);
+}
+
 /* The difference of the observables (or of the states) of Xa and Xb in the TS's weighted norm.
    record: it is a comparison's, and its signs (vs->obs_diff) and which part led (vs->slow_last,
    vs->slow_led) are kept for the step; PETSC_FALSE for measures that are no comparison (the
@@ -132,8 +173,8 @@ static PetscErrorCode ObservableDifference(TS ts, PetscReal t, Vec Xa, Vec Xb, P
   }
   vs->obs_a.assign(vs->nobservables, 0.0);
   vs->obs_b.assign(vs->nobservables, 0.0);
-  PetscCall(vs->observables(ts, t, Xa, vs->obs_a.data(), vs->observables_ctx));
-  PetscCall(vs->observables(ts, t, Xb, vs->obs_b.data(), vs->observables_ctx));
+  PetscCall(TSVSHMMObservables_Private(ts, t, Xa, vs->obs_a.data()));
+  PetscCall(TSVSHMMObservables_Private(ts, t, Xb, vs->obs_b.data()));
   PetscReal sum = 0;
   if (record) vs->obs_diff.assign(vs->nobservables, 0.0);
   for (PetscInt i = 0; i < vs->nobservables; ++i) {
@@ -1379,7 +1420,7 @@ PetscErrorCode TSVSHMMAdaptSetUp_Private(TS ts)
   PetscCheck(ts->rtol > 0 || ts->atol > 0, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "-ts_vshmm_adapt needs a positive tolerance: -ts_rtol and -ts_atol (TSSetTolerances()) are both 0");
   if (vs->observables) { /* at the initial state: a function that returns NaN (an entry of q[] not set) would make every estimate infinite */
     std::vector<PetscReal> q0(vs->nobservables, 0.0);
-    PetscCall(vs->observables(ts, ts->ptime, ts->vec_sol, q0.data(), vs->observables_ctx));
+    PetscCall(TSVSHMMObservables_Private(ts, ts->ptime, ts->vec_sol, q0.data()));
     for (PetscInt i = 0; i < vs->nobservables; ++i)
       PetscCheck(std::isfinite(q0[i]), PetscObjectComm((PetscObject)ts), PETSC_ERR_FP, "TSVSHMMSetObservables(): observable %" PetscInt_FMT " (of %" PetscInt_FMT ") is %g at the initial state (t = %g): the observables function must set q[0..%" PetscInt_FMT "] to finite values", i, vs->nobservables, (double)q0[i],
                  (double)ts->ptime, vs->nobservables - 1);

@@ -651,7 +651,7 @@ PetscErrorCode TSVSHMMGetAdapt(TS ts, PetscBool *flg)
    Input Parameters:
 +  ts  - the `TS` (of any type; see the notes)
 .  n   - the number of quantities (at least 1)
-.  f   - the function that computes them: f(ts, t, X, q, ctx) fills q[0..n-1] from the state X at time t; it must give the same values on every rank (it is collective)
+.  f   - the function that computes them: f(ts, t, X, q, ctx) fills q[0..n-1] from the state X at time t; it must give the same values on every rank (it is collective; on several ranks TSVSHMM checks this at every call and stops with an error where they differ)
 -  ctx - its context (may be NULL)
 
    Notes:

@@ -217,6 +217,7 @@ static inline bool TSVSHMMSavingsAdmitted_Private(const TS_VSHMM *vs)
 
 static constexpr PetscInt  kDefaultMicroStepsPerMacroStep = 100;
 static constexpr PetscReal kMinMicroStepFraction          = 1e-13; /* dt / DeltaT below this cannot advance time */
+static constexpr PetscReal kObservablesAgreement          = 1e-10; /* the observables' spread over the ranks, relative to their size, above which they disagree */
 static constexpr PetscReal kSplitsSumTolerance            = 1e-10; /* the splits' sum against the RHS function, relative to the largest output (TSVSHMMCheckSplitsSum_Private()) */
 
 /* vshmm.cpp: the type */
@@ -265,6 +266,7 @@ PETSC_INTERN PetscErrorCode TSVSHMMLevelRadius_Private(TS, PetscInt, PetscReal *
 PETSC_INTERN PetscErrorCode TSVSHMMAdaptCheckSeparation_Private(TS);
 PETSC_INTERN PetscErrorCode TSVSHMMAdaptCheckCost_Private(TS); /* at a solve's last macro step: more work than single-rate steps? */
 PETSC_INTERN PetscErrorCode TSVSHMMAdaptStep_Private(TS, PetscReal, PetscReal);
+PETSC_INTERN PetscErrorCode TSVSHMMObservables_Private(TS, PetscReal, Vec, PetscReal[]); /* the user's observables, checked to agree on every rank */
 PETSC_INTERN PetscErrorCode TSVSHMMAdaptSetUp_Private(TS);
 PETSC_INTERN PetscErrorCode TSVSHMMAdaptReset_Private(TS);
 PETSC_INTERN PetscReal      TSVSHMMAmplitudeSpan_Private(TS);

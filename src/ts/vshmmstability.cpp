@@ -1171,11 +1171,11 @@ PetscErrorCode TSVSHMMFastQuantities_Private(TS ts, PetscReal t, Vec X, PetscRea
       std::vector<double> q0(n), qp(n), qm(n);
       const PetscReal     delta = kDifferenceStep * (1 + xmax) / fmax;
       if (!Xp) PetscCall(VecDuplicate(X, &Xp));
-      PetscCall(vs->observables(ts, t, X, q0.data(), vs->observables_ctx));
+      PetscCall(TSVSHMMObservables_Private(ts, t, X, q0.data()));
       PetscCall(VecWAXPY(Xp, delta, F, X));
-      PetscCall(vs->observables(ts, t, Xp, qp.data(), vs->observables_ctx));
+      PetscCall(TSVSHMMObservables_Private(ts, t, Xp, qp.data()));
       PetscCall(VecWAXPY(Xp, -delta, F, X));
-      PetscCall(vs->observables(ts, t, Xp, qm.data(), vs->observables_ctx));
+      PetscCall(TSVSHMMObservables_Private(ts, t, Xp, qm.data()));
       d.resize(n);
       w.resize(n);
       for (PetscInt i = 0; i < n; ++i) {

@@ -474,6 +474,59 @@ TEST(VSHMMSolver, SplitsThatDoNotAddUpToTheRHSFunctionAreSaid)
   }
 }
 
+// An observables function that is not collective (each rank returns its own value, as a program
+// that forgets to reduce its local sums): under -ts_vshmm_adapt the ranks took different decisions
+// and the solve hung. Now an error at set-up naming the observable and the spread, on every rank;
+// on one rank there is nothing to disagree and the run ends. A collective function runs as before.
+static PetscErrorCode RankDependentObservable(TS ts, PetscReal, Vec X, PetscReal q[], void *)
+{
+  PetscMPIInt rank;
+  PetscReal   norm;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(PetscObjectComm((PetscObject)ts), &rank));
+  PetscCall(VecNorm(X, NORM_2, &norm)); /* collective */
+  q[0] = norm;
+  q[1] = norm + rank; /* not */
+  PetscFunctionReturn(0);
+}
+static PetscErrorCode CollectiveObservable(TS ts, PetscReal t, Vec X, PetscReal q[], void *ctx)
+{
+  PetscFunctionBeginUser;
+  PetscCall(RankDependentObservable(ts, t, X, q, ctx));
+  q[1] = 2 * q[0];
+  PetscFunctionReturn(0);
+}
+
+TEST(VSHMMSolver, ObservablesThatDifferBetweenRanksAreAnError)
+{
+  PetscMPIInt size;
+  MPI_Comm_size(PETSC_COMM_WORLD, &size);
+  for (const bool collective : {false, true}) {
+    DissipativeParams params;
+    SplitProblem      p;
+    TS                ts;
+    Vec               x;
+    DissipativeProblem(&p, &params);
+    ASSERT_EQ(CreateSplitTS(PETSC_COMM_WORLD, &p, SplitKind::Component, {5, -10, 5}, {"slow", "medium", "fast"}, &ts, &x), 0);
+    const CapturedError e = CaptureError([&]() -> PetscErrorCode {
+      PetscFunctionBeginUser;
+      PetscCall(TSSetTimeStep(ts, 0.1));
+      PetscCall(TSSetMaxTime(ts, 0.2));
+      PetscCall(TSVSHMMSetAdapt(ts, PETSC_TRUE));
+      PetscCall(TSSetTolerances(ts, 1e-2, nullptr, 1e-2, nullptr));
+      PetscCall(TSVSHMMSetObservables(ts, 2, collective ? CollectiveObservable : RankDependentObservable, nullptr));
+      PetscCall(TSSolve(ts, x));
+      PetscFunctionReturn(0);
+    });
+    if (size > 1 && !collective) {
+      EXPECT_EQ(e.code, PETSC_ERR_ARG_WRONG) << e.message;
+      EXPECT_NE(e.message.find("TSVSHMMSetObservables(): the observables function gave different values on different ranks at t = 0.: observable 1 (of 2) from "), std::string::npos) << e.message;
+    } else EXPECT_EQ(e.code, 0) << e.message;
+    ASSERT_EQ(DestroySplitTS(&p, &ts, &x), 0);
+  }
+}
+
 TEST(VSHMMStabilityCheck, PaperParametersPassAtEveryMacroStep)
 {
   // The peak mesoscopic steps of level 1 exceed RK4's limit for a while (t = 0.1 to 0.5, where the
