@@ -163,7 +163,7 @@ PetscErrorCode VSHMMSpectralCreate(MPI_Comm comm, VSHMMSpectral *sp)
   VSHMMSpectral s;
 
   PetscFunctionBegin;
-  PetscValidPointer(sp, 2);
+  VSHMMValidPointer(sp, 2);
   *sp = nullptr;
   PetscCall(VSHMMSpectralInitializePackage());
   PetscCall(PetscHeaderCreate(s, VSHMMSPECTRAL_CLASSID, "VSHMMSpectral", "Sparse spectral scene", "TS", comm, VSHMMSpectralDestroy, VSHMMSpectralView));
@@ -190,7 +190,7 @@ PetscErrorCode VSHMMSpectralDestroy(VSHMMSpectral *sp)
 {
   PetscFunctionBegin;
   if (!*sp) PetscFunctionReturn(0);
-  PetscValidHeaderSpecific(*sp, VSHMMSPECTRAL_CLASSID, 1);
+  VSHMMValidHeaderSpecific(*sp, VSHMMSPECTRAL_CLASSID, 1);
   if (--((PetscObject)(*sp))->refct > 0) {
     *sp = nullptr;
     PetscFunctionReturn(0);
@@ -225,7 +225,7 @@ PetscErrorCode VSHMMSpectralSetDefaultScene(VSHMMSpectral sp, const char scene[]
   VSHMMSpectral_Data *s;
 
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
+  VSHMMValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
   s                      = sp->data;
   const std::string name = scene ? scene : "";
   if (name == "diffusion") {
@@ -261,7 +261,7 @@ PetscErrorCode VSHMMSpectralSetDefaultScene(VSHMMSpectral sp, const char scene[]
 PetscErrorCode VSHMMSpectralSetOptionsPrefix(VSHMMSpectral sp, const char prefix[])
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
+  VSHMMValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
   PetscCall(PetscObjectSetOptionsPrefix((PetscObject)sp, prefix));
   PetscFunctionReturn(0);
 }
@@ -284,7 +284,7 @@ PetscErrorCode VSHMMSpectralSetOptionsPrefix(VSHMMSpectral sp, const char prefix
 PetscErrorCode VSHMMSpectralGetOptionsPrefix(VSHMMSpectral sp, const char *prefix[])
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
+  VSHMMValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
   PetscCall(PetscObjectGetOptionsPrefix((PetscObject)sp, prefix));
   PetscFunctionReturn(0);
 }
@@ -309,7 +309,7 @@ PetscErrorCode VSHMMSpectralGetOptionsPrefix(VSHMMSpectral sp, const char *prefi
 PetscErrorCode VSHMMSpectralGetSizes(VSHMMSpectral sp, PetscInt *N, PetscInt *ncoef, PetscInt *nclusters)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
+  VSHMMValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
   PetscCall(VSHMMSpectralSetUp(sp));
   if (N) *N = sp->data->N;
   if (ncoef) *ncoef = sp->data->layout->size();
@@ -341,7 +341,7 @@ PetscErrorCode VSHMMSpectralGetCluster(VSHMMSpectral sp, PetscInt j, PetscInt *n
   VSHMMSpectral_Data *s;
 
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
+  VSHMMValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
   PetscCall(VSHMMSpectralSetUp(sp));
   s = sp->data;
   PetscCheck(j >= 0 && j < (PetscInt)s->cluster_modes.size(), PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "Cluster %" PetscInt_FMT " does not exist", j);
@@ -380,7 +380,7 @@ PetscErrorCode VSHMMSpectralGetCluster(VSHMMSpectral sp, PetscInt j, PetscInt *n
 PetscErrorCode VSHMMSpectralGetScaleSeparations(VSHMMSpectral sp, PetscInt *n, const PetscReal *S[])
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
+  VSHMMValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
   PetscCall(VSHMMSpectralSetUp(sp));
   if (n) *n = (PetscInt)sp->data->separations.size();
   if (S) *S = sp->data->separations.empty() ? nullptr : sp->data->separations.data();
@@ -407,7 +407,7 @@ PetscErrorCode VSHMMSpectralGetScaleSeparations(VSHMMSpectral sp, PetscInt *n, c
 PetscErrorCode VSHMMSpectralGetModes(VSHMMSpectral sp, PetscInt *nmodes, const PetscInt *modes[])
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
+  VSHMMValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
   PetscCall(VSHMMSpectralSetUp(sp));
   if (nmodes) *nmodes = (PetscInt)sp->data->modes.size();
   if (modes) *modes = sp->data->modes.data();
@@ -436,7 +436,7 @@ PetscErrorCode VSHMMSpectralReadGridValues(VSHMMSpectral sp, const char file[], 
   std::vector<double> v;
 
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
+  VSHMMValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
   PetscCall(VSHMMSpectralReadGridFile_Private(PetscObjectComm((PetscObject)sp), file, v));
   PetscCheck((PetscInt)v.size() == sp->data->N, PetscObjectComm((PetscObject)sp), PETSC_ERR_ARG_SIZ, "Grid file '%s' has %d values, the grid has N = %" PetscInt_FMT, file, (int)v.size(), sp->data->N);
   for (size_t j = 0; j < v.size(); ++j) u[j] = v[j];
@@ -461,8 +461,8 @@ PetscErrorCode VSHMMSpectralReadGridValues(VSHMMSpectral sp, const char file[], 
 PetscErrorCode VSHMMSpectralGetStatistics(VSHMMSpectral sp, VSHMMSpectralStatistics *stats)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
-  PetscValidPointer(stats, 2);
+  VSHMMValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
+  VSHMMValidPointer(stats, 2);
   *stats = sp->data->stats;
   PetscFunctionReturn(0);
 }

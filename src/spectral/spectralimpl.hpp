@@ -16,6 +16,7 @@
 
 #include <petscvshmmspectral.h>
 #include <petsc/private/petscimpl.h>
+#include "vshmmvalid.hpp"
 
 #include "detect.hpp"
 #include "spectral.hpp"

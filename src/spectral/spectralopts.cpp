@@ -291,7 +291,7 @@ PetscErrorCode VSHMMSpectralSetFromOptions(VSHMMSpectral sp)
   PetscBool           set;
 
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
+  VSHMMValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
   s = sp->data;
   PetscObjectOptionsBegin((PetscObject)sp);
   PetscCall(OptionsInt(PetscOptionsObject, sp, "-spectral_grid_points", "grid points N (at least 4)", &s->N));

@@ -41,8 +41,8 @@ PetscErrorCode VSHMMSpectralCreateVec(VSHMMSpectral sp, Vec *U)
   PetscMPIInt         size;
 
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
-  PetscValidPointer(U, 2);
+  VSHMMValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
+  VSHMMValidPointer(U, 2);
   PetscCall(VSHMMSpectralSetUp(sp));
   s = sp->data;
   PetscCall(VecCreate(PetscObjectComm((PetscObject)sp), U));
@@ -77,8 +77,8 @@ PetscErrorCode VSHMMSpectralSetInitialCondition(VSHMMSpectral sp, Vec U)
   PetscScalar        *x;
 
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
-  PetscValidHeaderSpecific(U, VEC_CLASSID, 2);
+  VSHMMValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
+  VSHMMValidHeaderSpecific(U, VEC_CLASSID, 2);
   PetscCall(VSHMMSpectralSetUp(sp));
   PetscCall(VSHMMSpectralSampleField_Private(sp, "u0", sp->data->u0, u));
   c.resize(sp->data->layout->size());
@@ -137,8 +137,8 @@ PetscErrorCode VSHMMSpectralGetGridValues(VSHMMSpectral sp, Vec U, PetscReal u[]
   const PetscScalar *c;
 
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
-  PetscValidHeaderSpecific(U, VEC_CLASSID, 2);
+  VSHMMValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
+  VSHMMValidHeaderSpecific(U, VEC_CLASSID, 2);
   PetscCall(VSHMMSpectralSetUp(sp));
   PetscCall(VSHMMSpectralGetCoefficients_Private(sp, U, &c));
   sp->data->op->synthesize(c, u);
@@ -170,8 +170,8 @@ PetscErrorCode VSHMMSpectralGetModeMagnitudes(VSHMMSpectral sp, Vec U, PetscReal
   const spc::Layout *l;
 
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
-  PetscValidHeaderSpecific(U, VEC_CLASSID, 2);
+  VSHMMValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
+  VSHMMValidHeaderSpecific(U, VEC_CLASSID, 2);
   PetscCall(VSHMMSpectralSetUp(sp));
   l = sp->data->layout.get();
   PetscCall(VSHMMSpectralGetCoefficients_Private(sp, U, &c));
@@ -279,7 +279,7 @@ PetscErrorCode VSHMMSpectralRHSFunction(TS ts, PetscReal t, Vec U, Vec F, void *
 
   PetscFunctionBegin;
   (void)ts;
-  PetscValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 5);
+  VSHMMValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 5);
   s = sp->data;
   PetscCall(PetscLogEventBegin(VSHMMSPECTRAL_RHS, sp, 0, 0, 0));
   s->stats.rhs_calls++;
@@ -367,8 +367,8 @@ PetscErrorCode VSHMMSpectralSetUpTS(VSHMMSpectral sp, TS ts)
   PetscInt            lo, hi;
 
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
-  PetscValidHeaderSpecific(ts, TS_CLASSID, 2);
+  VSHMMValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
+  VSHMMValidHeaderSpecific(ts, TS_CLASSID, 2);
   PetscCall(VSHMMSpectralSetUp(sp));
   s = sp->data;
   PetscCall(TSSetRHSFunction(ts, NULL, VSHMMSpectralRHSFunction, sp));

@@ -536,7 +536,7 @@ static PetscErrorCode DetectionSnapshots(VSHMMSpectral sp, const std::vector<dou
 PetscErrorCode VSHMMSpectralSetClusterTolerance(VSHMMSpectral sp, PetscReal tol)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
+  VSHMMValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
   PetscCheck(std::isfinite(tol) && tol >= 0, PetscObjectComm((PetscObject)sp), PETSC_ERR_ARG_OUTOFRANGE, "The cluster tolerance (-%sspectral_cluster_tolerance) must be finite and nonnegative, got %g", VSHMMSpectralPrefix(sp), (double)tol);
   sp->data->cluster_tol = tol;
   sp->setupcalled       = PETSC_FALSE;
@@ -571,7 +571,7 @@ PetscErrorCode VSHMMSpectralSetClusterTolerance(VSHMMSpectral sp, PetscReal tol)
 PetscErrorCode VSHMMSpectralSetClusterThreshold(VSHMMSpectral sp, PetscReal lambda)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
+  VSHMMValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
   PetscCheck(std::isfinite(lambda), PetscObjectComm((PetscObject)sp), PETSC_ERR_ARG_OUTOFRANGE, "-%sspectral_cluster_lambda must be finite (negative: the normalisation's default), got %g", VSHMMSpectralPrefix(sp), (double)lambda);
   sp->data->lambda = lambda;
   sp->setupcalled  = PETSC_FALSE;
@@ -697,7 +697,7 @@ PetscErrorCode VSHMMSpectralSetUp(VSHMMSpectral sp)
   spc::ExtraTerms     extra;
 
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
+  VSHMMValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
   if (sp->setupcalled) PetscFunctionReturn(0);
   s    = sp->data;
   comm = PetscObjectComm((PetscObject)sp);

@@ -156,9 +156,9 @@ PetscErrorCode VSHMMSpectralStableStepOf_Private(MPI_Comm comm, const std::vecto
 PetscErrorCode VSHMMSpectralGetStableTimeStep(VSHMMSpectral sp, TSRKType type, PetscReal *dt)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
-  PetscValidCharPointer(type, 2);
-  PetscValidRealPointer(dt, 3);
+  VSHMMValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
+  VSHMMValidPointer(type, 2);
+  VSHMMValidPointer(dt, 3);
   PetscCall(OperatorRitzValues(sp));
   PetscCall(VSHMMSpectralStableStepOf_Private(PetscObjectComm((PetscObject)sp), sp->data->ritz, type, dt));
   double radius = 0;
@@ -212,10 +212,10 @@ PetscErrorCode VSHMMSpectralGetStableTimeStepAt(VSHMMSpectral sp, Vec U, TSRKTyp
   std::vector<std::complex<double>> ritz;
 
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
-  PetscValidHeaderSpecific(U, VEC_CLASSID, 2);
-  PetscValidCharPointer(type, 3);
-  PetscValidRealPointer(dt, 4);
+  VSHMMValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
+  VSHMMValidHeaderSpecific(U, VEC_CLASSID, 2);
+  VSHMMValidPointer(type, 3);
+  VSHMMValidPointer(dt, 4);
   PetscCall(VSHMMSpectralSetUp(sp));
   s = sp->data;
   if (!SceneIsNonlinear(s)) {
@@ -257,7 +257,7 @@ PetscErrorCode VSHMMSpectralGetStableTimeStepAt(VSHMMSpectral sp, Vec U, TSRKTyp
 PetscErrorCode VSHMMSpectralGetSpectralRadius(VSHMMSpectral sp, PetscReal *radius, PetscReal *bound)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
+  VSHMMValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
   PetscCall(OperatorRitzValues(sp));
   if (radius) {
     *radius = 0;
@@ -370,7 +370,7 @@ PetscErrorCode VSHMMSpectralGrowthMonitor(TS ts, PetscInt step, PetscReal t, Vec
   PetscReal           norm, maxu = 0;
 
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 5);
+  VSHMMValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 5);
   s = sp->data;
   if (s->growth_factor <= 0) PetscFunctionReturn(0);
   if (s->growth_started && t >= s->growth.time() && step % kGrowthInterval) { /* checked every few steps, and at the end of a solve */
@@ -422,7 +422,7 @@ PetscErrorCode VSHMMSpectralGrowthMonitor(TS ts, PetscInt step, PetscReal t, Vec
 PetscErrorCode VSHMMSpectralSetGrowthBound(VSHMMSpectral sp, PetscReal factor)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
+  VSHMMValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
   PetscCheck(std::isfinite(factor) && (factor == 0 || factor >= 1), PetscObjectComm((PetscObject)sp), PETSC_ERR_ARG_OUTOFRANGE, "The growth bound factor (-%sspectral_growth_bound) must be 0 (no check) or a finite factor >= 1, got %g", VSHMMSpectralPrefix(sp), (double)factor);
   sp->data->growth_factor = factor;
   PetscFunctionReturn(0);

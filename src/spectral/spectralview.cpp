@@ -84,9 +84,9 @@ PetscErrorCode VSHMMSpectralView(VSHMMSpectral sp, PetscViewer viewer)
   PetscBool isascii, isstring;
 
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
+  VSHMMValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
   if (!viewer) PetscCall(PetscViewerASCIIGetStdout(PetscObjectComm((PetscObject)sp), &viewer));
-  PetscValidHeaderSpecific(viewer, PETSC_VIEWER_CLASSID, 2);
+  VSHMMValidHeaderSpecific(viewer, PETSC_VIEWER_CLASSID, 2);
   PetscCheckSameComm(sp, 1, viewer, 2);
   PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &isascii));
   PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERSTRING, &isstring));
@@ -115,7 +115,7 @@ PetscErrorCode VSHMMSpectralView(VSHMMSpectral sp, PetscViewer viewer)
 PetscErrorCode VSHMMSpectralViewFromOptions(VSHMMSpectral sp, PetscObject obj, const char name[])
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
+  VSHMMValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
   PetscCall(PetscObjectViewFromOptions((PetscObject)sp, obj, name));
   PetscFunctionReturn(0);
 }

@@ -29,7 +29,7 @@
 PetscErrorCode TSVSHMMSetMicroStep(TS ts, PetscReal dt)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  VSHMMValidHeaderSpecific(ts, TS_CLASSID, 1);
   PetscValidLogicalCollectiveReal(ts, dt, 2);
   PetscCheck(std::isfinite(dt) && dt > 0, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "Micro step %g is invalid: -ts_vshmm_micro_dt must be positive and finite", (double)dt);
   PetscTryMethod(ts, "TSVSHMMSetMicroStep_C", (TS, PetscReal), (ts, dt));
@@ -54,8 +54,8 @@ PetscErrorCode TSVSHMMSetMicroStep(TS ts, PetscReal dt)
 PetscErrorCode TSVSHMMGetMicroStep(TS ts, PetscReal *dt)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
-  PetscValidRealPointer(dt, 2);
+  VSHMMValidHeaderSpecific(ts, TS_CLASSID, 1);
+  VSHMMValidPointer(dt, 2);
   PetscUseMethod(ts, "TSVSHMMGetMicroStep_C", (TS, PetscReal *), (ts, dt));
   PetscFunctionReturn(0);
 }
@@ -88,10 +88,10 @@ PetscErrorCode TSVSHMMSetSavingsFactors(TS ts, PetscInt n, const PetscReal alpha
   MPI_Comm comm;
 
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  VSHMMValidHeaderSpecific(ts, TS_CLASSID, 1);
   comm = PetscObjectComm((PetscObject)ts);
   PetscCheck(n >= 1, comm, PETSC_ERR_ARG_SIZ, "-ts_vshmm_savings_factors needs at least one value (one per RHS split except the fastest), got %" PetscInt_FMT, n);
-  PetscValidRealPointer(alpha, 3);
+  VSHMMValidPointer(alpha, 3);
   for (PetscInt i = 0; i < n; ++i) PetscCheck(std::isfinite(alpha[i]) && alpha[i] > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Savings factor %" PetscInt_FMT " is %g: -ts_vshmm_savings_factors values must be positive and finite", i + 1, (double)alpha[i]);
   PetscTryMethod(ts, "TSVSHMMSetSavingsFactors_C", (TS, PetscInt, const PetscReal[]), (ts, n, alpha));
   PetscFunctionReturn(0);
@@ -116,7 +116,7 @@ PetscErrorCode TSVSHMMSetSavingsFactors(TS ts, PetscInt n, const PetscReal alpha
 PetscErrorCode TSVSHMMGetSavingsFactors(TS ts, PetscInt *n, const PetscReal *alpha[])
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  VSHMMValidHeaderSpecific(ts, TS_CLASSID, 1);
   PetscUseMethod(ts, "TSVSHMMGetSavingsFactors_C", (TS, PetscInt *, const PetscReal *[]), (ts, n, alpha));
   PetscFunctionReturn(0);
 }
@@ -147,10 +147,10 @@ PetscErrorCode TSVSHMMSetSubintervals(TS ts, PetscInt n, const PetscInt m[])
   MPI_Comm comm;
 
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  VSHMMValidHeaderSpecific(ts, TS_CLASSID, 1);
   comm = PetscObjectComm((PetscObject)ts);
   PetscCheck(n >= 1, comm, PETSC_ERR_ARG_SIZ, "-ts_vshmm_subintervals needs at least one value (one per RHS split except the fastest), got %" PetscInt_FMT, n);
-  PetscValidIntPointer(m, 3);
+  VSHMMValidPointer(m, 3);
   for (PetscInt i = 0; i < n; ++i) PetscCheck(m[i] >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "Subinterval count %" PetscInt_FMT " is %" PetscInt_FMT ": -ts_vshmm_subintervals values must be integers >= 1", i + 1, m[i]);
   PetscTryMethod(ts, "TSVSHMMSetSubintervals_C", (TS, PetscInt, const PetscInt[]), (ts, n, m));
   PetscFunctionReturn(0);
@@ -175,7 +175,7 @@ PetscErrorCode TSVSHMMSetSubintervals(TS ts, PetscInt n, const PetscInt m[])
 PetscErrorCode TSVSHMMGetSubintervals(TS ts, PetscInt *n, const PetscInt *m[])
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  VSHMMValidHeaderSpecific(ts, TS_CLASSID, 1);
   PetscUseMethod(ts, "TSVSHMMGetSubintervals_C", (TS, PetscInt *, const PetscInt *[]), (ts, n, m));
   PetscFunctionReturn(0);
 }
@@ -203,7 +203,7 @@ PetscErrorCode TSVSHMMGetSubintervals(TS ts, PetscInt *n, const PetscInt *m[])
 PetscErrorCode TSVSHMMSetKernel(TS ts, TSVSHMMKernelType type)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  VSHMMValidHeaderSpecific(ts, TS_CLASSID, 1);
   PetscValidLogicalCollectiveEnum(ts, type, 2);
   PetscCheck(type >= TSVSHMM_KERNEL_COSINE && type <= TSVSHMM_KERNEL_EXPONENTIAL, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "Unknown kernel %d: -ts_vshmm_kernel takes cosine, constant, polynomial or exponential", (int)type);
   PetscTryMethod(ts, "TSVSHMMSetKernel_C", (TS, TSVSHMMKernelType), (ts, type));
@@ -228,8 +228,8 @@ PetscErrorCode TSVSHMMSetKernel(TS ts, TSVSHMMKernelType type)
 PetscErrorCode TSVSHMMGetKernel(TS ts, TSVSHMMKernelType *type)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
-  PetscValidPointer(type, 2);
+  VSHMMValidHeaderSpecific(ts, TS_CLASSID, 1);
+  VSHMMValidPointer(type, 2);
   PetscUseMethod(ts, "TSVSHMMGetKernel_C", (TS, TSVSHMMKernelType *), (ts, type));
   PetscFunctionReturn(0);
 }
@@ -257,7 +257,7 @@ PetscErrorCode TSVSHMMGetKernel(TS ts, TSVSHMMKernelType *type)
 PetscErrorCode TSVSHMMSetKernelOrder(TS ts, PetscInt q)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  VSHMMValidHeaderSpecific(ts, TS_CLASSID, 1);
   PetscValidLogicalCollectiveInt(ts, q, 2);
   PetscCheck(q >= 0 && q <= vshmm::Kernel::kMaxPolynomialOrder, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "Kernel order %" PetscInt_FMT " is out of range: -ts_vshmm_kernel_order takes 0..%d (polynomial kernel)", q, vshmm::Kernel::kMaxPolynomialOrder);
   PetscTryMethod(ts, "TSVSHMMSetKernelOrder_C", (TS, PetscInt), (ts, q));
@@ -282,8 +282,8 @@ PetscErrorCode TSVSHMMSetKernelOrder(TS ts, PetscInt q)
 PetscErrorCode TSVSHMMGetKernelOrder(TS ts, PetscInt *q)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
-  PetscValidIntPointer(q, 2);
+  VSHMMValidHeaderSpecific(ts, TS_CLASSID, 1);
+  VSHMMValidPointer(q, 2);
   PetscUseMethod(ts, "TSVSHMMGetKernelOrder_C", (TS, PetscInt *), (ts, q));
   if (*q == vshmm::Kernel::kInfiniteOrder) *q = PETSC_MAX_INT;
   PetscFunctionReturn(0);
@@ -311,8 +311,8 @@ PetscErrorCode TSVSHMMGetKernelOrder(TS ts, PetscInt *q)
 PetscErrorCode TSVSHMMSetRKType(TS ts, TSRKType type)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
-  PetscValidCharPointer(type, 2);
+  VSHMMValidHeaderSpecific(ts, TS_CLASSID, 1);
+  VSHMMValidPointer(type, 2);
   PetscCheck(type[0], PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_WRONG, "-ts_vshmm_rk_type needs a TSRK type name, e.g. 4");
   PetscTryMethod(ts, "TSVSHMMSetRKType_C", (TS, TSRKType), (ts, type));
   PetscFunctionReturn(0);
@@ -336,8 +336,8 @@ PetscErrorCode TSVSHMMSetRKType(TS ts, TSRKType type)
 PetscErrorCode TSVSHMMGetRKType(TS ts, TSRKType *type)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
-  PetscValidPointer(type, 2);
+  VSHMMValidHeaderSpecific(ts, TS_CLASSID, 1);
+  VSHMMValidPointer(type, 2);
   PetscUseMethod(ts, "TSVSHMMGetRKType_C", (TS, TSRKType *), (ts, type));
   PetscFunctionReturn(0);
 }
@@ -370,10 +370,10 @@ PetscErrorCode TSVSHMMSetSplitOrder(TS ts, PetscInt n, const char *const names[]
   MPI_Comm comm;
 
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  VSHMMValidHeaderSpecific(ts, TS_CLASSID, 1);
   comm = PetscObjectComm((PetscObject)ts);
   PetscCheck(n >= 2, comm, PETSC_ERR_ARG_SIZ, "-ts_vshmm_splits needs at least two scales, slowest first (split names, or groups of them as a+b), got %" PetscInt_FMT, n);
-  PetscValidPointer(names, 3);
+  VSHMMValidPointer(names, 3);
   for (PetscInt i = 0; i < n; ++i) PetscCheck(names[i] && names[i][0], comm, PETSC_ERR_ARG_WRONG, "-ts_vshmm_splits: name %" PetscInt_FMT " is empty", i + 1);
   PetscTryMethod(ts, "TSVSHMMSetSplitOrder_C", (TS, PetscInt, const char *const[]), (ts, n, names));
   PetscFunctionReturn(0);
@@ -398,7 +398,7 @@ PetscErrorCode TSVSHMMSetSplitOrder(TS ts, PetscInt n, const char *const names[]
 PetscErrorCode TSVSHMMGetSplitOrder(TS ts, PetscInt *n, const char *const *names[])
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  VSHMMValidHeaderSpecific(ts, TS_CLASSID, 1);
   PetscUseMethod(ts, "TSVSHMMGetSplitOrder_C", (TS, PetscInt *, const char *const *[]), (ts, n, names));
   PetscFunctionReturn(0);
 }
@@ -435,7 +435,7 @@ PetscErrorCode TSVSHMMGetSplitOrder(TS ts, PetscInt *n, const char *const *names
 PetscErrorCode TSVSHMMSetStabilityCheck(TS ts, PetscBool flg, PetscInt interval)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  VSHMMValidHeaderSpecific(ts, TS_CLASSID, 1);
   PetscValidLogicalCollectiveBool(ts, flg, 2);
   PetscValidLogicalCollectiveInt(ts, interval, 3);
   PetscCheck(interval >= 0, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "Stability check interval %" PetscInt_FMT " is invalid: -ts_vshmm_check_stability_interval takes 0 (never) or a number of macro steps >= 1", interval);
@@ -462,7 +462,7 @@ PetscErrorCode TSVSHMMSetStabilityCheck(TS ts, PetscBool flg, PetscInt interval)
 PetscErrorCode TSVSHMMGetStabilityCheck(TS ts, PetscBool *flg, PetscInt *interval)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  VSHMMValidHeaderSpecific(ts, TS_CLASSID, 1);
   PetscUseMethod(ts, "TSVSHMMGetStabilityCheck_C", (TS, PetscBool *, PetscInt *), (ts, flg, interval));
   PetscFunctionReturn(0);
 }
@@ -490,8 +490,8 @@ PetscErrorCode TSVSHMMGetStabilityCheck(TS ts, PetscBool *flg, PetscInt *interva
 PetscErrorCode TSVSHMMGetStatistics(TS ts, TSVSHMMStatistics *stats)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
-  PetscValidPointer(stats, 2);
+  VSHMMValidHeaderSpecific(ts, TS_CLASSID, 1);
+  VSHMMValidPointer(stats, 2);
   PetscUseMethod(ts, "TSVSHMMGetStatistics_C", (TS, TSVSHMMStatistics *), (ts, stats));
   PetscFunctionReturn(0);
 }
@@ -511,7 +511,7 @@ PetscErrorCode TSVSHMMGetStatistics(TS ts, TSVSHMMStatistics *stats)
 PetscErrorCode TSVSHMMResetStatistics(TS ts)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  VSHMMValidHeaderSpecific(ts, TS_CLASSID, 1);
   PetscTryMethod(ts, "TSVSHMMResetStatistics_C", (TS), (ts));
   PetscFunctionReturn(0);
 }
@@ -549,7 +549,7 @@ PetscErrorCode TSVSHMMResetStatistics(TS ts)
 PetscErrorCode TSVSHMMSetSplitCheck(TS ts, PetscBool flg)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  VSHMMValidHeaderSpecific(ts, TS_CLASSID, 1);
   PetscValidLogicalCollectiveBool(ts, flg, 2);
   PetscTryMethod(ts, "TSVSHMMSetSplitCheck_C", (TS, PetscBool), (ts, flg));
   PetscFunctionReturn(0);
@@ -573,8 +573,8 @@ PetscErrorCode TSVSHMMSetSplitCheck(TS ts, PetscBool flg)
 PetscErrorCode TSVSHMMGetSplitCheck(TS ts, PetscBool *flg)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
-  PetscValidBoolPointer(flg, 2);
+  VSHMMValidHeaderSpecific(ts, TS_CLASSID, 1);
+  VSHMMValidPointer(flg, 2);
   PetscUseMethod(ts, "TSVSHMMGetSplitCheck_C", (TS, PetscBool *), (ts, flg));
   PetscFunctionReturn(0);
 }
@@ -613,7 +613,7 @@ PetscErrorCode TSVSHMMGetSplitCheck(TS ts, PetscBool *flg)
 PetscErrorCode TSVSHMMSetAdapt(TS ts, PetscBool flg)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  VSHMMValidHeaderSpecific(ts, TS_CLASSID, 1);
   PetscValidLogicalCollectiveBool(ts, flg, 2);
   PetscTryMethod(ts, "TSVSHMMSetAdapt_C", (TS, PetscBool), (ts, flg));
   PetscFunctionReturn(0);
@@ -637,8 +637,8 @@ PetscErrorCode TSVSHMMSetAdapt(TS ts, PetscBool flg)
 PetscErrorCode TSVSHMMGetAdapt(TS ts, PetscBool *flg)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
-  PetscValidBoolPointer(flg, 2);
+  VSHMMValidHeaderSpecific(ts, TS_CLASSID, 1);
+  VSHMMValidPointer(flg, 2);
   PetscUseMethod(ts, "TSVSHMMGetAdapt_C", (TS, PetscBool *), (ts, flg));
   PetscFunctionReturn(0);
 }
@@ -675,7 +675,7 @@ PetscErrorCode TSVSHMMGetAdapt(TS ts, PetscBool *flg)
 PetscErrorCode TSVSHMMSetObservables(TS ts, PetscInt n, PetscErrorCode (*f)(TS, PetscReal, Vec, PetscReal[], void *), void *ctx)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  VSHMMValidHeaderSpecific(ts, TS_CLASSID, 1);
   PetscCheck(!f || n >= 1, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "TSVSHMMSetObservables(): the number of observables is %" PetscInt_FMT ": it must be at least 1", n);
   /* kept on the TS whatever its type, for a TSVSHMM it becomes later (TSCreate_VSHMM()) */
   if (f) {
@@ -726,7 +726,7 @@ PetscErrorCode TSVSHMMSetObservables(TS ts, PetscInt n, PetscErrorCode (*f)(TS, 
 PetscErrorCode TSVSHMMSetAdaptSlowComponents(TS ts, PetscBool flg)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  VSHMMValidHeaderSpecific(ts, TS_CLASSID, 1);
   PetscValidLogicalCollectiveBool(ts, flg, 2);
   PetscTryMethod(ts, "TSVSHMMSetAdaptSlowComponents_C", (TS, PetscBool), (ts, flg));
   PetscFunctionReturn(0);
@@ -750,8 +750,8 @@ PetscErrorCode TSVSHMMSetAdaptSlowComponents(TS ts, PetscBool flg)
 PetscErrorCode TSVSHMMGetAdaptSlowComponents(TS ts, PetscBool *flg)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
-  PetscValidBoolPointer(flg, 2);
+  VSHMMValidHeaderSpecific(ts, TS_CLASSID, 1);
+  VSHMMValidPointer(flg, 2);
   PetscUseMethod(ts, "TSVSHMMGetAdaptSlowComponents_C", (TS, PetscBool *), (ts, flg));
   PetscFunctionReturn(0);
 }
@@ -801,7 +801,7 @@ PetscErrorCode TSVSHMMGetAdaptSlowComponents(TS ts, PetscBool *flg)
 PetscErrorCode TSVSHMMSetAdaptGlobalEstimate(TS ts, PetscBool flg)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  VSHMMValidHeaderSpecific(ts, TS_CLASSID, 1);
   PetscValidLogicalCollectiveBool(ts, flg, 2);
   PetscTryMethod(ts, "TSVSHMMSetAdaptGlobalEstimate_C", (TS, PetscBool), (ts, flg));
   PetscFunctionReturn(0);
@@ -825,8 +825,8 @@ PetscErrorCode TSVSHMMSetAdaptGlobalEstimate(TS ts, PetscBool flg)
 PetscErrorCode TSVSHMMGetAdaptGlobalEstimate(TS ts, PetscBool *flg)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
-  PetscValidBoolPointer(flg, 2);
+  VSHMMValidHeaderSpecific(ts, TS_CLASSID, 1);
+  VSHMMValidPointer(flg, 2);
   PetscUseMethod(ts, "TSVSHMMGetAdaptGlobalEstimate_C", (TS, PetscBool *), (ts, flg));
   PetscFunctionReturn(0);
 }
@@ -867,10 +867,10 @@ PetscErrorCode TSVSHMMSetScaleSeparations(TS ts, PetscInt n, const PetscReal S[]
   MPI_Comm comm;
 
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  VSHMMValidHeaderSpecific(ts, TS_CLASSID, 1);
   comm = PetscObjectComm((PetscObject)ts);
   PetscCheck(n >= 1, comm, PETSC_ERR_ARG_SIZ, "-ts_vshmm_scale_separations needs at least one value (one per pair of consecutive scales), got %" PetscInt_FMT, n);
-  PetscValidRealPointer(S, 3);
+  VSHMMValidPointer(S, 3);
   for (PetscInt i = 0; i < n; ++i) PetscCheck(std::isfinite(S[i]) && S[i] > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Scale separation %" PetscInt_FMT " is %g: -ts_vshmm_scale_separations values must be positive and finite", i + 1, (double)S[i]);
   PetscTryMethod(ts, "TSVSHMMSetScaleSeparations_C", (TS, PetscInt, const PetscReal[]), (ts, n, S));
   PetscFunctionReturn(0);
@@ -895,7 +895,7 @@ PetscErrorCode TSVSHMMSetScaleSeparations(TS ts, PetscInt n, const PetscReal S[]
 PetscErrorCode TSVSHMMGetScaleSeparations(TS ts, PetscInt *n, const PetscReal *S[])
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  VSHMMValidHeaderSpecific(ts, TS_CLASSID, 1);
   PetscUseMethod(ts, "TSVSHMMGetScaleSeparations_C", (TS, PetscInt *, const PetscReal *[]), (ts, n, S));
   PetscFunctionReturn(0);
 }
@@ -938,7 +938,7 @@ PetscErrorCode TSVSHMMGetScaleSeparations(TS ts, PetscInt *n, const PetscReal *S
 PetscErrorCode TSVSHMMSetSeparationCheck(TS ts, TSVSHMMSeparationCheck check)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  VSHMMValidHeaderSpecific(ts, TS_CLASSID, 1);
   PetscValidLogicalCollectiveEnum(ts, check, 2);
   PetscCheck(check >= TSVSHMM_SEPARATION_OFF && check <= TSVSHMM_SEPARATION_ERROR, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "-ts_vshmm_check_separation (TSVSHMMSetSeparationCheck()): %d is not one of off, warn, error", (int)check);
   PetscTryMethod(ts, "TSVSHMMSetSeparationCheck_C", (TS, TSVSHMMSeparationCheck), (ts, check));
@@ -963,8 +963,8 @@ PetscErrorCode TSVSHMMSetSeparationCheck(TS ts, TSVSHMMSeparationCheck check)
 PetscErrorCode TSVSHMMGetSeparationCheck(TS ts, TSVSHMMSeparationCheck *check)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
-  PetscValidPointer(check, 2);
+  VSHMMValidHeaderSpecific(ts, TS_CLASSID, 1);
+  VSHMMValidPointer(check, 2);
   PetscUseMethod(ts, "TSVSHMMGetSeparationCheck_C", (TS, TSVSHMMSeparationCheck *), (ts, check));
   PetscFunctionReturn(0);
 }
@@ -1006,9 +1006,9 @@ PetscErrorCode TSVSHMMSetWarningsViewer(TS ts, PetscViewer viewer)
   PetscBool ascii;
 
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  VSHMMValidHeaderSpecific(ts, TS_CLASSID, 1);
   if (viewer) {
-    PetscValidHeaderSpecific(viewer, PETSC_VIEWER_CLASSID, 2);
+    VSHMMValidHeaderSpecific(viewer, PETSC_VIEWER_CLASSID, 2);
     PetscCheckSameComm(ts, 1, viewer, 2);
     PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &ascii));
     PetscCheck(ascii, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_WRONG, "-ts_vshmm_warnings_viewer (TSVSHMMSetWarningsViewer()): the warnings viewer must be an ASCII viewer (stderr, none or ascii:<file>), not %s", ((PetscObject)viewer)->type_name);

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <petscvshmm.h>
+#include "vshmmvalid.hpp"
 #include <petsc/private/tsimpl.h>
 
 #if defined(PETSC_USE_COMPLEX)

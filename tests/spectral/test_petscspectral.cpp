@@ -345,6 +345,26 @@ TEST(VSHMMSpectralObject, IsAPetscObject)
   EXPECT_CONTAINS(s.view(), "scene: N = 32 grid points");
 }
 
+// A NULL argument is an error (PETSC_ERR_ARG_NULL), not a segmentation fault, in an optimised
+// PETSc too (src/common/vshmmvalid.hpp), and so is another object in the place of the scene.
+TEST(VSHMMSpectralObject, NullArgumentsAreErrorsNotCrashes)
+{
+  Scene s("-spectral_grid_points 32");
+  ASSERT_EQ(s.error(), "");
+  Vec       v;
+  PetscReal dt;
+  ASSERT_EQ(VecCreateSeq(PETSC_COMM_SELF, 2, &v), 0);
+  PetscPushErrorHandler(PetscReturnErrorHandler, nullptr);
+  EXPECT_EQ(VSHMMSpectralGetStableTimeStep(s.sp, TSRK3, nullptr), PETSC_ERR_ARG_NULL);
+  EXPECT_EQ(VSHMMSpectralGetStableTimeStep(nullptr, TSRK3, &dt), PETSC_ERR_ARG_NULL);
+  EXPECT_EQ(VSHMMSpectralGetStableTimeStep((VSHMMSpectral)v, TSRK3, &dt), PETSC_ERR_ARG_WRONG);
+  EXPECT_EQ(VSHMMSpectralCreateVec(s.sp, nullptr), PETSC_ERR_ARG_NULL);
+  EXPECT_EQ(VSHMMSpectralGetStatistics(s.sp, nullptr), PETSC_ERR_ARG_NULL);
+  EXPECT_EQ(VSHMMSpectralSetUpTS(s.sp, nullptr), PETSC_ERR_ARG_NULL);
+  PetscPopErrorHandler();
+  ASSERT_EQ(VecDestroy(&v), 0);
+}
+
 // The stable step at a given state: a linear scene's is the initial one at any state; with a
 // cubic reaction -u^3 the Jacobian at a constant state a is -0.5 k^2 - 3 a^2 on mode k (d = 0.5,
 // N = 64), so the spectral radius is 480.5 + 3 a^2: from u0 = 1 to the state 10 u0 the step falls

@@ -950,6 +950,50 @@ TEST(VSHMMBadInput, EachBadSettingIsAClearError)
   EXPECT_EQ(SetUpWith({"-ts_vshmm_micro_dt 3.2e-4 -ts_vshmm_rk_type 5dp", 3, ""}).code, 0);
 }
 
+// A NULL argument is an error (PETSC_ERR_ARG_NULL), not a segmentation fault: PETSc's own argument
+// checks compile to nothing in an optimised PETSc such as Debian's, so every public function checks
+// its pointers itself (src/common/vshmmvalid.hpp), and the TS itself (NULL, or another object).
+// (The getters of arrays take NULL for an output not wanted, as PETSc's do.)
+TEST(VSHMMBadInput, NullArgumentsAreErrorsNotCrashes)
+{
+  TS  ts;
+  Vec v;
+  ASSERT_EQ(TSCreate(PETSC_COMM_WORLD, &ts), 0);
+  ASSERT_EQ(TSSetType(ts, TSVSHMM), 0);
+  ASSERT_EQ(VecCreateMPI(PETSC_COMM_WORLD, PETSC_DECIDE, 2, &v), 0);
+  PetscInt                                                                    n;
+  const PetscReal                                                            *r;
+  const PetscInt                                                             *m;
+  const char *const                                                          *names;
+  PetscReal                                                                   dt;
+  const std::vector<std::pair<const char *, std::function<PetscErrorCode()>>> calls = {
+    {"SetSavingsFactors", [&] { return TSVSHMMSetSavingsFactors(ts, 2, nullptr); }},
+    {"SetSubintervals", [&] { return TSVSHMMSetSubintervals(ts, 2, nullptr); }},
+    {"SetSplitOrder", [&] { return TSVSHMMSetSplitOrder(ts, 2, nullptr); }},
+    {"SetRKType", [&] { return TSVSHMMSetRKType(ts, nullptr); }},
+    {"GetRKType", [&] { return TSVSHMMGetRKType(ts, nullptr); }},
+    {"GetMicroStep", [&] { return TSVSHMMGetMicroStep(ts, nullptr); }},
+    {"GetKernel", [&] { return TSVSHMMGetKernel(ts, nullptr); }},
+    {"GetKernelOrder", [&] { return TSVSHMMGetKernelOrder(ts, nullptr); }},
+    {"GetStatistics", [&] { return TSVSHMMGetStatistics(ts, nullptr); }},
+    {"GetAdapt", [&] { return TSVSHMMGetAdapt(ts, nullptr); }},
+    {"GetSplitCheck", [&] { return TSVSHMMGetSplitCheck(ts, nullptr); }},
+    {"SetScaleSeparations", [&] { return TSVSHMMSetScaleSeparations(ts, 1, nullptr); }},
+    {"GetSeparationCheck", [&] { return TSVSHMMGetSeparationCheck(ts, nullptr); }},
+    {"SetMicroStep on NULL", [&] { return TSVSHMMSetMicroStep(nullptr, 1e-3); }},
+    {"GetMicroStep on NULL", [&] { return TSVSHMMGetMicroStep(nullptr, &dt); }},
+  };
+  for (const auto &c : calls) {
+    const CapturedError e = CaptureError(c.second);
+    EXPECT_EQ(e.code, PETSC_ERR_ARG_NULL) << c.first << ": " << e.message;
+    EXPECT_NE(e.message.find("Null "), std::string::npos) << c.first << ": " << e.message;
+  }
+  const CapturedError e = CaptureError([&] { return TSVSHMMSetMicroStep((TS)v, 1e-3); }); /* not a TS */
+  EXPECT_EQ(e.code, PETSC_ERR_ARG_WRONG) << e.message;
+  ASSERT_EQ(VecDestroy(&v), 0);
+  ASSERT_EQ(TSDestroy(&ts), 0);
+}
+
 TEST(VSHMMBadInput, NonFiniteSplitOutputStopsTheSolveNamingSplitAndTime)
 {
   // Default (-ts_error_if_step_fails true): a PETSc error naming the split and the time.
