@@ -79,7 +79,7 @@ PETSC_EXTERN const char *const TSVSHMMSeparationChecks[];
 .  level_steps      - Runge-Kutta steps taken on each level (level l integrates the scales 0..l); nscales entries
 .  level_evaluations - evaluations of each level's field G_l = f_0 + ... + f_l (one per RK stage); nscales entries
 .  stability_checks - stability checks run (see TSVSHMMSetStabilityCheck())
-.  stability_evaluations - split RHS evaluations spent by those checks (not in the counts above)
+.  stability_evaluations - split RHS evaluations spent by those checks and by the split check at set-up (not in the counts above)
 .  stability_warnings - checks that found a level's largest step beyond its stable step, though damped over a macro step (warned on the warnings viewer, see TSVSHMMSetWarningsViewer())
 .  error_estimate   - estimated error of the last macro step in the observables, in the TS's weighted norm (1 = the tolerance); 0 without -ts_vshmm_adapt
 .  error_estimate_total - the sum of error_estimate over the macro steps: an estimate of the error at the current time
