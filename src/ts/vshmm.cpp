@@ -135,6 +135,16 @@ static PetscErrorCode SetUpSplit(TS ts, TS_RHSSplitLink link, VSHMMSplit &split)
   PetscCall(ISGetLocalSize(split.is, &nis));
   PetscCall(VecGetOwnershipRange(X, &rstart, &rend));
   PetscCall(ISGetIndices(split.is, &idx));
+  PetscInt N, range[2] = {PETSC_MAX_INT, PETSC_MIN_INT}; /* min and max over the ranks (max of -min) */
+  PetscCall(VecGetSize(X, &N));
+  for (PetscInt i = 0; i < nis; ++i) {
+    range[0] = PetscMin(range[0], idx[i]);
+    range[1] = PetscMax(range[1], idx[i]);
+  }
+  range[0] = -range[0];
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, range, 2, MPIU_INT, MPI_MAX, comm));
+  if (range[1] >= N || -range[0] < 0) PetscCall(ISRestoreIndices(split.is, &idx));
+  PetscCheck(range[1] < N && -range[0] >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Split '%s': its IS (TSRHSSplitSetIS()) names component %" PetscInt_FMT ", outside the solution's components 0..%" PetscInt_FMT, split.name.c_str(), range[1] >= N ? range[1] : -range[0], N - 1);
   bool contiguous = true;
   for (PetscInt i = 1; i < nis && contiguous; ++i) contiguous = idx[i] == idx[0] + i;
   bool owned   = nis == 0 || (idx[0] >= rstart && idx[0] + nis <= rend);
@@ -150,7 +160,20 @@ static PetscErrorCode SetUpSplit(TS ts, TS_RHSSplitLink link, VSHMMSplit &split)
   PetscCall(VecSetSizes(split.F, nis, PETSC_DETERMINE));
   PetscCall(VecGetType(X, &vtype));
   PetscCall(VecSetType(split.F, vtype));
-  if (!split.local) PetscCall(VecScatterCreate(split.F, nullptr, X, split.is, &split.scatter));
+  if (!split.local) {
+    PetscCall(VecScatterCreate(split.F, nullptr, X, split.is, &split.scatter));
+    /* a component named twice (on one rank or on two) would receive the split's value twice */
+    Vec       count;
+    PetscInt  at;
+    PetscReal most;
+    PetscCall(VecDuplicate(X, &count));
+    PetscCall(VecSet(split.F, 1.0));
+    PetscCall(VecScatterBegin(split.scatter, split.F, count, ADD_VALUES, SCATTER_FORWARD));
+    PetscCall(VecScatterEnd(split.scatter, split.F, count, ADD_VALUES, SCATTER_FORWARD));
+    PetscCall(VecMax(count, &at, &most));
+    PetscCall(VecDestroy(&count));
+    PetscCheck(most <= 1, comm, PETSC_ERR_ARG_WRONG, "Split '%s': its IS (TSRHSSplitSetIS()) names component %" PetscInt_FMT " %d times (on one rank or on several): each component once", split.name.c_str(), at, (int)most);
+  }
   PetscFunctionReturn(0);
 }
 

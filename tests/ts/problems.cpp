@@ -145,7 +145,7 @@ PetscErrorCode CreateSplitTS(MPI_Comm comm, SplitProblem *p, SplitKind kind, con
         for (PetscInt i = hi - 1; i >= lo; --i) comps.push_back(i);
     } else if (kind == SplitKind::Component && !p->components.empty()) {
       for (PetscInt i : p->components[k])
-        if (i >= rstart && i < rend) comps.push_back(i);
+        if ((i >= rstart && i < rend) || ((i < 0 || i >= p->n) && rank == size - 1)) comps.push_back(i); /* one beyond the state on the last rank (a bad IS) */
     } else {
       for (PetscInt i = PetscMax(lo, rstart); i < PetscMin(hi, rend); ++i) comps.push_back(i);
     }

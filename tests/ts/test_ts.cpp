@@ -994,6 +994,37 @@ TEST(VSHMMBadInput, NullArgumentsAreErrorsNotCrashes)
   ASSERT_EQ(TSDestroy(&ts), 0);
 }
 
+// A split's IS that names a component beyond the solution (PETSc's scatter said "Scatter indices in
+// iy are out of range", naming no split) or one component twice (its value would be added twice)
+// is an error at set-up naming the split and the component.
+TEST(VSHMMBadInput, SplitIndexSetsOutOfRangeOrWithRepeatsAreErrors)
+{
+  for (const bool repeat : {false, true}) {
+    DissipativeParams params;
+    SplitProblem      p;
+    TS                ts;
+    Vec               x;
+    DissipativeProblem(&p, &params);
+    p.components = {{0}, {1}, repeat ? std::vector<PetscInt>{2, 2} : std::vector<PetscInt>{2, 7}};
+    ASSERT_EQ(CreateSplitTS(PETSC_COMM_WORLD, &p, SplitKind::Component, {5, -10, 5}, {"slow", "medium", "fast"}, &ts, &x), 0);
+    const CapturedError e = CaptureError([&]() -> PetscErrorCode {
+      PetscFunctionBeginUser;
+      PetscCall(TSSetTimeStep(ts, 0.1));
+      PetscCall(TSSetMaxTime(ts, 0.2));
+      PetscCall(TSSolve(ts, x));
+      PetscFunctionReturn(0);
+    });
+    if (repeat) {
+      EXPECT_EQ(e.code, PETSC_ERR_ARG_WRONG) << e.message;
+      EXPECT_NE(e.message.find("Split 'fast': its IS (TSRHSSplitSetIS()) names component 2 2 times"), std::string::npos) << e.message;
+    } else {
+      EXPECT_EQ(e.code, PETSC_ERR_ARG_OUTOFRANGE) << e.message;
+      EXPECT_NE(e.message.find("Split 'fast': its IS (TSRHSSplitSetIS()) names component 7, outside the solution's components 0..2"), std::string::npos) << e.message;
+    }
+    ASSERT_EQ(DestroySplitTS(&p, &ts, &x), 0);
+  }
+}
+
 TEST(VSHMMBadInput, NonFiniteSplitOutputStopsTheSolveNamingSplitAndTime)
 {
   // Default (-ts_error_if_step_fails true): a PETSc error naming the split and the time.
