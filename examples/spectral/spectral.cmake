@@ -567,14 +567,15 @@ _spectral_error_test(output_times_order "-output_times must be increasing" -spec
 # stopped on a micro step of 4.5e307, PETSC_INFINITY)
 _spectral_error_test(negative_diffusion "-spectral_diffusion_coefficient: the diffusion coefficient is negative: d = -0.25803 at x = 5.86594 [(]its smallest value on the grid[)]; the term u_t [+]= [(]d u_x[)]_x needs d >= 0 everywhere"
                      -spectral_grid_points 256 -spectral_diffusion_coefficient_offset -0.6 -output_times 0.05)
-# an operator that limits no step (d = 0: the stable-step estimate is PETSC_INFINITY, a finite
-# number): an explicit TS keeps its own step (tfinal / 100), TSVSHMM with -ts_vshmm_adapt chooses
-# its micro step itself (it took 4.5e307 and stopped, before)
+# an operator that limits no step (d = 0; a growing reaction u_t = u, spectral radius 1: the
+# stable-step estimate is PETSC_INFINITY, a finite number): an explicit TS keeps its own step
+# (tfinal / 100), TSVSHMM with -ts_vshmm_adapt chooses its micro step itself (it took 4.5e307 and
+# stopped, before)
 vshmm_example_test(NAME spectral_unlimited_step_rk EXE diffusion
                    ARGS -spectral_grid_points 64 -spectral_diffusion_coefficient constant -spectral_diffusion_coefficient_value 0 -output_times 0.05,0.5 -no_timing
                    REGEX "ts_type rk 3: time step 0.01\n.*output t 0.5 rhs_evaluations 150 " LABELS example spectral TIMEOUT 60)
 vshmm_example_test(NAME spectral_unlimited_step_vshmm_adapt EXE diffusion
-                   ARGS -spectral_grid_points 64 -spectral_diffusion_coefficient constant -spectral_diffusion_coefficient_value 0 -spectral_mode sparse -spectral_clusters 0:3,10:14
+                   ARGS -spectral_grid_points 64 -spectral_terms reaction -spectral_reaction_coefficients 0,1 -spectral_mode sparse -spectral_clusters 0:3,10:14
                         -output_times 0.05,0.5 -ts_type vshmm -ts_vshmm_adapt -no_timing
                    REGEX "ts_type vshmm: sampling interval 0.05, micro step 0.0005,.*output t 0.5 rhs_evaluations" LABELS example spectral TIMEOUT 60)
 # a solution that grows beyond what the scene's terms allow stops the solve (issue 10): the explicit
