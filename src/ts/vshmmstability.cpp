@@ -1510,7 +1510,8 @@ PetscErrorCode TSVSHMMLevelBeats_Private(TS ts)
    other TS type integrates (a component that no split writes, a term in two splits or in none, an
    IS that names the wrong components) it solves another problem, silently. Their difference is
    judged against the roundoff of the terms it sums: the largest output of any split. Counted as
-   the stability check's evaluations; nothing when the TS has no RHS function (an IFunction alone). */
+   the stability check's evaluations; nothing when the TS has no RHS function (splits only; an
+   IFunction is refused at set-up). */
 PetscErrorCode TSVSHMMCheckSplitsSum_Private(TS ts)
 {
   TS_VSHMM     *vs    = (TS_VSHMM *)ts->data;
