@@ -529,8 +529,8 @@ PetscErrorCode TSVSHMMResetStatistics(TS ts)
 .  -ts_vshmm_check_splits <true,false> - check at set-up
 
    Notes:
-   TSVSHMM steps the RHS splits (`TSRHSSplitSetRHSFunction()`) and never calls the TS's own
-   right-hand side function (`TSSetRHSFunction()`), which every other TS type integrates. Where
+   TSVSHMM steps the RHS splits (`TSRHSSplitSetRHSFunction()`) and calls the TS's own right-hand
+   side function (`TSSetRHSFunction()`), which every other TS type integrates, only for this check. Where
    the splits' sum is not that function (a component that no split writes, a term in two splits
    or in none, an IS that names other components than the split function writes), TSVSHMM solves
    another problem than `-ts_type rk` would, without any other sign. At set-up, at the initial
