@@ -49,12 +49,25 @@ command -v git >/dev/null 2>&1 || { echo "$0: needs git" >&2; exit 2; }
 command -v perl >/dev/null 2>&1 || { echo "$0: needs perl" >&2; exit 2; }
 case $list in /*) ;; *) list=$(pwd)/$list ;; esac
 
-# A fresh copy of the tracked files. Files keep their modification times, so the build is
-# incremental; a file left mutated by an interrupted run is marked newer so that it is rebuilt.
-mkdir -p "$work"
-rm -rf "$src"
-mkdir -p "$src"
-(cd "$here" && git ls-files -z | xargs -0 tar cf - ) | (cd "$src" && tar xf -)
+# The tracked files, copied into $src where their content differs from what is there (a copy
+# takes the current time, so make rebuilds it); files whose content is the same keep their time in
+# $src, so the build stays incremental. (A fresh copy that kept the working tree's times let a file
+# restored after the last mutant of a run, or edited in the tree before a later mutant's build,
+# look older than its object: the next run tested a stale build, the earlier mutant's or the code
+# before the edit.) Files no longer tracked are removed.
+mkdir -p "$work" "$src"
+stage="$work/stage"
+rm -rf "$stage"
+mkdir -p "$stage"
+(cd "$here" && git ls-files -z | xargs -0 tar cf - ) | (cd "$stage" && tar xf -)
+(cd "$stage" && find . -type f -print) | while IFS= read -r f; do
+  if ! cmp -s "$stage/$f" "$src/$f"; then
+    mkdir -p "$src/$(dirname "$f")"
+    cp "$stage/$f" "$src/$f"
+  fi
+done
+(cd "$src" && find . -type f -print) | while IFS= read -r f; do [ -e "$stage/$f" ] || rm -f "$src/$f"; done
+rm -rf "$stage"
 if [ -f "$work/mutated" ]; then
   f=$(cat "$work/mutated")
   [ -f "$src/$f" ] && touch "$src/$f"
