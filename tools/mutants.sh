@@ -52,9 +52,9 @@ case $list in /*) ;; *) list=$(pwd)/$list ;; esac
 # The tracked files, copied into $src where their content differs from what is there (a copy
 # takes the current time, so make rebuilds it); files whose content is the same keep their time in
 # $src, so the build stays incremental. (A fresh copy that kept the working tree's times let a file
-# restored after the last mutant of a run, or edited in the tree before a later mutant's build,
-# look older than its object: the next run tested a stale build, the earlier mutant's or the code
-# before the edit.) Files no longer tracked are removed.
+# edited in the tree between two runs look older than its object, where a mutant of the same file
+# in the first run had been built after the edit: the second run tested the code before the edit.)
+# Files no longer tracked are removed.
 mkdir -p "$work" "$src"
 stage="$work/stage"
 rm -rf "$stage"
