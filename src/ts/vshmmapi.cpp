@@ -660,13 +660,13 @@ PetscErrorCode TSVSHMMGetAdapt(TS ts, PetscBool *flg)
    (dissipative scales). Where they oscillate, the state at a sampled time carries the fast phases,
    which VSHMM does not compute accurately: name the slow quantities (for two oscillators, their
    energies or amplitudes). Each quantity q_i is weighed by atol + rtol |q_i|. Pass f = NULL to go
-   back to the whole state.
+   back to the whole state. The components that only the slowest scale's splits write are
+   controlled together with the observables (`TSVSHMMSetAdaptSlowComponents()`).
 
    Unlike the other TSVSHMM setters (which, as for `TSRK`, act only on a `TS` that is already of
    type `TSVSHMM`), this one may be called on a `TS` of any type, before `TSSetType()` or
    `TSSetFromOptions()`: the quantities belong to the problem, and they are kept on the `TS` for
-   the `TSVSHMM` it becomes, so that `-ts_type vshmm` on the command line finds them. The components that only the slowest scale's splits write are
-   controlled together with the observables (`TSVSHMMSetAdaptSlowComponents()`).
+   the `TSVSHMM` it becomes, so that `-ts_type vshmm` on the command line finds them.
 
    Level: intermediate
 
