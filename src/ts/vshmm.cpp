@@ -134,17 +134,13 @@ static PetscErrorCode SetUpSplit(TS ts, TS_RHSSplitLink link, VSHMMSplit &split)
   split.is    = link->is;
   PetscCall(ISGetLocalSize(split.is, &nis));
   PetscCall(VecGetOwnershipRange(X, &rstart, &rend));
-  PetscCall(ISGetIndices(split.is, &idx));
-  PetscInt N, range[2] = {PETSC_MAX_INT, PETSC_MIN_INT}; /* min and max over the ranks (max of -min) */
+  PetscInt N, range[2]; /* the IS's smallest and largest component over the ranks (the max of -min and max) */
   PetscCall(VecGetSize(X, &N));
-  for (PetscInt i = 0; i < nis; ++i) {
-    range[0] = PetscMin(range[0], idx[i]);
-    range[1] = PetscMax(range[1], idx[i]);
-  }
+  PetscCall(ISGetMinMax(split.is, &range[0], &range[1])); /* PETSC_MAX_INT, PETSC_MIN_INT where empty */
   range[0] = -range[0];
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, range, 2, MPIU_INT, MPI_MAX, comm));
-  if (range[1] >= N || -range[0] < 0) PetscCall(ISRestoreIndices(split.is, &idx));
   PetscCheck(range[1] < N && -range[0] >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Split '%s': its IS (TSRHSSplitSetIS()) names component %" PetscInt_FMT ", outside the solution's components 0..%" PetscInt_FMT, split.name.c_str(), range[1] >= N ? range[1] : -range[0], N - 1);
+  PetscCall(ISGetIndices(split.is, &idx));
   bool contiguous = true;
   for (PetscInt i = 1; i < nis && contiguous; ++i) contiguous = idx[i] == idx[0] + i;
   bool owned   = nis == 0 || (idx[0] >= rstart && idx[0] + nis <= rend);
