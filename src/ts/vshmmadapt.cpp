@@ -104,8 +104,9 @@ static constexpr PetscReal kRestField       = 1e-6; /* unless h |G| is below thi
 static constexpr PetscReal kBlindTurn       = 0.35; /* radians per macro step of the slowest level's oscillation beyond which its signed errors cannot show coherence (OwnStepBudget()) */
 static constexpr PetscReal kPhaseProjection = 0.5;  /* of a step's coherent share where the sampled quantities carry an oscillation's phase: the comparison sees the phase error projected at one phase */
 static constexpr PetscReal kBlownUp         = std::numeric_limits<PetscReal>::infinity();
-static constexpr PetscReal kAmplified       = 4;    /* the carried comparison's estimate above this many times the steps' sum: errors grown by the dynamics (StepBudget()) */
-static constexpr PetscReal kMinGlobalScale  = 1e-3; /* a step's share shrinks by that at most to this part of it */
+static constexpr PetscReal kAmplified       = 4;     /* the carried comparison's estimate above this many times the steps' sum: errors grown by the dynamics (StepBudget()) */
+static constexpr PetscReal kMinGlobalScale  = 1e-3;  /* a step's share shrinks by that at most to this part of it */
+static constexpr PetscReal kObsStateSize    = 1e100; /* a state whose entries are below this cannot overflow an observable of degree 3: Inf or NaN from it is the observables function's */
 
 const char *const TSVSHMMSeparationChecks[] = {"off", "warn", "error", "TSVSHMMSeparationCheck", "TSVSHMM_SEPARATION_", nullptr};
 
@@ -124,20 +125,37 @@ PetscErrorCode TSVSHMMObservables_Private(TS ts, PetscReal t, Vec X, PetscReal q
   PetscFunctionBegin;
   PetscCall(vs->observables(ts, t, X, q, vs->observables_ctx));
   PetscCallMPI(MPI_Comm_size(comm, &size));
-  if (size == 1) PetscFunctionReturn(0);
   std::vector<PetscReal> range(2 * n + 2); /* max over the ranks of q_i, of -q_i, of "not finite" and of its negation */
   bool                   nonfinite = false;
+  size_t                 first     = n; /* the first observable that is not finite */
   for (size_t i = 0; i < n; ++i) {
     const bool finite = std::isfinite(q[i]);
     range[i]          = finite ? q[i] : -PETSC_MAX_REAL;
     range[n + i]      = finite ? -q[i] : -PETSC_MAX_REAL;
     nonfinite |= !finite;
+    if (!finite && first == n) first = i;
   }
   range[2 * n]     = nonfinite ? 1 : 0;
   range[2 * n + 1] = nonfinite ? 0 : -1;
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, range.data(), (PetscMPIInt)range.size(), MPIU_REAL, MPIU_MAX, comm));
+  if (size > 1) PetscCall(MPIU_Allreduce(MPI_IN_PLACE, range.data(), (PetscMPIInt)range.size(), MPIU_REAL, MPIU_MAX, comm));
   const bool some = range[2 * n] > 0, all = range[2 * n + 1] == 0;
   PetscCheck(some == all, comm, PETSC_ERR_ARG_WRONG, "TSVSHMMSetObservables(): the observables function gave Inf or NaN on some ranks and finite values on others at t = %g: it is collective and must return the same values on every rank", (double)t);
+  if (some && vs->obs_fault < 0) {
+    /* Inf or NaN of a state of moderate size is the function's, not a blow-up of the run; the
+       comparisons read it as one (an infinite difference) and the step's tries refine until they
+       run out: the failure's message names the observable (an observable NaN from t = 0.6 on
+       stopped with "no finite error estimate" and "or an observable was not finite" only). A
+       state beyond kObsStateSize may overflow a polynomial observable: a blow-up. */
+    PetscReal sum, largest;
+    PetscCall(VecNorm(X, NORM_1, &sum)); /* the 1-norm: a NaN in any entry makes it NaN */
+    PetscCall(VecNorm(X, NORM_INFINITY, &largest));
+    if (std::isfinite(sum) && largest < kObsStateSize) {
+      vs->obs_fault      = (PetscInt)(first < n ? first : 0);
+      vs->obs_fault_time = t;
+      vs->obs_fault_nan  = std::isnan(q[vs->obs_fault]) ? PETSC_TRUE : PETSC_FALSE;
+    }
+  }
+  if (size == 1) PetscFunctionReturn(0);
   for (size_t i = 0; i < n && !some; ++i) {
     const PetscReal hi = range[i], lo = -range[n + i];
     PetscCheck(hi - lo <= kObservablesAgreement * PetscMax(PetscAbsReal(hi), PetscAbsReal(lo)), comm, PETSC_ERR_ARG_WRONG,
@@ -2388,6 +2406,7 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
     vshmm::AdaptParameters &p = vs->adapt_params;
     vs->nonfinite_split       = -1;
     vs->nonfinite_time        = PETSC_MAX_REAL;
+    if (attempt == 0) vs->obs_fault = -1;
 
     /* The macro step with the current parameters, counted as the solve's work */
     std::unique_ptr<vshmm::MesoscopicSchedule> schedule;
@@ -2613,10 +2632,14 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
          instead, which names the split. */
       PetscCall(VecCopy(vs->X0, ts->vec_sol));
       DiscardTry(vs, rhs0, lev0);
-      ts->reason = TS_DIVERGED_STEP_REJECTED;
-      PetscCheck(!ts->errorifstepfailed, PetscObjectComm((PetscObject)ts), PETSC_ERR_NOT_CONVERGED, "TSVSHMM (-ts_vshmm_adapt): no finite error estimate for the macro step from t = %g to %g after %" PetscInt_FMT " tries: the comparisons of the last %" PetscInt_FMT " gave no finite difference, down to the micro step %g (a comparison run blew up: the solution may grow without bound there, or the savings are unstable; or an observable was not finite); the solution was left at t = %g (use -ts_error_if_step_fails false to stop with TS_DIVERGED_STEP_REJECTED instead)", (double)t0, (double)t1, attempt + 1, blown,
-                 (double)p.microStep, (double)t0);
-      PetscCall(TSVSHMMWarn_Private(ts, "TSVSHMM (-ts_vshmm_adapt): no finite error estimate for the macro step from t = %g to %g after %" PetscInt_FMT " tries (the comparisons of the last %" PetscInt_FMT " gave no finite difference); the solve stops with TS_DIVERGED_STEP_REJECTED at t = %g\n", (double)t0, (double)t1, attempt + 1, blown, (double)t0));
+      ts->reason      = TS_DIVERGED_STEP_REJECTED;
+      char cause[320] = "a comparison run blew up: the solution may grow without bound there, or the savings are unstable; or an observable was not finite";
+      if (vs->obs_fault >= 0) /* the observables function's, found at a finite state (TSVSHMMObservables_Private()) */
+        PetscCall(PetscSNPrintf(cause, sizeof(cause), "the observables function returned %s for observable %d (of %d) at t = %g, for a state whose entries are all finite: it must return finite values wherever the solution is finite", vs->obs_fault_nan ? "NaN" : "Inf",
+                                (int)vs->obs_fault, (int)vs->nobservables, (double)vs->obs_fault_time));
+      PetscCheck(!ts->errorifstepfailed, PetscObjectComm((PetscObject)ts), PETSC_ERR_NOT_CONVERGED, "TSVSHMM (-ts_vshmm_adapt): no finite error estimate for the macro step from t = %g to %g after %" PetscInt_FMT " tries: the comparisons of the last %" PetscInt_FMT " gave no finite difference, down to the micro step %g (%s); the solution was left at t = %g (use -ts_error_if_step_fails false to stop with TS_DIVERGED_STEP_REJECTED instead)", (double)t0, (double)t1, attempt + 1, blown,
+                 (double)p.microStep, cause, (double)t0);
+      PetscCall(TSVSHMMWarn_Private(ts, "TSVSHMM (-ts_vshmm_adapt): no finite error estimate for the macro step from t = %g to %g after %" PetscInt_FMT " tries (the comparisons of the last %" PetscInt_FMT " gave no finite difference: %s); the solve stops with TS_DIVERGED_STEP_REJECTED at t = %g\n", (double)t0, (double)t1, attempt + 1, blown, cause, (double)t0));
       PetscFunctionReturn(0);
     }
     /* far out of reach: three tries with savings, each refined, none within kOutOfReach shares (the

@@ -203,6 +203,9 @@ struct TS_VSHMM {
   // First non-finite split output seen on this rank in the current macro step
   PetscReal  nonfinite_time  = PETSC_MAX_REAL;
   PetscInt   nonfinite_split = -1, nonfinite_level = -1;
+  PetscInt   obs_fault         = -1;                           // the first observable this macro step's tries found not finite for a finite state (-1: none)
+  PetscReal  obs_fault_time    = 0;                            // where
+  PetscBool  obs_fault_nan     = PETSC_FALSE;                  // NaN (else Inf)
   PetscInt   current_level     = 0;                            // the level whose field is being evaluated
   PetscInt64 field_evaluations = 0, nonfinite_evaluation = -1; // level-field evaluations so far (the same on every rank); the faulty one
 };

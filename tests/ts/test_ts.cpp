@@ -527,6 +527,46 @@ TEST(VSHMMSolver, ObservablesThatDifferBetweenRanksAreAnError)
   }
 }
 
+// An observables function that returns NaN (or Inf) for a finite state (a logarithm of a quantity
+// that reached 0, an uninitialised entry): the comparisons read it as a blown-up run, the step's
+// tries refined until they ran out and the solve stopped with "no finite error estimate", which
+// named no observable. It still stops so (AStepWithoutAFiniteEstimateFails), and now names the
+// observable, the value and the time, on one rank and on several.
+static PetscErrorCode ObservableNaNAfter015(TS ts, PetscReal t, Vec X, PetscReal q[], void *)
+{
+  PetscReal norm;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecNorm(X, NORM_2, &norm));
+  q[0] = norm;
+  q[1] = t > 0.15 ? std::numeric_limits<PetscReal>::quiet_NaN() : 2 * norm;
+  PetscFunctionReturn(0);
+}
+
+TEST(VSHMMSolver, ObservablesNotFiniteForAFiniteStateAreNamed)
+{
+  DissipativeParams params;
+  SplitProblem      p;
+  TS                ts;
+  Vec               x;
+  DissipativeProblem(&p, &params);
+  ASSERT_EQ(CreateSplitTS(PETSC_COMM_WORLD, &p, SplitKind::Component, {5, -10, 5}, {"slow", "medium", "fast"}, &ts, &x), 0);
+  const CapturedError e = CaptureError([&]() -> PetscErrorCode {
+    PetscFunctionBeginUser;
+    PetscCall(TSSetTimeStep(ts, 0.1));
+    PetscCall(TSSetMaxTime(ts, 0.4));
+    PetscCall(TSVSHMMSetAdapt(ts, PETSC_TRUE));
+    PetscCall(TSSetTolerances(ts, 1e-2, nullptr, 1e-2, nullptr));
+    PetscCall(TSVSHMMSetObservables(ts, 2, ObservableNaNAfter015, nullptr));
+    PetscCall(TSSolve(ts, x));
+    PetscFunctionReturn(0);
+  });
+  EXPECT_EQ(e.code, PETSC_ERR_NOT_CONVERGED) << e.message;
+  EXPECT_NE(e.message.find("no finite error estimate for the macro step from t = 0.1 to 0.2"), std::string::npos) << e.message;
+  EXPECT_NE(e.message.find("(the observables function returned NaN for observable 1 (of 2) at t = 0.2, for a state whose entries are all finite: it must return finite values wherever the solution is finite)"), std::string::npos) << e.message;
+  ASSERT_EQ(DestroySplitTS(&p, &ts, &x), 0);
+}
+
 TEST(VSHMMStabilityCheck, PaperParametersPassAtEveryMacroStep)
 {
   // The peak mesoscopic steps of level 1 exceed RK4's limit for a while (t = 0.1 to 0.5, where the
