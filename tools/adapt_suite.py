@@ -12,9 +12,9 @@ rejected tries).
 --tols replaces the three tolerances (e.g. 3e-2,5e-3,2e-3 for the ones between them).
 
 --global runs every problem with -ts_vshmm_adapt_global_estimate and prints, at each sampled time,
-the weighted error against the reference, the carried comparison's global estimate and the sum of
-the steps' estimates so far (from -info), then how the two estimates compare with the error over
-all sampled times (docs/accuracy.md section 21).
+the weighted error against the reference, the carried comparison's global estimate and the sum, the
+root of the sum of squares and the signed sum of the steps' estimates so far (from -info), then how
+each compares with the error over all sampled times (docs/accuracy.md section 21).
 
 Options after `--` are passed to every run (to try a variant of the control). With --sweep, each
 problem is also run with fixed parameters over a grid (hand tuning: micro step and savings
@@ -119,31 +119,36 @@ def global_rows(build, prob, tol, extra):
         return 'failed: ' + (p.stderr.strip().splitlines() or ['?'])[-1][:120]
     est = {round(float(m.group(1)), 6): (float(m.group(2)), float(m.group(3)))
            for m in re.finditer(r'carried comparison at t = (\S+): global estimate (\S+) .*sum to (\S+)', p.stdout)}
+    acc = {round(float(m.group(1)), 6): (float(m.group(2)), float(m.group(3)))
+           for m in re.finditer(r"accepted steps' estimates at t = (\S+): sum \S+, root of the sum of squares (\S+), signed sum (\S+)", p.stdout)}
     rows = []
     for m in re.finditer(r'^t (\S+)' + ''.join(r' %s (\S+)' % q for q in names), p.stdout, re.M):
         t = float(m.group(1))
         for tr, r in ref.items():
             if abs(t - tr) < 1e-9 and round(t, 6) in est:
                 e = math.sqrt(sum(((float(m.group(2 + i)) - r[i]) / (tol * (1 + abs(r[i])))) ** 2 for i in range(len(r))) / len(r))
-                rows.append((t, e) + est[round(t, 6)])
+                rows.append((t, e) + est[round(t, 6)] + acc.get(round(t, 6), (float('nan'), float('nan'))))
     return rows
 
 
 def print_global(results):
-    print('| problem | tol | sampled times: t: true / global / sum of the steps\' estimates |')
+    print('| problem | tol | sampled times: t: true / global / sum / root of the sum of squares / signed sum of the steps\' estimates |')
     print('|---|---|---|')
-    ratios = {'global': [], 'sum': []}
-    runs = {'global': [], 'sum': []}
+    kinds = (('global', 2), ('sum', 3), ('rss', 4), ('signed', 5))
+    ratios = {k: [] for k, _ in kinds}
+    runs = {k: [] for k, _ in kinds}
     for name, tol, rows in results:
         if isinstance(rows, str) or not rows:
             print('| %s | %g | %s |' % (name, tol, rows or 'no sampled time'))
             continue
-        print('| %s | %g | %s |' % (name, tol, ', '.join('%g: %.2g / %.2g / %.2g' % r for r in rows)))
-        for k, i in (('global', 2), ('sum', 3)):
+        print('| %s | %g | %s |' % (name, tol, ', '.join('%g: %.2g / %.2g / %.2g / %.2g / %.2g' % r for r in rows)))
+        for k, i in kinds:
+            if any(not (r[i] >= 0) for r in rows):  # no signed sum without observables
+                continue
             ratios[k] += [r[i] / r[1] for r in rows if r[1] > 0]
             if max(r[1] for r in rows) > 0:
                 runs[k].append(max(r[i] for r in rows) / max(r[1] for r in rows))
-    for k in ('global', 'sum'):
+    for k, _ in kinds:
         v, w = sorted(ratios[k]), sorted(runs[k])
         if not v:
             continue

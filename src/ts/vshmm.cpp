@@ -710,7 +710,7 @@ static PetscErrorCode TSView_VSHMM(TS ts, PetscViewer viewer)
     else if (ts->vatol || ts->vrtol) PetscCall(PetscSNPrintf(tols, sizeof tols, "rtol %g, atol %g on the observables; %s, %s on the slow components", (double)ts->rtol, (double)ts->atol, rtol, atol));
     else PetscCall(PetscSNPrintf(tols, sizeof tols, "rtol %g, atol %g on the observables", (double)ts->rtol, (double)ts->atol));
     PetscCall(PetscViewerASCIIPrintf(viewer, "  accuracy control (-ts_vshmm_adapt): %s; savings factors %s\n", tols, what.c_str()));
-    PetscCall(PetscViewerASCIIPrintf(viewer, "    error estimate: last macro step %g, sum over the run %g (1 = the tolerance); %" PetscInt64_FMT " calibrations, %" PetscInt64_FMT " rejected macro steps, %" PetscInt64_FMT " split RHS evaluations for estimates and rejected steps\n",
+    PetscCall(PetscViewerASCIIPrintf(viewer, "    error estimate: last macro step %g, sum over the run %g (1 = the tolerance; the steps' estimates added as of one sign: on the suite of docs/accuracy.md section 21 about twice the error at the sampled times in median, below half of it at 6%% of them); %" PetscInt64_FMT " calibrations, %" PetscInt64_FMT " rejected macro steps, %" PetscInt64_FMT " split RHS evaluations for estimates and rejected steps\n",
                                      (double)vs->error_estimate, (double)vs->error_estimate_total, vs->adapt_calibrations, vs->adapt_rejections, vs->adapt_evaluations));
     if (vs->adapt_global && vs->carried_time == PETSC_MIN_REAL) PetscCall(PetscViewerASCIIPrintf(viewer, "    global error estimate (-ts_vshmm_adapt_global_estimate, the carried comparison): no macro step yet\n"));
     else if (vs->adapt_global)
@@ -1127,6 +1127,7 @@ static PetscErrorCode TSVSHMMResetStatistics_VSHMM(TS ts)
   vs->stability_warnings      = 0;
   vs->error_estimate          = 0;
   vs->error_estimate_total    = 0;
+  vs->error_estimate_squares  = 0;
   vs->global_estimate_max     = 0;
   vs->adapt_evaluations       = 0;
   vs->adapt_rejections        = 0;

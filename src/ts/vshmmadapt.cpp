@@ -1483,9 +1483,9 @@ PetscErrorCode TSVSHMMAdaptSetUp_Private(TS ts)
   vs->savings_used   = vshmm::savingsFromTimeRatios(p.ratios);
   vs->adapt_model    = vshmm::ErrorModel();
   vs->adapt_ready    = PETSC_TRUE;
-  vs->error_estimate = vs->error_estimate_total = 0;
-  vs->unaveraged_max                            = vs->unaveraged;
-  vs->level_time_rate_max                       = vs->level_time_rate;
+  vs->error_estimate = vs->error_estimate_total = vs->error_estimate_squares = 0;
+  vs->unaveraged_max                                                         = vs->unaveraged;
+  vs->level_time_rate_max                                                    = vs->level_time_rate;
   vs->adapt_signed.clear();
   vs->adapt_coherence      = 0.5;
   vs->adapt_accepted       = 0;
@@ -2737,6 +2737,7 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
     TSVSHMMAddCounts_Private(vs, counts);
     vs->error_estimate = E;
     vs->error_estimate_total += E;
+    vs->error_estimate_squares += E * E;
     vs->adapt_accepted++;
     if (vs->slow_mask && vs->step_slow && d > 0) vs->slow_steps++;
     if (vs->observables && std::isfinite(E) && d > 0 && vs->step_signed.size() == (size_t)vs->nobservables) { /* the signed error, for the budget's gamma */
@@ -2744,6 +2745,15 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
       for (PetscInt i = 0; i < vs->nobservables; ++i) vs->adapt_signed[i] += vs->step_signed[i] * E / d;
     }
     if (vs->adapt_global) PetscCall(CarryComparison(ts, p, t0, DeltaT, E, d));
+    {
+      PetscReal signedRms = -1;
+      if (!vs->adapt_signed.empty()) {
+        signedRms = 0;
+        for (PetscReal x : vs->adapt_signed) signedRms += x * x;
+        signedRms = PetscSqrtReal(signedRms / (PetscReal)vs->adapt_signed.size());
+      }
+      PetscCall(PetscInfo(ts, "Adapt: the accepted steps' estimates at t = %g: sum %g, root of the sum of squares %g, signed sum %g\n", (double)t1, (double)vs->error_estimate_total, (double)PetscSqrtReal(vs->error_estimate_squares), (double)signedRms));
+    }
     if (vs->lag_next) {
       /* the comparison's end state carried into the next step's (ComparisonStart()); a step without
          a comparison keeps the last one, a comparison that blew up drops it. Not from a run's first

@@ -174,7 +174,7 @@ struct TS_VSHMM {
   PetscReal              adapt_coherence      = 0.5; // the largest exponent gamma of the errors' growth measured significant so far (OwnStepBudget())
   PetscInt               adapt_accepted       = 0;   // accepted macro steps of this solve
   PetscInt               adapt_start_accepted = 0;   // those accepted before adapt started again (SeparationChanged())
-  PetscReal              error_estimate = 0, error_estimate_total = 0;
+  PetscReal              error_estimate = 0, error_estimate_total = 0, error_estimate_squares = 0;
   PetscInt64             adapt_evaluations = 0, adapt_rejections = 0, adapt_calibrations = 0;
   PetscInt64             adapt_uncompared_total  = 0; // accepted steps whose comparison was left out (statistics)
   PetscInt64             adapt_layer_fits        = 0; // tries estimated again from a second comparison (LayerEstimate(); statistics)
