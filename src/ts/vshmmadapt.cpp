@@ -106,6 +106,7 @@ static constexpr PetscReal kPhaseProjection = 0.5;  /* of a step's coherent shar
 static constexpr PetscReal kBlownUp         = std::numeric_limits<PetscReal>::infinity();
 static constexpr PetscReal kAmplified       = 4;     /* the carried comparison's estimate above this many times the steps' sum: errors grown by the dynamics (StepBudget()) */
 static constexpr PetscReal kMinGlobalScale  = 1e-3;  /* a step's share shrinks by that at most to this part of it */
+static constexpr PetscReal kFixedDamping    = 0.1;   /* fixed parameters: the fastest oscillation's amplitude lost to the micro step's damping over the run beyond which it is said (CheckMicroStepDamping()) */
 static constexpr PetscReal kObsStateSize    = 1e100; /* a state whose entries are below this cannot overflow an observable of degree 3: Inf or NaN from it is the observables function's */
 
 const char *const TSVSHMMSeparationChecks[] = {"off", "warn", "error", "TSVSHMMSeparationCheck", "TSVSHMM_SEPARATION_", nullptr};
@@ -1263,6 +1264,83 @@ static PetscErrorCode CheckBeats(TS ts)
   PetscFunctionReturn(0);
 }
 
+/* Fixed savings (no -ts_vshmm_adapt) where some pair of levels is separated, so that the check
+   below finds the scales separated, but a pair whose faster level oscillates is less than
+   kMinSeparation apart: the savings slow that level's oscillation relative to the slower level by
+   the pair's time ratio, and its phase drifts with every turn, by an amount no part of VSHMM
+   estimates. Three levels at rates 0.5, 3 and 1e3 (x' = -x / 2 + u + (p^2 + q^2) / 10, the medium
+   level a rotation at 3 forced by x, the fast one at 1e3) to t = 2: x = 0.152 with the savings
+   factors 1, 10 (time ratio 1.09 between the slow and the medium level), 1.05 with 100, 10, -0.29
+   with the defaults, for 0.325, silently: the check looked only for no pair separated. Said per
+   pair (an error with -ts_vshmm_check_separation error); -ts_vshmm_adapt takes no savings there
+   itself (LostSeparation(), NoteLostSeparation()). A pair whose faster level only decays is left
+   alone: slowed, a relaxing level lags its slow manifold by the time ratio times its lag, an error
+   the savings set and hand tuning measures (the paper's sparse diffusion scene: clusters 1.9 and
+   8.5 apart with savings across them, within the explicit sparse method's error). */
+static PetscErrorCode CheckSlowedOscillations(TS ts)
+{
+  TS_VSHMM                 *vs     = (TS_VSHMM *)ts->data;
+  const PetscInt            K      = (PetscInt)vs->level_end.size() - 1;
+  const std::vector<double> ratios = vshmm::timeRatiosFromSavings(vs->savings_used);
+  std::string               pairs, names;
+
+  PetscFunctionBegin;
+  for (PetscInt l = 0; l < K && l < (PetscInt)ratios.size(); ++l) {
+    const PetscReal S = Separation(vs, l);
+    if (!(S < kMinSeparation) || LevelDecays(vs, l + 1) || !(ratios[l] > 1.0 + kNegligibleSavings)) continue;
+    char pair[256];
+    PetscCall(PetscSNPrintf(pair, sizeof pair, "levels %d/%d are %.3g apart and level %d oscillates; the savings slow it by the time ratio %.3g (savings factor alpha_%d = %g), to an effective separation of %.3g", (int)l, (int)l + 1, (double)S, (int)l + 1, (double)ratios[l], (int)l + 1,
+                            (double)vs->savings_used[l], (double)(S / ratios[l])));
+    pairs += (pairs.empty() ? "" : "; ") + std::string(pair);
+    std::string scale;
+    for (PetscInt j = 0; j <= K; ++j) {
+      for (PetscInt k = j > 0 ? vs->level_end[j - 1] : 0; k < vs->level_end[j]; ++k) scale += (k > (j > 0 ? vs->level_end[j - 1] : 0) ? "+" : "") + vs->splits[k].name;
+      if (j < K) scale += j == l ? "+" : ",";
+    }
+    names = scale;
+  }
+  if (pairs.empty()) PetscFunctionReturn(0);
+  PetscCheck(vs->check_separation != TSVSHMM_SEPARATION_ERROR, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_INCOMP, "TSVSHMM separation check at t = %g: %s. VSHMM samples a faster level statistically; a slowed oscillation that is not faster than the slower level is part of the answer, and its phase drifts by an amount VSHMM cannot estimate. Give the two levels one scale (-ts_vshmm_splits %s), use -ts_vshmm_adapt (it takes no savings between them), or a single-rate TS type (-ts_type rk); -ts_vshmm_check_separation warn runs anyway",
+             (double)ts->ptime, pairs.c_str(), names.c_str());
+  PetscCall(TSVSHMMWarn_Private(ts, "TSVSHMM warning: separation check at t = %g: %s. VSHMM samples a faster level statistically; a slowed oscillation that is not faster than the slower level is part of the answer, and its phase drifts by an amount VSHMM cannot estimate: the answer will be wrong. Give the two levels one scale (-ts_vshmm_splits %s), use -ts_vshmm_adapt (it takes no savings between them), or a single-rate TS type (-ts_type rk). (-ts_vshmm_check_separation error makes this an error, off silences it.)\n",
+                                (double)ts->ptime, pairs.c_str(), names.c_str()));
+  PetscFunctionReturn(0);
+}
+
+/* Fixed parameters (no -ts_vshmm_adapt): where the fastest level oscillates, the Runge-Kutta
+   method's |R(i omega dt)| < 1 at the micro step damps its amplitude at every one of its steps, and
+   over the run that can take most of it (three levels, the fastest a rotation at 1,000 driving the
+   slow variable through its energy: the default micro step DeltaT / 100 = 1e-3, h omega = 1, stable,
+   left 1.3e-3 of the energy 1 at t = 2, and x was wrong, silently). No comparison sees a loss that
+   every run shares; -ts_vshmm_adapt bounds the micro step by it (AccurateMicroStep()). Said where
+   more than kFixedDamping of the amplitude goes over the run (an oscillation that restores
+   its own amplitude keeps the loss over the time it takes to restore it, as there); with the
+   stability check (-ts_vshmm_check_stability false silences it). */
+static PetscErrorCode CheckMicroStepDamping(TS ts)
+{
+  TS_VSHMM                         *vs = (TS_VSHMM *)ts->data;
+  std::vector<std::complex<double>> modes;
+  PetscReal                         omega = 0;
+
+  PetscFunctionBegin;
+  if (vs->level_limiting.empty()) PetscFunctionReturn(0);
+  for (const std::complex<double> &lambda : vs->level_limiting.back())
+    if (vshmm::oscillates(lambda)) modes.push_back(lambda);
+  if (vs->fastest_nonlinear && vs->fastest_phase_now && vshmm::oscillates(vs->fastest_mean_mode)) modes.push_back(vs->fastest_mean_mode);
+  if (modes.empty()) PetscFunctionReturn(0);
+  for (const std::complex<double> &lambda : modes) omega = PetscMax(omega, std::abs(lambda.imag()));
+  const PetscReal dt     = vs->micro_dt > 0 ? vs->micro_dt : ts->time_step / kDefaultMicroStepsPerMacroStep;
+  PetscReal       ratios = 1;
+  for (double r : vshmm::timeRatiosFromSavings(vs->savings_used)) ratios *= r;
+  const PetscReal span    = TSVSHMMAmplitudeSpan_Private(ts);
+  const PetscReal restore = (vs->fastest_restore > 0 && (!vs->fastest_nonlinear || vshmm::oscillates(vs->fastest_mean_mode))) ? 1.0 / vs->fastest_restore : -1.0;
+  const PetscReal ok      = vshmm::largestAccurateStep(vshmm::StabilityFunction(*vs->tableau), modes, dt, span / ratios, kFixedDamping, 0.0, restore);
+  if (!(ok < 0.999 * dt)) PetscFunctionReturn(0);
+  PetscCall(TSVSHMMWarn_Private(ts, "TSVSHMM warning: the micro step dt = %g damps the fastest scale's oscillation (frequency %g, h omega = %.3g) by more than %g of its amplitude over the run (TSRK %s: |R(i omega dt)| < 1 at each of its %.3g steps to t = %g), energy that no part of VSHMM sees: its part of the answer is lost. A micro step of at most %g keeps the loss within %g; -ts_vshmm_adapt bounds it by the tolerance. (-ts_vshmm_check_stability false silences this.)\n", (double)dt, (double)omega, (double)(omega * dt), (double)kFixedDamping,
+                                vs->tableau->name.c_str(), (double)(span / (dt * ratios)), (double)(ts->ptime + span), (double)ok, (double)kFixedDamping));
+  PetscFunctionReturn(0);
+}
+
 /* The separation check: spectral radii of consecutive levels (or the separations set). */
 PetscErrorCode TSVSHMMCheckSeparation_Private(TS ts)
 {
@@ -1283,6 +1361,8 @@ PetscErrorCode TSVSHMMCheckSeparation_Private(TS ts)
   PetscCall(CheckTimeRates(ts));
   PetscCall(CheckBeats(ts));
   PetscCall(PetscInfo(ts, "Separation check at t = %g: %s\n", (double)ts->ptime, figures.c_str()));
+  if (!vs->adapt && vs->check_stability) PetscCall(CheckMicroStepDamping(ts));
+  if (!vs->no_separation && !vs->adapt && vs->check_separation != TSVSHMM_SEPARATION_OFF) PetscCall(CheckSlowedOscillations(ts));
   if (!vs->no_separation || vs->check_separation == TSVSHMM_SEPARATION_OFF) PetscFunctionReturn(0);
   const char *what = (vs->separations.empty() && !own) ? "ratio of the spectral radii of consecutive levels" : "separation of consecutive levels";
   /* the slowest level alone as stiff as the whole field: the stiff split may have come first (the
