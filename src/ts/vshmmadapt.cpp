@@ -575,16 +575,32 @@ PetscErrorCode TSVSHMMAdaptBeats_Private(TS ts)
   PetscFunctionReturn(0);
 }
 
-static PetscReal AccurateMicroStep(TS ts, const vshmm::AdaptParameters &p, PetscReal dtMax)
+/* The fastest level's oscillating limiting modes, and the mean mode of four phases of a nonlinear
+   one that oscillates (at every phase, not at this one only: FastestLevelPlane()); empty where it
+   does not oscillate or has no spectra yet. */
+static std::vector<std::complex<double>> FastestOscillations(const TS_VSHMM *vs)
 {
-  TS_VSHMM                         *vs = (TS_VSHMM *)ts->data;
   std::vector<std::complex<double>> modes;
-
-  if (vs->level_limiting.empty() || !(dtMax > 0) || !std::isfinite(dtMax)) return dtMax;
+  if (vs->level_limiting.empty()) return modes;
   for (const std::complex<double> &lambda : vs->level_limiting.back())
     if (vshmm::oscillates(lambda)) modes.push_back(lambda);
-  if (vs->fastest_nonlinear && vs->fastest_phase_now && vshmm::oscillates(vs->fastest_mean_mode)) modes.push_back(vs->fastest_mean_mode); /* at every phase, not at this one only (FastestLevelPlane()) */
-  if (modes.empty()) return dtMax;
+  if (vs->fastest_nonlinear && vs->fastest_phase_now && vshmm::oscillates(vs->fastest_mean_mode)) modes.push_back(vs->fastest_mean_mode);
+  return modes;
+}
+
+/* The time the fastest level's oscillation takes to restore its own amplitude (a limit cycle,
+   FastestLevelPlane()), -1 where it does not (nor from four phases that are not an oscillation). */
+static PetscReal RestoreTime(const TS_VSHMM *vs)
+{
+  return (vs->fastest_restore > 0 && (!vs->fastest_nonlinear || vshmm::oscillates(vs->fastest_mean_mode))) ? 1.0 / vs->fastest_restore : -1.0;
+}
+
+static PetscReal AccurateMicroStep(TS ts, const vshmm::AdaptParameters &p, PetscReal dtMax)
+{
+  TS_VSHMM                               *vs    = (TS_VSHMM *)ts->data;
+  const std::vector<std::complex<double>> modes = FastestOscillations(vs);
+
+  if (modes.empty() || !(dtMax > 0) || !std::isfinite(dtMax)) return dtMax;
   const PetscReal span   = TSVSHMMAmplitudeSpan_Private(ts);
   PetscReal       ratios = 1;
   for (double r : p.ratios) ratios *= r;
@@ -608,7 +624,7 @@ static PetscReal AccurateMicroStep(TS ts, const vshmm::AdaptParameters &p, Petsc
      not for the run: the van der Pol oscillator of docs/accuracy.md section 25 had its micro step
      bound 5-10 times below what its tolerance needed, and VSHMM took 5-9 times the evaluations of a
      plain RK4. Its phase error still adds up over the run. */
-  const PetscReal restore = (vs->fastest_restore > 0 && (!vs->fastest_nonlinear || vshmm::oscillates(vs->fastest_mean_mode))) ? 1.0 / vs->fastest_restore : -1.0; /* not from four phases that are not an oscillation */
+  const PetscReal restore = RestoreTime(vs);
   const PetscReal dt      = vshmm::largestAccurateStep(vshmm::StabilityFunction(*vs->tableau), modes, dtMax, span / ratios, allowed, phase, restore);
   if (dt < dtMax)
     (void)(PetscInfo(ts, "Adapt: the fastest level's oscillations (%d modes, weight %g in the state%s%s) bound the micro step to %g (was %g)\n", (int)modes.size(), (double)AmplitudeWeight(ts), phase > 0 ? ", their phase counted" : "", restore > 0 && restore < span / ratios ? ", amplitude restored" : "", (double)dt, (double)dtMax));
@@ -1318,23 +1334,18 @@ static PetscErrorCode CheckSlowedOscillations(TS ts)
    stability check (-ts_vshmm_check_stability false silences it). */
 static PetscErrorCode CheckMicroStepDamping(TS ts)
 {
-  TS_VSHMM                         *vs = (TS_VSHMM *)ts->data;
-  std::vector<std::complex<double>> modes;
-  PetscReal                         omega = 0;
+  TS_VSHMM                               *vs    = (TS_VSHMM *)ts->data;
+  const std::vector<std::complex<double>> modes = FastestOscillations(vs);
+  PetscReal                               omega = 0;
 
   PetscFunctionBegin;
-  if (vs->level_limiting.empty()) PetscFunctionReturn(0);
-  for (const std::complex<double> &lambda : vs->level_limiting.back())
-    if (vshmm::oscillates(lambda)) modes.push_back(lambda);
-  if (vs->fastest_nonlinear && vs->fastest_phase_now && vshmm::oscillates(vs->fastest_mean_mode)) modes.push_back(vs->fastest_mean_mode);
   if (modes.empty()) PetscFunctionReturn(0);
   for (const std::complex<double> &lambda : modes) omega = PetscMax(omega, std::abs(lambda.imag()));
   const PetscReal dt     = vs->micro_dt > 0 ? vs->micro_dt : ts->time_step / kDefaultMicroStepsPerMacroStep;
   PetscReal       ratios = 1;
   for (double r : vshmm::timeRatiosFromSavings(vs->savings_used)) ratios *= r;
-  const PetscReal span    = TSVSHMMAmplitudeSpan_Private(ts);
-  const PetscReal restore = (vs->fastest_restore > 0 && (!vs->fastest_nonlinear || vshmm::oscillates(vs->fastest_mean_mode))) ? 1.0 / vs->fastest_restore : -1.0;
-  const PetscReal ok      = vshmm::largestAccurateStep(vshmm::StabilityFunction(*vs->tableau), modes, dt, span / ratios, kFixedDamping, 0.0, restore);
+  const PetscReal span = TSVSHMMAmplitudeSpan_Private(ts);
+  const PetscReal ok   = vshmm::largestAccurateStep(vshmm::StabilityFunction(*vs->tableau), modes, dt, span / ratios, kFixedDamping, 0.0, RestoreTime(vs));
   if (!(ok < 0.999 * dt)) PetscFunctionReturn(0);
   PetscCall(TSVSHMMWarn_Private(ts, "TSVSHMM warning: the micro step dt = %g damps the fastest scale's oscillation (frequency %g, h omega = %.3g) by more than %g of its amplitude over the run (TSRK %s: |R(i omega dt)| < 1 at each of its %.3g steps to t = %g), energy that no part of VSHMM sees: its part of the answer is lost. A micro step of at most %g keeps the loss within %g; -ts_vshmm_adapt bounds it by the tolerance. (-ts_vshmm_check_stability false silences this.)\n", (double)dt, (double)omega, (double)(omega * dt), (double)kFixedDamping,
                                 vs->tableau->name.c_str(), (double)(span / (dt * ratios)), (double)(ts->ptime + span), (double)ok, (double)kFixedDamping));

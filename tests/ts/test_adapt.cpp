@@ -2212,6 +2212,69 @@ TEST(VSHMMAdapt, AStepWithoutAFiniteEstimateFails)
   EXPECT_EQ(stopped.x[1], -10.0);
 }
 
+// An observables function that is not collective (each rank returns its own value, as a program
+// that forgets to reduce its local sums): under -ts_vshmm_adapt the ranks took different decisions
+// and the solve hung. Now an error at set-up naming the observable and the spread, on every rank;
+// on one rank there is nothing to disagree and the run ends. A collective function runs as before.
+static PetscErrorCode RankDependentObservable(TS ts, PetscReal, Vec X, PetscReal q[], void *)
+{
+  PetscMPIInt rank;
+  PetscReal   norm;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(PetscObjectComm((PetscObject)ts), &rank));
+  PetscCall(VecNorm(X, NORM_2, &norm)); /* collective */
+  q[0] = norm;
+  q[1] = norm + rank; /* not */
+  PetscFunctionReturn(0);
+}
+static PetscErrorCode CollectiveObservable(TS ts, PetscReal t, Vec X, PetscReal q[], void *ctx)
+{
+  PetscFunctionBeginUser;
+  PetscCall(RankDependentObservable(ts, t, X, q, ctx));
+  q[1] = 2 * q[0];
+  PetscFunctionReturn(0);
+}
+
+TEST(VSHMMSolver, ObservablesThatDifferBetweenRanksAreAnError)
+{
+  PetscMPIInt size;
+  MPI_Comm_size(PETSC_COMM_WORLD, &size);
+  for (const bool collective : {false, true}) {
+    ObservedRun         run;
+    const CapturedError e = CaptureError([&] { return SolveDissipativeObserved("-ts_vshmm_adapt -ts_rtol 1e-2 -ts_atol 1e-2", 0.2, 2, collective ? CollectiveObservable : RankDependentObservable, &run); });
+    if (size > 1 && !collective) {
+      EXPECT_EQ(e.code, PETSC_ERR_ARG_WRONG) << e.message;
+      EXPECT_NE(e.message.find("TSVSHMMSetObservables(): the observables function gave different values on different ranks at t = 0.: observable 1 (of 2) from "), std::string::npos) << e.message;
+    } else EXPECT_EQ(e.code, 0) << e.message;
+  }
+}
+
+// An observables function that returns NaN (or Inf) for a finite state (a logarithm of a quantity
+// that reached 0, an uninitialised entry): the comparisons read it as a blown-up run, the step's
+// tries refined until they ran out and the solve stopped with "no finite error estimate", which
+// named no observable. It still stops so (AStepWithoutAFiniteEstimateFails), and now names the
+// observable, the value and the time, on one rank and on several.
+static PetscErrorCode ObservableNaNAfter015(TS ts, PetscReal t, Vec X, PetscReal q[], void *)
+{
+  PetscReal norm;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecNorm(X, NORM_2, &norm));
+  q[0] = norm;
+  q[1] = t > 0.15 ? std::numeric_limits<PetscReal>::quiet_NaN() : 2 * norm;
+  PetscFunctionReturn(0);
+}
+
+TEST(VSHMMSolver, ObservablesNotFiniteForAFiniteStateAreNamed)
+{
+  ObservedRun         run;
+  const CapturedError e = CaptureError([&] { return SolveDissipativeObserved("-ts_vshmm_adapt -ts_rtol 1e-2 -ts_atol 1e-2", 0.4, 2, ObservableNaNAfter015, &run); });
+  EXPECT_EQ(e.code, PETSC_ERR_NOT_CONVERGED) << e.message;
+  EXPECT_NE(e.message.find("no finite error estimate for the macro step from t = 0.1 to 0.2"), std::string::npos) << e.message;
+  EXPECT_NE(e.message.find("(the observables function returned NaN for observable 1 (of 2) at t = 0.2, for a state whose entries are all finite: it must return finite values wherever the solution is finite)"), std::string::npos) << e.message;
+}
+
 // A slow oscillator that a fast relaxing variable drives: x' = v, v' = -x + z/2, z' = (sin x - z)/eps,
 // eps = 1e-3, from (1, 0, 0) to t = 4 (DeltaT = 0.1), with component splits slow {x, v} and fast
 // {z} (on PETSC_COMM_SELF: each rank solves its own copy) and x alone as the observable. A time
