@@ -45,6 +45,7 @@ static constexpr PetscReal kMinSeparation          = 10;   /* a pair of levels t
 static constexpr PetscReal kLostDecaySeparation    = 8;    /* a decaying pair separated at set-up has lost its separation below this (LostSeparation()) */
 static constexpr PetscReal kInitialSeparation      = 10;   /* effective separation sigma_l of the first parameters */
 static constexpr PetscReal kInitialDecaySeparation = 2;    /* the same where the faster level only decays */
+static constexpr PetscReal kSaturationStart        = 0.5;  /* and r_l - 1 starts at most (layer) or at least (given separations) this part of the pair's saturation scale */
 static constexpr PetscReal kSafety                 = 0.8;  /* the parameters aim at this fraction of a step's share */
 static constexpr PetscInt  kRecalibrate            = 10;   /* macro steps between full measurements of the model */
 static constexpr PetscInt  kMaxAttempts            = 12;   /* tries of one macro step */
@@ -1140,17 +1141,23 @@ static std::vector<double> SeparatedRatios(TS ts)
   p.ratios.assign(K, 1.0);
   for (PetscInt l = 0; l < K; ++l) {
     /* Where the application set the separations, sigma_l = kInitialSeparation (its separations are
-       the pairs' saturation scales, and the estimate sees them). Otherwise a faster level that only
-       decays starts at sigma_l = kInitialDecaySeparation, but at most 1 + s_l / 2 (Saturations():
-       near and beyond the saturation scale a coarser comparison changes little, and an error
-       there, an initial layer, could not be seen); one that oscillates at kInitialSeparation. */
+       the pairs' saturation scales, and the estimate sees them), and where the faster level only
+       decays at least 1 + s_l / 2, halfway to its saturation: where the fastest modes are few
+       times faster than the slowest of the faster level, sigma_l = 10 for the fastest ones left
+       next to no savings (the diffsource scene of docs/spectral.md: separation 10.2, radius ratio
+       29.5, a first ratio of 2.96 at 59 micro cycles, half the run's work; 6.1 now). Otherwise a
+       faster level that only decays starts at sigma_l = kInitialDecaySeparation, but at most
+       1 + s_l / 2 (Saturations(): near and beyond the saturation scale a coarser comparison
+       changes little, and an error there, an initial layer, could not be seen); one that
+       oscillates at kInitialSeparation. */
     const PetscBool given = (PetscInt)vs->separations.size() > l ? PETSC_TRUE : PETSC_FALSE;
     const PetscBool decay = (!given && LevelDecays(vs, l + 1)) ? PETSC_TRUE : PETSC_FALSE;
     const PetscReal S     = given ? RadiusRatio(vs, l) : Separation(vs, l); /* a slow rate inside a faster level (OwnRatio()) starts the ratio low */
     p.ratios[l]           = PetscMax(1.0, PetscMin(S / (decay ? kInitialDecaySeparation : kInitialSeparation), 1e8));
+    if (given && LevelDecays(vs, l + 1)) p.ratios[l] = PetscMax(p.ratios[l], 1.0 + kSaturationStart * vs->separations[l]);
     if (decay) {
       const std::vector<double> sat = Saturations(ts, p);
-      if (sat[l] > 0) p.ratios[l] = PetscMin(p.ratios[l], 1.0 + 0.5 * sat[l]);
+      if (sat[l] > 0) p.ratios[l] = PetscMin(p.ratios[l], 1.0 + kSaturationStart * sat[l]);
     }
   }
   return p.ratios;
@@ -2667,10 +2674,19 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
     /* the least-work parameters of the present error Enow under the model m (moving error between
        the terms, as the calibration measured them), and from there towards the target, with the
        work limited */
-    const auto Choose = [&](const vshmm::ErrorModel &m, PetscReal Enow, PetscReal maxDearer) {
-      const vshmm::AdaptParameters same   = vshmm::chooseParameters(p, m, Enow, bounds);
-      vshmm::AdaptParameters       chosen = vshmm::chooseParameters(p, m, target, bounds);
-      vshmm::limitWorkChange(chosen, same, PetscMin(kMaxCheaper, PetscMax(1.0, PetscSqrtReal(target / PetscMax(Enow, PETSC_SMALL)))), maxDearer);
+    /* The first macro step accepted at its first try, every faster level decaying: its parameters
+       were a guess from the spectra, and its estimate is the first measurement of them; the work
+       may fall by the whole target / E (at most kMaxCheaper), not its square root, which damps the
+       noise between consecutive measured choices (kept there: with the whole factor on every step
+       the dissipative example at eps = 1e-4, 1e-3 ended 6.59 tol off, docs/accuracy.md section 9).
+       A run of four macro steps spent half its work on its first two (the diffreact scene of
+       docs/spectral.md: 15, 11, 7 and 7 micro cycles; 15, 8, 6, 6 now). */
+    const PetscBool firstGuess = (vs->adapt_accepted == 0 && attempt == 0 && FasterLevelsDecay(vs)) ? PETSC_TRUE : PETSC_FALSE;
+    const auto      Choose     = [&](const vshmm::ErrorModel &m, PetscReal Enow, PetscReal maxDearer) {
+      const vshmm::AdaptParameters same     = vshmm::chooseParameters(p, m, Enow, bounds);
+      vshmm::AdaptParameters       chosen   = vshmm::chooseParameters(p, m, target, bounds);
+      const PetscReal              toTarget = PetscMax(1.0, target / PetscMax(Enow, PETSC_SMALL));
+      vshmm::limitWorkChange(chosen, same, PetscMin(kMaxCheaper, firstGuess ? toTarget : PetscSqrtReal(toTarget)), maxDearer);
       return chosen;
     };
     if (std::isfinite(E)) next = Choose(vs->adapt_model, Echoice, kMaxDearer);

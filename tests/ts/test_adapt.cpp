@@ -420,7 +420,8 @@ TEST(VSHMMSeparation, AFineTransportRegionIsNotSeparated)
 // slow radius 1 sits at the separation threshold 10 from t = 0.5 to 2; a decaying pair separated
 // at set-up is judged to have lost its separation below 8 only, section 23: judged at 10, the
 // first run flipped between lost and found by rounding, 23,292 evaluations on one rank and 22,788
-// on two.)
+// on two.) The step after a first macro step accepted at its first try goes the whole way to its
+// target (section 33): 0.61 tol with 8,704 + 10,624 (the given separation's run the same).
 TEST(VSHMMAdapt, ABandOfFastRatesIsSeen)
 {
   const double T = 4, ref = BandReference(T, 1e-4), tol = 1e-2;
@@ -428,7 +429,7 @@ TEST(VSHMMAdapt, ABandOfFastRatesIsSeen)
   const struct {
     const char *options;
     PetscInt64  work;
-  } cases[] = {{"-ts_vshmm_adapt -ts_rtol 1e-2 -ts_atol 1e-2", 19376}, {"-ts_vshmm_adapt -ts_rtol 1e-2 -ts_atol 1e-2 -ts_vshmm_scale_separations 10", 15720}};
+  } cases[] = {{"-ts_vshmm_adapt -ts_rtol 1e-2 -ts_atol 1e-2", 19328}, {"-ts_vshmm_adapt -ts_rtol 1e-2 -ts_atol 1e-2 -ts_vshmm_scale_separations 10", 15720}};
   for (const auto &c : cases) {
     AdaptRun run;
     ASSERT_EQ(SolveBand(c.options, 0.5, T, &run), 0);
