@@ -1154,7 +1154,7 @@ static std::vector<double> SeparatedRatios(TS ts)
     const PetscBool decay = (!given && LevelDecays(vs, l + 1)) ? PETSC_TRUE : PETSC_FALSE;
     const PetscReal S     = given ? RadiusRatio(vs, l) : Separation(vs, l); /* a slow rate inside a faster level (OwnRatio()) starts the ratio low */
     p.ratios[l]           = PetscMax(1.0, PetscMin(S / (decay ? kInitialDecaySeparation : kInitialSeparation), 1e8));
-    if (given && LevelDecays(vs, l + 1)) p.ratios[l] = PetscMax(p.ratios[l], 1.0 + kSaturationStart * vs->separations[l]);
+    if (given && LevelDecays(vs, l + 1)) p.ratios[l] = PetscMax(p.ratios[l], 1.0 + kSaturationStart * PetscMin(vs->separations[l], S)); /* (a separation beyond the radius ratio is not one) */
     if (decay) {
       const std::vector<double> sat = Saturations(ts, p);
       if (sat[l] > 0) p.ratios[l] = PetscMin(p.ratios[l], 1.0 + kSaturationStart * sat[l]);
