@@ -324,7 +324,33 @@ std::vector<Beat> beatFrequencies(const std::vector<std::complex<double>> &modes
   return distinct;
 }
 
+std::vector<Triad> triadFrequencies(const std::vector<std::complex<double>> &modes, double fastAbove, double separation)
+{
+  std::vector<double> omega;
+  std::vector<Triad>  triads, distinct;
+  for (const std::complex<double> &lambda : modes)
+    if (oscillates(lambda) && std::abs(lambda) > fastAbove && lambda.imag() > 0) omega.push_back(lambda.imag());
+  std::sort(omega.begin(), omega.end());
+  omega.erase(std::unique(omega.begin(), omega.end(), [](double x, double y) { return std::fabs(y - x) <= kDistinctFrequencies * y; }), omega.end());
+  for (size_t i = 0; i < omega.size(); ++i)
+    for (size_t j = i; j < omega.size(); ++j)
+      for (size_t l = 0; l < omega.size(); ++l) {
+        if (l == i || l == j) continue;
+        const double g = std::fabs(omega[i] + omega[j] - omega[l]);
+        if (g > kDistinctFrequencies * omega[l] && g * separation < omega[i]) triads.push_back({g, omega[i], omega[j], omega[l]});
+      }
+  std::sort(triads.begin(), triads.end(), [](const Triad &a, const Triad &b) { return a.frequency < b.frequency; });
+  for (const Triad &t : triads)
+    if (distinct.empty() || t.frequency > distinct.back().frequency * (1 + kDistinctBeats)) distinct.push_back(t);
+  return distinct;
+}
+
 std::vector<double> modesRotated(const std::vector<double> &vr, const std::vector<std::complex<double>> &lambda, int n, double theta, double delta, double split)
+{
+  return modesTurned(vr, lambda, n, [&](double w) { return theta + (w > split ? delta : 0.0); });
+}
+
+std::vector<double> modesTurned(const std::vector<double> &vr, const std::vector<std::complex<double>> &lambda, int n, const std::function<double(double)> &angle)
 {
   using C = std::complex<double>;
   if (n <= 0 || (int)lambda.size() != n || (int)vr.size() < n * n) return {};
@@ -365,7 +391,7 @@ std::vector<double> modesRotated(const std::vector<double> &vr, const std::vecto
   std::vector<double> y(n, 0.0);
   for (int j = 0; j < n; ++j) {
     const double omega = lambda[j].imag();
-    const double phi   = omega == 0 ? 0.0 : (omega > 0 ? 1.0 : -1.0) * (theta + (std::abs(omega) > split ? delta : 0.0));
+    const double phi   = omega == 0 ? 0.0 : (omega > 0 ? 1.0 : -1.0) * angle(std::abs(omega));
     const C      w     = c[j] * std::polar(1.0, phi);
     for (int i = 0; i < n; ++i) y[i] += (w * Y[i + j * n]).real();
   }

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <complex>
+#include <functional>
 #include <vector>
 
 #include "rk.hpp"
@@ -128,6 +129,22 @@ struct Beat {
   double frequency, lower, upper;
 };
 std::vector<Beat> beatFrequencies(const std::vector<std::complex<double>> &modes, double fastAbove, double separation);
+
+// Three oscillations of frequencies wa, wb, wc with wa + wb - wc = +-g (a triad; wa = wb for a
+// rotation and one at about twice its frequency) make, in a product of the three (or of the first
+// squared and the third), a slow combination at g that no pair of them shows as a beat. The triads
+// among the oscillating modes (|Im| > |Re|, Im > 0) above fastAbove in |lambda|: g above
+// kDistinctFrequencies of wc and at least `separation` times slower than the slowest of the three;
+// ascending in g, triads within kDistinctBeats of a slower one left out.
+struct Triad {
+  double frequency, a, b, c;
+};
+std::vector<Triad> triadFrequencies(const std::vector<std::complex<double>> &modes, double fastAbove, double separation);
+
+// e1 with every oscillating mode turned in its own plane by the angle phi(|Im lambda_j|) (the same
+// conventions as modesRotated() below, which is phi(w) = theta + (w > split ? delta : 0)). Empty
+// where the eigenvectors are singular or the result is not finite.
+std::vector<double> modesTurned(const std::vector<double> &vr, const std::vector<std::complex<double>> &lambda, int n, const std::function<double(double)> &phi);
 
 // e1 with every mode of an n x n real matrix turned in its own plane: with the eigenvalues lambda
 // and right eigenvectors vr of the matrix (column-major, as LAPACK's geev gives them: a complex

@@ -22,8 +22,10 @@
 
 #include <petscblaslapack.h>
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
+#include <functional>
 #include <string>
 
 static constexpr PetscInt  kArnoldiSteps        = 16;
@@ -664,7 +666,11 @@ static PetscErrorCode MayBeat(TS ts, PetscInt L, PetscBool *may)
   PetscFunctionBegin;
   *may = PETSC_FALSE;
   if (L < 1 || !((PetscInt)vs->level_radius.size() > L && vs->level_radius[L] > 0) || (PetscInt)vs->level_limiting.size() <= L) PetscFunctionReturn(0);
-  if (vshmm::beatFrequencies(vs->level_limiting[L], vs->level_radius[L] / kBeatSeparation, kBeatSeparation).empty()) PetscFunctionReturn(0);
+  /* a beat's two frequencies both limit the level's step; a triad's need not (the slowest of its
+     three may be far below the level's radius): any fast oscillation of the level may hold one */
+  bool fast = false;
+  for (const std::complex<double> &lambda : vs->level_limiting[L]) fast = fast || (vshmm::oscillates(lambda) && std::abs(lambda) > vs->level_radius[L] / kBeatSeparation);
+  if (!fast) PetscFunctionReturn(0);
   PetscCall(TSGetProblemType(ts, &type));
   *may = type == TS_LINEAR ? PETSC_FALSE : PETSC_TRUE;
   PetscFunctionReturn(0);
@@ -710,13 +716,13 @@ static PetscErrorCode LevelBeats(TS ts, PetscInt K, Vec P, Vec mask)
     PetscCall(VecDuplicate(ts->vec_sol, &F2));
     PetscCall(VecDuplicate(ts->vec_sol, &Xs));
     PetscCall(TSVSHMMEvaluateLevel_Private(vs, K - 1, ts->ptime, ts->vec_sol, F0));
-    PetscCall(VecWAXPY(Xs, -1.0, P, ts->vec_sol));
+    PetscCall(VecWAXPY(Xs, -0.5, P, ts->vec_sol));
     PetscCall(TSVSHMMEvaluateLevel_Private(vs, K - 1, ts->ptime, Xs, F1));
-    PetscCall(VecAXPY(Xs, -1.0, P));
+    PetscCall(VecAXPY(Xs, -0.5, P)); /* (not X - 2 P: along a line through P = 0, a product of three modes, odd, has no second difference there) */
     PetscCall(TSVSHMMEvaluateLevel_Private(vs, K - 1, ts->ptime, Xs, F2));
     PetscCall(VecNorm(F0, NORM_2, &n0));
     PetscCall(VecNorm(F1, NORM_2, &n1));
-    PetscCall(VecAXPBYPCZ(F2, 1.0, -2.0, 1.0, F0, F1)); /* F(X) - 2 F(X - P) + F(X - 2 P) */
+    PetscCall(VecAXPBYPCZ(F2, 1.0, -2.0, 1.0, F0, F1)); /* F(X) - 2 F(X - P / 2) + F(X - P) */
     PetscCall(VecNorm(F2, NORM_2, &d));
     PetscCall(VecDestroy(&F0));
     PetscCall(VecDestroy(&F1));
@@ -740,36 +746,71 @@ static PetscErrorCode LevelBeats(TS ts, PetscInt K, Vec P, Vec mask)
   }
   if (!info)
     for (PetscInt i = 0; i < k; ++i) ritz.emplace_back(wr[i], wi[i]);
-  std::vector<vshmm::Beat> beats = info ? std::vector<vshmm::Beat>() : vshmm::beatFrequencies(ritz, vs->level_radius[K] / kBeatSeparation, kBeatSeparation);
-  PetscReal                hnorm = 0;
+  std::vector<vshmm::Beat>  beats  = info ? std::vector<vshmm::Beat>() : vshmm::beatFrequencies(ritz, vs->level_radius[K] / kBeatSeparation, kBeatSeparation);
+  std::vector<vshmm::Triad> triads = info ? std::vector<vshmm::Triad>() : vshmm::triadFrequencies(ritz, vs->level_radius[K] / kBeatSeparation, kBeatSeparation);
+  PetscReal                 hnorm  = 0;
   for (PetscInt i = 0; i < k; ++i) hnorm = PetscMax(hnorm, PetscAbsScalar(H[i + (k - 1) * (m + 1)]));
-  if (!beats.empty() && k == m && m < N && !(PetscAbsScalar(H[k + (k - 1) * (m + 1)]) <= kInvariantKrylov * hnorm)) {
-    PetscCall(PetscInfo(ts, "Level %" PetscInt_FMT "'s own splits' modes beat at %g (the slowest difference of their frequencies), but its oscillation does not lie in an invariant Krylov space of %" PetscInt_FMT " vectors: not probed\n", K, beats[0].frequency, m));
+  if ((!beats.empty() || !triads.empty()) && k == m && m < N && !(PetscAbsScalar(H[k + (k - 1) * (m + 1)]) <= kInvariantKrylov * hnorm)) {
+    PetscCall(PetscInfo(ts, "Level %" PetscInt_FMT "'s own splits' modes beat at %g (the slowest difference or triad combination of their frequencies), but its oscillation does not lie in an invariant Krylov space of %" PetscInt_FMT " vectors: not probed\n", K,
+                        beats.empty()    ? triads[0].frequency
+                        : triads.empty() ? beats[0].frequency
+                                         : PetscMin(beats[0].frequency, triads[0].frequency),
+                        m));
     beats.clear();
+    triads.clear();
   }
-  if (beats.empty()) {
+  if (beats.empty() && triads.empty()) {
     PetscCall(VecDestroyVecs(m + 1, &V));
     PetscFunctionReturn(0);
   }
   if ((PetscInt)beats.size() > kMaxBeats) beats.resize(kMaxBeats);
+  if ((PetscInt)triads.size() > kMaxBeats) triads.resize(kMaxBeats);
+  /* each slow combination probed: its frequency g, and the angle of a mode of frequency w at the
+     common phases (i, ib) and the combination's relative phase j. A beat (two modes): every mode
+     turned by i / 8 of a turn, those above the pair's middle frequency a quarter turn j further. A
+     triad wa + wb - wc: the modes at wa turned by alpha = i / 8 of a turn, those at wb by beta =
+     ib / 8 (alpha where wa = wb), those at wc by the sum plus a quarter turn j, the others by
+     alpha: its combination's phase is -j quarter turns at every (alpha, beta), and each mode's own
+     phase and every pair's are averaged out. */
+  struct Probe {
+    double                                       g;
+    int                                          nb;
+    std::function<double(double, int, int, int)> angle;
+  };
+  std::vector<Probe> probes;
+  const auto         same = [](double w, double f) { return std::fabs(w - f) <= vshmm::kDistinctFrequencies * f; };
+  for (const vshmm::Beat &beat : beats) {
+    const double split = 0.5 * (beat.lower + beat.upper);
+    probes.push_back({beat.frequency, 1, [split](double w, int i, int, int j) { return i * PETSC_PI / 4 + (w > split ? j * PETSC_PI / 2 : 0.0); }});
+  }
+  for (const vshmm::Triad &t : triads) {
+    const bool twice = same(t.b, t.a);
+    probes.push_back({t.frequency, twice ? 1 : 8, [t, twice, same](double w, int i, int ib, int j) {
+                        const double alpha = i * PETSC_PI / 4, beta = twice ? alpha : ib * PETSC_PI / 4;
+                        if (same(w, t.c)) return alpha + beta + j * PETSC_PI / 2;
+                        return same(w, t.b) ? beta : alpha;
+                      }});
+  }
+  std::sort(probes.begin(), probes.end(), [](const Probe &a, const Probe &b) { return a.g < b.g; });
+  if ((PetscInt)probes.size() > kMaxBeats) probes.resize(kMaxBeats);
   const std::vector<double> vrk(vr.begin(), vr.end());
   PetscCall(VecDuplicate(ts->vec_sol, &Y));
   PetscCall(VecDuplicate(ts->vec_sol, &Xs));
   PetscCall(VecDuplicate(ts->vec_sol, &F));
   PetscCall(VecDuplicate(ts->vec_sol, &Mean));
-  while (vs->beat_phase.size() < 4 * (vs->beat_omega.size() + beats.size())) {
+  while (vs->beat_phase.size() < 4 * (vs->beat_omega.size() + probes.size())) {
     vs->beat_phase.push_back(nullptr);
     PetscCall(VecDuplicate(ts->vec_sol, &vs->beat_phase.back()));
   }
-  for (const vshmm::Beat &beat : beats) {
+  for (const Probe &probe : probes) {
     const size_t b      = vs->beat_omega.size();
     bool         finite = true;
     PetscCall(VecSet(Mean, 0.0));
-    for (int j = 0; j < 4 && finite; ++j) { /* the faster modes a quarter turn of the beat further each time */
+    for (int j = 0; j < 4 && finite; ++j) { /* the combination a quarter turn further each time */
       Vec avg = vs->beat_phase[4 * b + j];
       PetscCall(VecSet(avg, 0.0));
-      for (int i = 0; i < 8 && finite; ++i) { /* every mode an eighth of its own turn further each time */
-        const std::vector<double> y = vshmm::modesRotated(vrk, ritz, (int)k, i * PETSC_PI / 4, j * PETSC_PI / 2, 0.5 * (beat.lower + beat.upper));
+      for (int i = 0; i < 8 * probe.nb && finite; ++i) { /* the common phases an eighth of a turn apart */
+        const std::vector<double> y = vshmm::modesTurned(vrk, ritz, (int)k, [&](double w) { return probe.angle(w, i % 8, i / 8, j); });
         finite                      = !y.empty();
         if (!finite) break;
         std::vector<PetscScalar> c(y.begin(), y.end());
@@ -780,16 +821,17 @@ static PetscErrorCode LevelBeats(TS ts, PetscInt K, Vec P, Vec mask)
         PetscCall(VecWAXPY(Xs, -1.0, P, ts->vec_sol)); /* X - P + P turned */
         PetscCall(VecAXPY(Xs, 1.0, Y));
         PetscCall(TSVSHMMEvaluateLevel_Private(vs, K - 1, ts->ptime, Xs, F));
-        PetscCall(VecAXPY(avg, 0.125, F));
+        PetscCall(VecAXPY(avg, 1.0 / (8 * probe.nb), F));
       }
       PetscCall(VecAXPY(Mean, 0.25, avg));
     }
     if (!finite) continue;
     for (int j = 0; j < 4; ++j) PetscCall(VecAXPY(vs->beat_phase[4 * b + j], -1.0, Mean));
-    vs->beat_omega.push_back(beat.frequency);
+    vs->beat_omega.push_back(probe.g);
     vs->beat_level.push_back(K);
   }
-  PetscCall(PetscInfo(ts, "Level %" PetscInt_FMT "'s own splits' modes beat at %g%s (the slowest difference of their frequencies)\n", K, beats[0].frequency, beats.size() > 1 ? " and more" : ""));
+  PetscCall(PetscInfo(ts, "Level %" PetscInt_FMT "'s own splits' modes beat at %g%s (the slowest difference or triad combination of their frequencies: %" PetscInt_FMT " beats, %" PetscInt_FMT " triads)\n", K, probes[0].g, probes.size() > 1 ? " and more" : "",
+                      (PetscInt)beats.size(), (PetscInt)triads.size()));
   PetscCall(VecDestroyVecs(m + 1, &V));
   PetscCall(VecDestroy(&Y));
   PetscCall(VecDestroy(&Xs));

@@ -408,4 +408,30 @@ TEST(BeatFrequencies, DifferencesOfDistinctFastFrequencies)
   EXPECT_NEAR(band[3].frequency, 0.08, 1e-9);
 }
 
+// Three fast rotations whose frequencies make w1 + w2 - w3 = 10 are a triad at 10, though no pair
+// of them beats; a rotation and one at twice its frequency less 5 are a triad (w1 = w2) at 5; an
+// exact resonance (g = 0) is no slow process, a combination as fast as the rotations is none, and
+// real modes and slow oscillations are not counted.
+TEST(TriadFrequencies, SlowCombinationsOfThreeFastFrequencies)
+{
+  using C                               = std::complex<double>;
+  const std::vector<vshmm::Triad> three = vshmm::triadFrequencies({C(0, 1000), C(0, -1000), C(0, 1500), C(0, -1500), C(0, 2490), C(0, -2490), C(-7, 0)}, 10, 10);
+  ASSERT_EQ(three.size(), 1u);
+  EXPECT_NEAR(three[0].frequency, 10.0, 1e-9);
+  EXPECT_EQ(three[0].a, 1000.0);
+  EXPECT_EQ(three[0].b, 1500.0);
+  EXPECT_EQ(three[0].c, 2490.0);
+  EXPECT_TRUE(vshmm::beatFrequencies({C(0, 1000), C(0, 1500), C(0, 2490)}, 10, 10).empty()); // no pair beats
+  const std::vector<vshmm::Triad> twice = vshmm::triadFrequencies({C(0, 1000), C(0, 1995)}, 10, 10);
+  ASSERT_EQ(twice.size(), 1u);
+  EXPECT_NEAR(twice[0].frequency, 5.0, 1e-9);
+  EXPECT_EQ(twice[0].a, 1000.0);
+  EXPECT_EQ(twice[0].b, 1000.0);
+  EXPECT_EQ(twice[0].c, 1995.0);
+  EXPECT_TRUE(vshmm::triadFrequencies({C(0, 1000), C(0, 1500), C(0, 2500)}, 10, 10).empty());    // exact resonance
+  EXPECT_TRUE(vshmm::triadFrequencies({C(0, 1000), C(0, 1500), C(0, 2400)}, 10, 10).empty());    // 100: not 10 times slower than 1000
+  EXPECT_TRUE(vshmm::triadFrequencies({C(-1000, 0), C(-1500, 0), C(-2490, 0)}, 10, 10).empty()); // no oscillation
+  EXPECT_TRUE(vshmm::triadFrequencies({C(0, 5), C(0, 6), C(0, 10.9)}, 10, 10).empty());          // below fastAbove
+}
+
 } // namespace
