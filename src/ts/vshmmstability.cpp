@@ -691,8 +691,13 @@ static PetscErrorCode MayBeat(TS ts, PetscInt L, PetscBool *may)
    averaged out, whatever its frequency) at four relative phases of the beat (the modes above its
    middle frequency a quarter turn further each time), less their mean, in vs->beat_phase. Only
    where the Arnoldi space is invariant (a few fast modes; P in a band wider than the space is not
-   probed). What that does to the observables is measured by TSVSHMMAdaptBeats_Private(), and for
-   fixed savings by the separation check (CheckBeats()). */
+   probed). Three modes whose frequencies make wa + wb - wc slow while every pair's difference is
+   fast (a triad, vshmm::triadFrequencies(); wa = wb included) hold, in a product of the three, the
+   same kind of slow process: probed alike at four phases of that combination, averaged over the
+   turns (alpha, beta, alpha + beta) of the three (x' = -x + 4 q1 q2 q3 at 1000, 1500 and 2490
+   ended 5.8 and 38.8 tolerances off at 1e-1 and 1e-2 before: docs/accuracy.md section 26). What
+   that does to the observables is measured by TSVSHMMAdaptBeats_Private(), and for fixed savings
+   by the separation check (CheckBeats()). */
 static PetscErrorCode LevelBeats(TS ts, PetscInt K, Vec P, Vec mask)
 {
   TS_VSHMM *vs = (TS_VSHMM *)ts->data; /* K: the level looked at (its modes beat; level K - 1's field holds their products) */
