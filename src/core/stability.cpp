@@ -306,31 +306,45 @@ double forcedResponse(const std::vector<double> &H, int n, int ld, double tau)
   return std::isfinite(response) ? std::sqrt(response) : std::numeric_limits<double>::infinity();
 }
 
-std::vector<Beat> beatFrequencies(const std::vector<std::complex<double>> &modes, double fastAbove, double separation)
+namespace {
+// The frequencies of the oscillating modes (|Im| > |Re|, Im > 0) above fastAbove in |lambda|, ascending.
+std::vector<double> fastFrequencies(const std::vector<std::complex<double>> &modes, double fastAbove)
 {
   std::vector<double> omega;
-  std::vector<Beat>   beats, distinct;
   for (const std::complex<double> &lambda : modes)
     if (oscillates(lambda) && std::abs(lambda) > fastAbove && lambda.imag() > 0) omega.push_back(lambda.imag());
   std::sort(omega.begin(), omega.end());
+  return omega;
+}
+
+// Ascending in frequency, one of those within kDistinctBeats of each other (the slowest).
+template <class T>
+std::vector<T> slowestDistinct(std::vector<T> found)
+{
+  std::vector<T> distinct;
+  std::sort(found.begin(), found.end(), [](const T &a, const T &b) { return a.frequency < b.frequency; });
+  for (const T &f : found)
+    if (distinct.empty() || f.frequency > distinct.back().frequency * (1 + kDistinctBeats)) distinct.push_back(f);
+  return distinct;
+}
+} // namespace
+
+std::vector<Beat> beatFrequencies(const std::vector<std::complex<double>> &modes, double fastAbove, double separation)
+{
+  const std::vector<double> omega = fastFrequencies(modes, fastAbove);
+  std::vector<Beat>         beats;
   for (size_t i = 0; i < omega.size(); ++i)
     for (size_t j = i + 1; j < omega.size(); ++j) {
       const double g = omega[j] - omega[i];
       if (g > kDistinctFrequencies * omega[j] && g * separation < omega[i]) beats.push_back({g, omega[i], omega[j]});
     }
-  std::sort(beats.begin(), beats.end(), [](const Beat &a, const Beat &b) { return a.frequency < b.frequency; });
-  for (const Beat &b : beats) /* one of beats within kDistinctBeats of each other */
-    if (distinct.empty() || b.frequency > distinct.back().frequency * (1 + kDistinctBeats)) distinct.push_back(b);
-  return distinct;
+  return slowestDistinct(beats);
 }
 
 std::vector<Triad> triadFrequencies(const std::vector<std::complex<double>> &modes, double fastAbove, double separation)
 {
-  std::vector<double> omega;
-  std::vector<Triad>  triads, distinct;
-  for (const std::complex<double> &lambda : modes)
-    if (oscillates(lambda) && std::abs(lambda) > fastAbove && lambda.imag() > 0) omega.push_back(lambda.imag());
-  std::sort(omega.begin(), omega.end());
+  std::vector<double> omega = fastFrequencies(modes, fastAbove);
+  std::vector<Triad>  triads;
   omega.erase(std::unique(omega.begin(), omega.end(), [](double x, double y) { return std::fabs(y - x) <= kDistinctFrequencies * y; }), omega.end());
   for (size_t i = 0; i < omega.size(); ++i)
     for (size_t j = i; j < omega.size(); ++j)
@@ -339,10 +353,7 @@ std::vector<Triad> triadFrequencies(const std::vector<std::complex<double>> &mod
         const double g = std::fabs(omega[i] + omega[j] - omega[l]);
         if (g > kDistinctFrequencies * omega[l] && g * separation < omega[i]) triads.push_back({g, omega[i], omega[j], omega[l]});
       }
-  std::sort(triads.begin(), triads.end(), [](const Triad &a, const Triad &b) { return a.frequency < b.frequency; });
-  for (const Triad &t : triads)
-    if (distinct.empty() || t.frequency > distinct.back().frequency * (1 + kDistinctBeats)) distinct.push_back(t);
-  return distinct;
+  return slowestDistinct(triads);
 }
 
 std::vector<double> modesRotated(const std::vector<double> &vr, const std::vector<std::complex<double>> &lambda, int n, double theta, double delta, double split)
