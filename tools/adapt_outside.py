@@ -47,6 +47,8 @@ PROBLEMS = [
     ('two fast rotations 10 apart, their beat drives x (section 26)', 30, 2, 1e-5, ['-eps', '1e-3', '-a', '10']),
     ('a beat in the medium level of three (section 26)', 32, 2, 1e-6, ['-eps', '1e-3', '-eps2', '1e-6', '-a', '10']),
     ('three fast rotations in a triad resonance (section 26)', 31, 2, 1e-6, ['-eps', '1e-3', '-a', '10']),
+    ('four fast rotations in a quartet resonance (section 34)', 36, 2, 1e-6, ['-eps', '1e-3', '-a', '10']),
+    ('a beat that slows from 500 to rest at t = 1.5 (section 34)', 37, 2, 1e-6, ['-eps', '1e-3', '-a', '1.5', '-b', '0.5']),
     ('the beat through squares, 8 q1^2 q2^2 - 2 (section 26)', 33, 2, 1e-6, ['-eps', '1e-3', '-a', '5']),
     ('a fast band whose slowest rate is 30 (section 27: savings that do not pay)', 34, 2, 1e-5, ['-eps', '1e-3', '-a', '30']),
     ('a slow rotation at 20, 2 radians a macro step, scales not separated (section 28)', 35, 2, 1e-5, ['-eps', '1e-2', '-a', '20']),

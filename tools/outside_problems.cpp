@@ -21,7 +21,7 @@ typedef struct {
   PetscReal eps, eps2, a, d, b;
   PetscInt  nsplit;
   PetscBool additive;
-  PetscInt  comp[4][8], ncomp[4]; /* components written by each split (slowest first) */
+  PetscInt  comp[4][12], ncomp[4]; /* components written by each split (slowest first) */
 } Ctx;
 
 /* full field (every component) */
@@ -216,6 +216,27 @@ static void Field(Ctx *c, PetscReal t, const PetscScalar *u, PetscScalar *f)
     f[1] = -a * u[0];
     f[2] = -(u[2] - u[0] * u[0]) / e;
     break;
+  case 36: /* four fast rotations in a quartet resonance, w1 - w2 - w3 + w4 = -a eps: x' = -x + 8 q1 q2 q3 q4 ; (q_i, p_i)' = w_i (p_i, -q_i) / eps, w = (1, 1.5, 2.35, 2.85 - a eps) (8 q1 q2 q3 q4 holds cos(a t): a slow combination no pair or triad of them shows) */
+    f[0] = -u[0] + 8 * u[1] * u[3] * u[5] * u[7];
+    f[1] = u[2] / e;
+    f[2] = -u[1] / e;
+    f[3] = 1.5 * u[4] / e;
+    f[4] = -1.5 * u[3] / e;
+    f[5] = 2.35 * u[6] / e;
+    f[6] = -2.35 * u[5] / e;
+    f[7] = (2.85 - a * e) * u[8] / e;
+    f[8] = -(2.85 - a * e) * u[7] / e;
+    break;
+  case 37: /* a beat that slows down through the run: x' = -x + q1 q2 ; tau' = 1 ; q1' = p1/eps, p1' = -q1/eps ; q2' = w p2/eps, p2' = -w q2/eps, w = 1 + b (1 - tau / a) (the beat (w - 1) / eps falls from b / eps at t = 0 to 0 at t = a: a fast process that becomes a slow one) */
+  {
+    const PetscReal w = 1 + c->b * (1 - u[1] / a);
+    f[0]              = -u[0] + u[2] * u[4];
+    f[1]              = 1;
+    f[2]              = u[3] / e;
+    f[3]              = -u[2] / e;
+    f[4]              = w * u[5] / e;
+    f[5]              = -w * u[4] / e;
+  } break;
   case 19: /* three-level chemistry: A' = -A + B ; B' = (A - 2 B + C)/eps ; C' = (B - C - C^3)/eps2 */
     f[0] = -u[0] + u[1];
     f[1] = (u[0] - 2 * u[1] + u[2]) / e;
@@ -228,7 +249,7 @@ static PetscErrorCode Split(TS ts, PetscReal t, Vec U, Vec F, void *ctx, PetscIn
 {
   Ctx               *c = (Ctx *)ctx;
   const PetscScalar *u;
-  PetscScalar       *f, full[8];
+  PetscScalar       *f, full[12];
   PetscFunctionBeginUser;
   PetscCall(VecGetArrayRead(U, &u));
   PetscCall(VecGetArray(F, &f));
@@ -308,7 +329,7 @@ static PetscErrorCode Mon(TS ts, PetscInt step, PetscReal t, Vec X, void *ctx)
 {
   Ctx               *c = (Ctx *)ctx;
   const PetscScalar *u;
-  PetscReal          q[8];
+  PetscReal          q[12];
   PetscFunctionBeginUser;
   PetscCall(VecGetArrayRead(X, &u));
   Obs(c, t, u, q);
@@ -378,6 +399,8 @@ static const Setup kSetups[] = {
   {33, 1, {{0}, {1, 2, 3, 4}}, {0, 1, 0, 1, 0}},
   {34, 1, {{0}, {1, 2, 3, 4, 5, 6, 7}}, {1, 0.97, 0.78, 0.43, 0, -0.43, -0.78, -0.97}},
   {35, 2, {{0, 1}, {2}}, {1, 0, 0}},
+  {36, 1, {{0}, {1, 2, 3, 4, 5, 6, 7, 8}}, {0, 1, 0, 1, 0, 1, 0, 1, 0}},
+  {37, 1, {{0, 1}, {2, 3, 4, 5}}, {0, 0, 1, 0, 1, 0}},
 };
 
 int main(int argc, char **argv)
@@ -406,11 +429,11 @@ int main(int argc, char **argv)
   PetscCall(PetscOptionsGetReal(NULL, NULL, "-a", &c.a, NULL));
   PetscCall(PetscOptionsGetBool(NULL, NULL, "-noobs", &noobs, NULL));
   PetscCall(PetscOptionsGetBool(NULL, NULL, "-additive", &c.additive, NULL));
-  PetscReal    u0[8] = {0};
-  const Setup *setup = nullptr;
+  PetscReal    u0[12] = {0};
+  const Setup *setup  = nullptr;
   for (const Setup &st : kSetups)
     if (st.prob == c.prob) setup = &st;
-  PetscCheck(setup, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "-prob %d: no such problem (0-35, the cases of Field())", (int)c.prob);
+  PetscCheck(setup, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "-prob %d: no such problem (0-37, the cases of Field())", (int)c.prob);
   c.n      = (PetscInt)setup->u0.size();
   c.nobs   = setup->nobs;
   c.nsplit = (PetscInt)setup->splits.size();
@@ -421,8 +444,8 @@ int main(int argc, char **argv)
   for (PetscInt i = 0; i < c.n; ++i) u0[i] = setup->u0[i];
   if (obs1) c.nobs = 1;
   {
-    PetscReal xs[8];
-    PetscInt  nx = 8;
+    PetscReal xs[12];
+    PetscInt  nx = 12;
     PetscBool set;
     PetscCall(PetscOptionsGetRealArray(NULL, NULL, "-x0", xs, &nx, &set));
     if (set)
