@@ -341,19 +341,46 @@ std::vector<Beat> beatFrequencies(const std::vector<std::complex<double>> &modes
   return slowestDistinct(beats);
 }
 
-std::vector<Triad> triadFrequencies(const std::vector<std::complex<double>> &modes, double fastAbove, double separation)
+namespace {
+// Every choice of coefficients for the frequencies omega[first..] after `w`/`c` so far, the sum of
+// the |c| reaching `left` more.
+void addCombinations(const std::vector<double> &omega, size_t first, int left, std::vector<double> &w, std::vector<int> &c, double separation, std::vector<Combination> &found)
 {
-  std::vector<double> omega = fastFrequencies(modes, fastAbove);
-  std::vector<Triad>  triads;
-  omega.erase(std::unique(omega.begin(), omega.end(), [](double x, double y) { return std::fabs(y - x) <= kDistinctFrequencies * y; }), omega.end());
-  for (size_t i = 0; i < omega.size(); ++i)
-    for (size_t j = i; j < omega.size(); ++j)
-      for (size_t l = 0; l < omega.size(); ++l) {
-        if (l == i || l == j) continue;
-        const double g = std::fabs(omega[i] + omega[j] - omega[l]);
-        if (g > kDistinctFrequencies * omega[l] && g * separation < omega[i]) triads.push_back({g, omega[i], omega[j], omega[l]});
+  if (left == 0) {
+    /* a coefficient +-1 (the probe turns that mode by the combination's phase; up to order 4 it
+       also leaves out the multiples of a beat, 2 w_a - 2 w_b) */
+    if (c.size() < 2 || std::none_of(c.begin(), c.end(), [](int ci) { return std::abs(ci) == 1; })) return;
+    double g = 0;
+    for (size_t i = 0; i < w.size(); ++i) g += c[i] * w[i];
+    g = std::fabs(g);
+    if (g > kDistinctFrequencies * w.back() && g * separation < w.front()) found.push_back({g, w, c});
+    return;
+  }
+  for (size_t i = first; i < omega.size(); ++i)
+    for (int a = 1; a <= left; ++a)
+      for (int sign : {1, -1}) {
+        if (c.empty() && sign < 0) continue; /* the first coefficient positive: a combination and its negative are one */
+        w.push_back(omega[i]);
+        c.push_back(sign * a);
+        addCombinations(omega, i + 1, left - a, w, c, separation, found);
+        w.pop_back();
+        c.pop_back();
       }
-  return slowestDistinct(triads);
+}
+} // namespace
+
+std::vector<Combination> slowCombinations(const std::vector<std::complex<double>> &modes, double fastAbove, double separation, int order)
+{
+  std::vector<double>      omega = fastFrequencies(modes, fastAbove);
+  std::vector<Combination> found;
+  std::vector<double>      w;
+  std::vector<int>         c;
+  omega.erase(std::unique(omega.begin(), omega.end(), [](double x, double y) { return std::fabs(y - x) <= kDistinctFrequencies * y; }), omega.end());
+  addCombinations(omega, 0, order, w, c, separation, found);
+  /* ascending in g, all kept: two combinations at one frequency are different products of the
+     modes (1000, 1700, 2300, 2990: 3 w1 - w4 and w1 - w2 - w3 + w4 both at 10) */
+  std::stable_sort(found.begin(), found.end(), [](const Combination &a, const Combination &b) { return a.frequency < b.frequency; });
+  return found;
 }
 
 std::vector<double> modesRotated(const std::vector<double> &vr, const std::vector<std::complex<double>> &lambda, int n, double theta, double delta, double split)

@@ -130,16 +130,21 @@ struct Beat {
 };
 std::vector<Beat> beatFrequencies(const std::vector<std::complex<double>> &modes, double fastAbove, double separation);
 
-// Three oscillations of frequencies wa, wb, wc with wa + wb - wc = +-g (a triad; wa = wb for a
-// rotation and one at about twice its frequency) make, in a product of the three (or of the first
-// squared and the third), a slow combination at g that no pair of them shows as a beat. The triads
-// among the oscillating modes (|Im| > |Re|, Im > 0) above fastAbove in |lambda|: g above
-// kDistinctFrequencies of wc and at least `separation` times slower than the slowest of the three;
-// ascending in g, triads within kDistinctBeats of a slower one left out.
-struct Triad {
-  double frequency, a, b, c;
+// Oscillations of frequencies w_i combined with integer coefficients c_i, sum c_i w_i = +-g, make
+// in a product of them (w_i taken |c_i| times) a slow combination at g that no pair of them need
+// show as a beat: three modes (a triad: wa + wb - wc, or 2 wa - wc for a rotation and one at about
+// twice its frequency) or four (a quartet: wa + wb - wc - wd, wa + wb + wc - wd, 2 wa - wb - wc,
+// 2 wa + wb - wc, 3 wa - wb). The slow combinations of `order` (3 or 4: the sum of the |c_i|) among
+// the oscillating modes (|Im| > |Re|, Im > 0) above fastAbove in |lambda|: the distinct frequencies
+// w ascending, their coefficients c (the first positive, at least one +-1: no multiple of a beat), g
+// above kDistinctFrequencies of the largest w and at least `separation` times slower than the
+// slowest; ascending in g (combinations at one frequency all kept: they are different products).
+struct Combination {
+  double              frequency;
+  std::vector<double> w;
+  std::vector<int>    c;
 };
-std::vector<Triad> triadFrequencies(const std::vector<std::complex<double>> &modes, double fastAbove, double separation);
+std::vector<Combination> slowCombinations(const std::vector<std::complex<double>> &modes, double fastAbove, double separation, int order);
 
 // e1 with every oscillating mode turned in its own plane by the angle phi(|Im lambda_j|) (the same
 // conventions as modesRotated() below, which is phi(w) = theta + (w > split ? delta : 0)). Empty

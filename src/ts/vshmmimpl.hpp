@@ -88,13 +88,15 @@ struct TS_VSHMM {
   PetscReal              unaveraged        = 0; // -ts_vshmm_adapt: the weighted error of a macro step that leaves that phase-dependent part unaveraged (1 = the tolerance; 0: none)
   PetscReal              unaveraged_omega  = 0; // and the slowest frequency of the fastest level's limiting oscillations
   PetscReal              unaveraged_max    = 0; // the largest unaveraged of the solve (the relative phases of a band of fast modes change it)
-  PetscBool              fastest_phase_now = PETSC_FALSE;     // fastest_phase is of the present spectra
-  std::vector<PetscReal> beat_omega;                          // the beats of the faster levels' own oscillations probed at the present spectra (TSVSHMMLevelBeats_Private(); vshmm::beatFrequencies())
-  std::vector<PetscInt>  beat_level;                          // and the level of each
-  std::vector<Vec>       beat_phase;                          // per beat, the slower levels' field averaged over the common phase at four relative phases of the beat, less their mean
-  std::vector<PetscReal> beat_bound;                          // -ts_vshmm_adapt, per level: the slowest beat of the solve whose relative phase, held until the slower levels forget it, moves the observables by more than kUnaveragedShare (0: none)
-  std::vector<PetscReal> beat_effect;                         // and that measure (1 = the tolerance)
-  PetscBool              beat_warned        = PETSC_FALSE;    // told of it in this solve
+  PetscBool              fastest_phase_now = PETSC_FALSE; // fastest_phase is of the present spectra
+  std::vector<PetscReal> beat_omega;                      // the beats of the faster levels' own oscillations probed at the present spectra (TSVSHMMLevelBeats_Private(); vshmm::beatFrequencies())
+  std::vector<PetscInt>  beat_level;                      // and the level of each
+  std::vector<Vec>       beat_phase;                      // per beat, the slower levels' field averaged over the common phase at four relative phases of the beat, less their mean
+  std::vector<PetscReal> beat_bound;                      // -ts_vshmm_adapt, per level: the slowest beat of the solve whose relative phase, held until the slower levels forget it, moves the observables by more than kUnaveragedShare (0: none)
+  std::vector<PetscReal> beat_effect;                     // and that measure (1 = the tolerance)
+  PetscBool              beat_warned = PETSC_FALSE;       // told of it in this solve
+  std::vector<PetscReal> beat_watch[4]; // -ts_vshmm_adapt, per level: the slowest difference of its own fast frequencies that is no beat yet (vshmm::beatFrequencies() with separation 1) at the last two spectra, and their times (g, t, g before, t before; 0: none)
+  std::vector<PetscReal> beat_slowed;                         // -ts_vshmm_adapt, per level L: the largest product r_0 ... r_{L-1} of the solve's accepted macro steps (how far savings have slowed level L's oscillations)
   PetscBool              beats_checked      = PETSC_FALSE;    // the separation check of fixed savings looked for beats (once, at set-up)
   PetscBool              unaveraged_unknown = PETSC_FALSE;    // the fastest level oscillates, but its oscillation had no amplitude to measure unaveraged with (a state on its slow manifold, or at rest)
   std::vector<PetscReal> level_time_rate;                     // per level l >= 1: how fast its own splits' explicit time dependence moves, ||dF_l/dt|| / (rho_l ||X||) (0: none or not estimated)
@@ -276,6 +278,7 @@ PETSC_INTERN PetscErrorCode TSVSHMMAdaptReset_Private(TS);
 PETSC_INTERN PetscReal      TSVSHMMAmplitudeSpan_Private(TS);
 PETSC_INTERN PetscErrorCode TSVSHMMAdaptUnaveraged_Private(TS);
 PETSC_INTERN PetscErrorCode TSVSHMMLevelBeats_Private(TS);                                                                   /* the faster levels' beats (vs->beat_omega, vs->beat_level, vs->beat_phase) */
+PETSC_INTERN PetscBool      TSVSHMMBeatApproaching_Private(TS, PetscReal);                                                   /* -ts_vshmm_adapt: a difference of fast frequencies falling towards a beat before the time */
 PETSC_INTERN PetscErrorCode TSVSHMMAdaptBeats_Private(TS);                                                                   /* -ts_vshmm_adapt: what they do to the observables (vs->beat_bound) */
 PETSC_INTERN PetscErrorCode TSVSHMMAdaptSampleSchedule_Private(TS, PetscReal, std::unique_ptr<vshmm::MesoscopicSchedule> &); /* for a state inside the last macro step (TSInterpolate()) */
 PETSC_INTERN PetscErrorCode TSVSHMMCheckFastQuantities_Private(TS, PetscReal);                                               /* fixed savings: said where the sampled quantities carry a faster level's phase */

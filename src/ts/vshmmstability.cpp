@@ -666,8 +666,9 @@ static PetscErrorCode MayBeat(TS ts, PetscInt L, PetscBool *may)
   PetscFunctionBegin;
   *may = PETSC_FALSE;
   if (L < 1 || !((PetscInt)vs->level_radius.size() > L && vs->level_radius[L] > 0) || (PetscInt)vs->level_limiting.size() <= L) PetscFunctionReturn(0);
-  /* a beat's two frequencies both limit the level's step; a triad's need not (the slowest of its
-     three may be far below the level's radius): any fast oscillation of the level may hold one */
+  /* a beat's two frequencies both limit the level's step; a triad's or a quartet's need not (the
+     slowest of its modes may be far below the level's radius): any fast oscillation of the level
+     may hold one */
   bool fast = false;
   for (const std::complex<double> &lambda : vs->level_limiting[L]) fast = fast || (vshmm::oscillates(lambda) && std::abs(lambda) > vs->level_radius[L] / kBeatSeparation);
   if (!fast) PetscFunctionReturn(0);
@@ -691,11 +692,13 @@ static PetscErrorCode MayBeat(TS ts, PetscInt L, PetscBool *may)
    averaged out, whatever its frequency) at four relative phases of the beat (the modes above its
    middle frequency a quarter turn further each time), less their mean, in vs->beat_phase. Only
    where the Arnoldi space is invariant (a few fast modes; P in a band wider than the space is not
-   probed). Three modes whose frequencies make wa + wb - wc slow while every pair's difference is
-   fast (a triad, vshmm::triadFrequencies(); wa = wb included) hold, in a product of the three, the
-   same kind of slow process: probed alike at four phases of that combination, averaged over the
-   turns (alpha, beta, alpha + beta) of the three (x' = -x + 4 q1 q2 q3 at 1000, 1500 and 2490
-   ended 5.8 and 38.8 tolerances off at 1e-1 and 1e-2 before: docs/accuracy.md section 26). What
+   probed). Three or four modes whose frequencies make a slow combination while every pair's
+   difference is fast (a triad wa + wb - wc, a quartet wa + wb - wc - wd, and the like with a mode
+   taken twice or three times: vshmm::slowCombinations()) hold, in a product of them, the same kind
+   of slow process: probed alike at four phases of that combination, averaged over the turns of the
+   modes that leave it unchanged (x' = -x + 4 q1 q2 q3 at 1000, 1500 and 2490 ended 5.8 and 38.8
+   tolerances off at 1e-1 and 1e-2 before: docs/accuracy.md section 26; x' = -x + 8 q1 q2 q3 q4 at
+   1000, 1500, 2350 and 2840, 4.1 tolerances at 1e-1: section 34). What
    that does to the observables is measured by TSVSHMMAdaptBeats_Private(), and for fixed savings
    by the separation check (CheckBeats()). */
 static PetscErrorCode LevelBeats(TS ts, PetscInt K, Vec P, Vec mask)
@@ -751,49 +754,83 @@ static PetscErrorCode LevelBeats(TS ts, PetscInt K, Vec P, Vec mask)
   }
   if (!info)
     for (PetscInt i = 0; i < k; ++i) ritz.emplace_back(wr[i], wi[i]);
-  std::vector<vshmm::Beat>  beats  = info ? std::vector<vshmm::Beat>() : vshmm::beatFrequencies(ritz, vs->level_radius[K] / kBeatSeparation, kBeatSeparation);
-  std::vector<vshmm::Triad> triads = info ? std::vector<vshmm::Triad>() : vshmm::triadFrequencies(ritz, vs->level_radius[K] / kBeatSeparation, kBeatSeparation);
-  PetscReal                 hnorm  = 0;
-  for (PetscInt i = 0; i < k; ++i) hnorm = PetscMax(hnorm, PetscAbsScalar(H[i + (k - 1) * (m + 1)]));
-  if ((!beats.empty() || !triads.empty()) && k == m && m < N && !(PetscAbsScalar(H[k + (k - 1) * (m + 1)]) <= kInvariantKrylov * hnorm)) {
-    PetscCall(PetscInfo(ts, "Level %" PetscInt_FMT "'s own splits' modes beat at %g (the slowest difference or triad combination of their frequencies), but its oscillation does not lie in an invariant Krylov space of %" PetscInt_FMT " vectors: not probed\n", K,
-                        beats.empty()    ? triads[0].frequency
-                        : triads.empty() ? beats[0].frequency
-                                         : PetscMin(beats[0].frequency, triads[0].frequency),
-                        m));
-    beats.clear();
-    triads.clear();
+  if (!info) {
+    /* the slowest difference of the fast frequencies that is no beat yet, watched from spectra to
+       spectra: where it falls, the next spectra are estimated before it would become a beat
+       (TSVSHMMBeatApproaching_Private()) */
+    PetscReal watch = 0; /* kBeatSeparation g / (the slower frequency of the pair): a beat below 1 */
+    for (const vshmm::Beat &b : vshmm::beatFrequencies(ritz, vs->level_radius[K] / kBeatSeparation, 1.0)) {
+      const PetscReal r = b.frequency * kBeatSeparation / b.lower;
+      if (r >= 1 && (!(watch > 0) || r < watch)) watch = r;
+    }
+    for (std::vector<PetscReal> &w : vs->beat_watch) w.resize(vs->level_end.size(), 0.0);
+    if (vs->beat_watch[1][K] < ts->ptime) { /* (looked at twice at one time: the earlier record stays) */
+      vs->beat_watch[2][K] = vs->beat_watch[0][K];
+      vs->beat_watch[3][K] = vs->beat_watch[1][K];
+    }
+    vs->beat_watch[0][K] = watch;
+    vs->beat_watch[1][K] = ts->ptime;
   }
-  if (beats.empty() && triads.empty()) {
+  std::vector<vshmm::Beat>        beats = info ? std::vector<vshmm::Beat>() : vshmm::beatFrequencies(ritz, vs->level_radius[K] / kBeatSeparation, kBeatSeparation);
+  std::vector<vshmm::Combination> combinations; /* of three modes (triads) and four (quartets) */
+  for (int order = 3; order <= 4 && !info; ++order) {
+    const std::vector<vshmm::Combination> found = vshmm::slowCombinations(ritz, vs->level_radius[K] / kBeatSeparation, kBeatSeparation, order);
+    combinations.insert(combinations.end(), found.begin(), found.begin() + std::min(found.size(), (size_t)kMaxBeats));
+  }
+  PetscReal hnorm = 0;
+  for (PetscInt i = 0; i < k; ++i) hnorm = PetscMax(hnorm, PetscAbsScalar(H[i + (k - 1) * (m + 1)]));
+  if ((!beats.empty() || !combinations.empty()) && k == m && m < N && !(PetscAbsScalar(H[k + (k - 1) * (m + 1)]) <= kInvariantKrylov * hnorm)) {
+    PetscReal slowest = beats.empty() ? PETSC_MAX_REAL : beats[0].frequency;
+    for (const vshmm::Combination &c : combinations) slowest = PetscMin(slowest, c.frequency);
+    PetscCall(PetscInfo(ts, "Level %" PetscInt_FMT "'s own splits' modes beat at %g (the slowest difference or combination of three or four of their frequencies), but its oscillation does not lie in an invariant Krylov space of %" PetscInt_FMT " vectors: not probed\n", K, (double)slowest, m));
+    beats.clear();
+    combinations.clear();
+  }
+  if (beats.empty() && combinations.empty()) {
     PetscCall(VecDestroyVecs(m + 1, &V));
     PetscFunctionReturn(0);
   }
   if ((PetscInt)beats.size() > kMaxBeats) beats.resize(kMaxBeats);
-  if ((PetscInt)triads.size() > kMaxBeats) triads.resize(kMaxBeats);
-  /* each slow combination probed: its frequency g, and the angle of a mode of frequency w at the
-     common phases (i, ib) and the combination's relative phase j. A beat (two modes): every mode
-     turned by i / 8 of a turn, those above the pair's middle frequency a quarter turn j further. A
-     triad wa + wb - wc: the modes at wa turned by alpha = i / 8 of a turn, those at wb by beta =
-     ib / 8 (alpha where wa = wb), those at wc by the sum plus a quarter turn j, the others by
-     alpha: its combination's phase is -j quarter turns at every (alpha, beta), and each mode's own
-     phase and every pair's are averaged out. */
+  /* each slow process probed: its frequency g, the number of common phases averaged over, and the
+     angle of a mode of frequency w at common phase i and the process's relative phase j. A beat
+     (two modes): every mode turned by i / 8 of a turn, those above the pair's middle frequency a
+     quarter turn j further. A combination sum c_n w_n (three or four modes): the modes of each
+     frequency but one (d, whose coefficient is +-1) turned by free angles theta_n, on a grid of
+     8 (one or two free angles) or 4 (three) per angle, whose digits i counts through; those at
+     w_d by c_d (-j / 4 of a turn - sum c_n theta_n), so that the combination's phase is -j quarter
+     turns at every i; the modes of no frequency of it by the first free angle. Each mode's own
+     phase and every other product of the modes of degree up to 5 average out (a triad wa + wb -
+     wc: theta_c = alpha + beta + j / 4 of a turn, 64 phases). */
   struct Probe {
-    double                                       g;
-    int                                          nb;
-    std::function<double(double, int, int, int)> angle;
+    double                                  g;
+    int                                     samples;
+    std::function<double(double, int, int)> angle;
   };
   std::vector<Probe> probes;
   const auto         same = [](double w, double f) { return std::fabs(w - f) <= vshmm::kDistinctFrequencies * f; };
   for (const vshmm::Beat &beat : beats) {
     const double split = 0.5 * (beat.lower + beat.upper);
-    probes.push_back({beat.frequency, 1, [split](double w, int i, int, int j) { return i * PETSC_PI / 4 + (w > split ? j * PETSC_PI / 2 : 0.0); }});
+    probes.push_back({beat.frequency, 8, [split](double w, int i, int j) { return i * PETSC_PI / 4 + (w > split ? j * PETSC_PI / 2 : 0.0); }});
   }
-  for (const vshmm::Triad &t : triads) {
-    const bool twice = same(t.b, t.a);
-    probes.push_back({t.frequency, twice ? 1 : 8, [t, twice, same](double w, int i, int ib, int j) {
-                        const double alpha = i * PETSC_PI / 4, beta = twice ? alpha : ib * PETSC_PI / 4;
-                        if (same(w, t.c)) return alpha + beta + j * PETSC_PI / 2;
-                        return same(w, t.b) ? beta : alpha;
+  for (const vshmm::Combination &comb : combinations) {
+    size_t d = comb.c.size() - 1;
+    while (std::abs(comb.c[d]) != 1) --d;                                  /* (slowCombinations() gives a coefficient +-1) */
+    const int angles = (int)comb.c.size() - 1, grid = angles <= 2 ? 8 : 4; /* free angles, and the phases of each */
+    int       samples = 1;
+    for (int f = 0; f < angles; ++f) samples *= grid;
+    probes.push_back({comb.frequency, samples, [comb, d, grid, same](double w, int i, int j) {
+                        double theta0 = 0, sum = 0, mine = 0;
+                        bool   found = false;
+                        for (size_t n = 0, f = 0; n < comb.c.size(); ++n) {
+                          if (n == d) continue;
+                          const double theta = (i % grid) * 2 * PETSC_PI / grid;
+                          i /= grid;
+                          if (f++ == 0) theta0 = theta;
+                          sum += comb.c[n] * theta;
+                          if (same(w, comb.w[n])) mine = theta, found = true;
+                        }
+                        if (same(w, comb.w[d])) return comb.c[d] * (-j * PETSC_PI / 2 - sum);
+                        return found ? mine : theta0;
                       }});
   }
   std::sort(probes.begin(), probes.end(), [](const Probe &a, const Probe &b) { return a.g < b.g; });
@@ -814,8 +851,8 @@ static PetscErrorCode LevelBeats(TS ts, PetscInt K, Vec P, Vec mask)
     for (int j = 0; j < 4 && finite; ++j) { /* the combination a quarter turn further each time */
       Vec avg = vs->beat_phase[4 * b + j];
       PetscCall(VecSet(avg, 0.0));
-      for (int i = 0; i < 8 * probe.nb && finite; ++i) { /* the common phases an eighth of a turn apart */
-        const std::vector<double> y = vshmm::modesTurned(vrk, ritz, (int)k, [&](double w) { return probe.angle(w, i % 8, i / 8, j); });
+      for (int i = 0; i < probe.samples && finite; ++i) { /* the common phases */
+        const std::vector<double> y = vshmm::modesTurned(vrk, ritz, (int)k, [&](double w) { return probe.angle(w, i, j); });
         finite                      = !y.empty();
         if (!finite) break;
         std::vector<PetscScalar> c(y.begin(), y.end());
@@ -826,7 +863,7 @@ static PetscErrorCode LevelBeats(TS ts, PetscInt K, Vec P, Vec mask)
         PetscCall(VecWAXPY(Xs, -1.0, P, ts->vec_sol)); /* X - P + P turned */
         PetscCall(VecAXPY(Xs, 1.0, Y));
         PetscCall(TSVSHMMEvaluateLevel_Private(vs, K - 1, ts->ptime, Xs, F));
-        PetscCall(VecAXPY(avg, 1.0 / (8 * probe.nb), F));
+        PetscCall(VecAXPY(avg, 1.0 / probe.samples, F));
       }
       PetscCall(VecAXPY(Mean, 0.25, avg));
     }
@@ -835,8 +872,8 @@ static PetscErrorCode LevelBeats(TS ts, PetscInt K, Vec P, Vec mask)
     vs->beat_omega.push_back(probe.g);
     vs->beat_level.push_back(K);
   }
-  PetscCall(PetscInfo(ts, "Level %" PetscInt_FMT "'s own splits' modes beat at %g%s (the slowest difference or triad combination of their frequencies: %" PetscInt_FMT " beats, %" PetscInt_FMT " triads)\n", K, probes[0].g, probes.size() > 1 ? " and more" : "",
-                      (PetscInt)beats.size(), (PetscInt)triads.size()));
+  PetscCall(PetscInfo(ts, "Level %" PetscInt_FMT "'s own splits' modes beat at %g%s (the slowest difference or combination of three or four of their frequencies: %" PetscInt_FMT " beats, %" PetscInt_FMT " combinations)\n", K, probes[0].g, probes.size() > 1 ? " and more" : "",
+                      (PetscInt)beats.size(), (PetscInt)combinations.size()));
   PetscCall(VecDestroyVecs(m + 1, &V));
   PetscCall(VecDestroy(&Y));
   PetscCall(VecDestroy(&Xs));
@@ -1511,6 +1548,24 @@ PetscErrorCode TSVSHMMCheckStability_Private(TS ts)
   PetscFunctionReturn(0);
 }
 
+/* Whether a difference of two fast frequencies of a level that was no beat at the last spectra
+   (vs->beat_watch, LevelBeats()) has been falling fast enough, between the last two spectra, to
+   become one before t1 (its frequency at most 1 / kBeatSeparation of the slower of the pair): the
+   spectra are then estimated again at the start of the step, so that the beat is probed when it
+   turns slow, not at the next calibration (rotations at 1000 and 1500 - 333 t, whose beat turns
+   slow at t = 1.2 and passes zero at 1.5: the spectra of 0, 0.1 and 1 saw no beat and the run at
+   1e-3 ended 5.9 tol off silently, docs/accuracy.md section 34). */
+PetscBool TSVSHMMBeatApproaching_Private(TS ts, PetscReal t1)
+{
+  const TS_VSHMM *vs = (const TS_VSHMM *)ts->data;
+  for (size_t L = 0; L < vs->beat_watch[0].size() && L < vs->beat_watch[3].size(); ++L) {
+    const PetscReal r = vs->beat_watch[0][L], t = vs->beat_watch[1][L], r0 = vs->beat_watch[2][L], t0 = vs->beat_watch[3][L];
+    /* (a record of older spectra than the last is stale: the level was not looked at since) */
+    if (!(r > 0 && r0 > 0 && t == vs->spectra_time && t > t0 && r < (1 - vshmm::kDistinctBeats) * r0)) continue;
+    if (t + (r - 1) * (t - t0) / (r0 - r) <= t1) return PETSC_TRUE;
+  }
+  return PETSC_FALSE;
+}
 /* The beats of the own oscillations of every faster level l >= 1 (LevelBeats(), in vs->beat_omega,
    vs->beat_level, vs->beat_phase), started at each level's LevelOscillationPart() (as
    FastestLevelDrive() takes the fastest level's). With each estimate of the spectra under -ts_vshmm_adapt

@@ -2,6 +2,7 @@
 // stability limits, and the amplification of a level's steps over a macro step.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <limits>
@@ -409,29 +410,85 @@ TEST(BeatFrequencies, DifferencesOfDistinctFastFrequencies)
 }
 
 // Three fast rotations whose frequencies make w1 + w2 - w3 = 10 are a triad at 10, though no pair
-// of them beats; a rotation and one at twice its frequency less 5 are a triad (w1 = w2) at 5; an
+// of them beats; a rotation and one at twice its frequency less 5 are a triad (2 w1 - w2) at 5; an
 // exact resonance (g = 0) is no slow process, a combination as fast as the rotations is none, and
 // real modes and slow oscillations are not counted.
-TEST(TriadFrequencies, SlowCombinationsOfThreeFastFrequencies)
+TEST(SlowCombinations, TriadsOfThreeFastFrequencies)
 {
-  using C                               = std::complex<double>;
-  const std::vector<vshmm::Triad> three = vshmm::triadFrequencies({C(0, 1000), C(0, -1000), C(0, 1500), C(0, -1500), C(0, 2490), C(0, -2490), C(-7, 0)}, 10, 10);
+  using C                                     = std::complex<double>;
+  const std::vector<vshmm::Combination> three = vshmm::slowCombinations({C(0, 1000), C(0, -1000), C(0, 1500), C(0, -1500), C(0, 2490), C(0, -2490), C(-7, 0)}, 10, 10, 3);
   ASSERT_EQ(three.size(), 1u);
   EXPECT_NEAR(three[0].frequency, 10.0, 1e-9);
-  EXPECT_EQ(three[0].a, 1000.0);
-  EXPECT_EQ(three[0].b, 1500.0);
-  EXPECT_EQ(three[0].c, 2490.0);
+  EXPECT_EQ(three[0].w, (std::vector<double>{1000, 1500, 2490}));
+  EXPECT_EQ(three[0].c, (std::vector<int>{1, 1, -1}));
   EXPECT_TRUE(vshmm::beatFrequencies({C(0, 1000), C(0, 1500), C(0, 2490)}, 10, 10).empty()); // no pair beats
-  const std::vector<vshmm::Triad> twice = vshmm::triadFrequencies({C(0, 1000), C(0, 1995)}, 10, 10);
+  const std::vector<vshmm::Combination> middle = vshmm::slowCombinations({C(0, 1000), C(0, 2490), C(0, 1500)}, 10, 10, 3);
+  ASSERT_EQ(middle.size(), 1u); // the same triad, whatever the order of the modes
+  EXPECT_EQ(middle[0].w, (std::vector<double>{1000, 1500, 2490}));
+  const std::vector<vshmm::Combination> sum = vshmm::slowCombinations({C(0, 1000), C(0, 2495), C(0, 1500)}, 10, 10, 3);
+  ASSERT_EQ(sum.size(), 1u); // 1000 + 1500 - 2495 = 5
+  EXPECT_NEAR(sum[0].frequency, 5.0, 1e-9);
+  const std::vector<vshmm::Combination> twice = vshmm::slowCombinations({C(0, 1000), C(0, 1995)}, 10, 10, 3);
   ASSERT_EQ(twice.size(), 1u);
   EXPECT_NEAR(twice[0].frequency, 5.0, 1e-9);
-  EXPECT_EQ(twice[0].a, 1000.0);
-  EXPECT_EQ(twice[0].b, 1000.0);
-  EXPECT_EQ(twice[0].c, 1995.0);
-  EXPECT_TRUE(vshmm::triadFrequencies({C(0, 1000), C(0, 1500), C(0, 2500)}, 10, 10).empty());    // exact resonance
-  EXPECT_TRUE(vshmm::triadFrequencies({C(0, 1000), C(0, 1500), C(0, 2400)}, 10, 10).empty());    // 100: not 10 times slower than 1000
-  EXPECT_TRUE(vshmm::triadFrequencies({C(-1000, 0), C(-1500, 0), C(-2490, 0)}, 10, 10).empty()); // no oscillation
-  EXPECT_TRUE(vshmm::triadFrequencies({C(0, 5), C(0, 6), C(0, 10.9)}, 10, 10).empty());          // below fastAbove
+  EXPECT_EQ(twice[0].w, (std::vector<double>{1000, 1995}));
+  EXPECT_EQ(twice[0].c, (std::vector<int>{2, -1}));
+  EXPECT_TRUE(vshmm::slowCombinations({C(0, 1000), C(0, 1500), C(0, 2500)}, 10, 10, 3).empty());    // exact resonance
+  EXPECT_TRUE(vshmm::slowCombinations({C(0, 1000), C(0, 1500), C(0, 2400)}, 10, 10, 3).empty());    // 100: not 10 times slower than 1000
+  EXPECT_TRUE(vshmm::slowCombinations({C(-1000, 0), C(-1500, 0), C(-2490, 0)}, 10, 10, 3).empty()); // no oscillation
+  EXPECT_TRUE(vshmm::slowCombinations({C(0, 5), C(0, 6), C(0, 10.9)}, 10, 10, 3).empty());          // below fastAbove
+}
+
+// Four fast rotations with w1 - w2 - w3 + w4 = -10 (1000, 1700, 2300, 2990) are a quartet at 10,
+// though no pair beats and no three of them combine slowly (3 w1 - w4 at 10 and 2 w3 - w2 - w4 at
+// 90 are others, all kept); so are w1 + w2 + w3 - w4, 2 w1 - w2 -
+// w3, 2 w1 + w2 - w3 and 3 w1 - w2 (a mode taken twice or three times); 2 w1 - 2 w2 is twice a
+// beat (no coefficient +-1), and a quartet as fast as the rotations is none.
+TEST(SlowCombinations, QuartetsOfFourFastFrequencies)
+{
+  using C                                    = std::complex<double>;
+  const std::vector<std::complex<double>> q4 = {C(0, 1000), C(0, 1700), C(0, 2300), C(0, 2990)};
+  EXPECT_TRUE(vshmm::beatFrequencies(q4, 10, 10).empty());
+  EXPECT_TRUE(vshmm::slowCombinations(q4, 10, 10, 3).empty());
+  const std::vector<vshmm::Combination> four = vshmm::slowCombinations(q4, 10, 10, 4);
+  ASSERT_EQ(four.size(), 3u); // and 3 w1 - w4 at 10 too, 2 w3 - w2 - w4 at 90: each its own product of the modes
+  EXPECT_NEAR(four[0].frequency, 10.0, 1e-9);
+  EXPECT_NEAR(four[1].frequency, 10.0, 1e-9);
+  EXPECT_NEAR(four[2].frequency, 90.0, 1e-9);
+  const vshmm::Combination &q = four[0].w.size() == 4 ? four[0] : four[1];
+  EXPECT_EQ(q.w, (std::vector<double>{1000, 1700, 2300, 2990}));
+  EXPECT_EQ(q.c, (std::vector<int>{1, -1, -1, 1}));
+  EXPECT_EQ(four[2].c, (std::vector<int>{1, -2, 1}));
+  const std::vector<vshmm::Combination> three = vshmm::slowCombinations({C(0, 1000), C(0, 1300), C(0, 1450), C(0, 3757)}, 10, 10, 4);
+  ASSERT_EQ(three.size(), 1u); // 1000 + 1300 + 1450 - 3757 = -7
+  EXPECT_NEAR(three[0].frequency, 7.0, 1e-9);
+  EXPECT_EQ(three[0].c, (std::vector<int>{1, 1, 1, -1}));
+  const struct {
+    std::vector<std::complex<double>> modes;
+    double                            g;
+    std::vector<int>                  size; /* the |c| of the combination, ascending */
+  } repeated[] = {
+    {{C(0, 1000), C(0, 1200), C(0, 803)}, 3, {1, 1, 2}},  // 2 w - w' - w'': 2000 - 1200 - 803
+    {{C(0, 1000), C(0, 1200), C(0, 3196)}, 4, {1, 1, 2}}, // 2 w + w' - w'': 2000 + 1200 - 3196
+    {{C(0, 1000), C(0, 2996)}, 4, {1, 3}},                // 3 w - w': 3000 - 2996
+  };
+  for (const auto &r : repeated) {
+    const std::vector<vshmm::Combination> found = vshmm::slowCombinations(r.modes, 10, 10, 4);
+    ASSERT_EQ(found.size(), 1u);
+    EXPECT_NEAR(found[0].frequency, r.g, 1e-9);
+    std::vector<int> size;
+    double           sum = 0;
+    for (size_t n = 0; n < found[0].c.size(); ++n) {
+      size.push_back(std::abs(found[0].c[n]));
+      sum += found[0].c[n] * found[0].w[n];
+    }
+    std::sort(size.begin(), size.end());
+    EXPECT_EQ(size, r.size);
+    EXPECT_NEAR(std::fabs(sum), r.g, 1e-9);
+  }
+  EXPECT_TRUE(vshmm::slowCombinations({C(0, 1000), C(0, 1002)}, 1, 10, 4).empty());                          // 2 w1 - 2 w2: twice the beat at 2
+  EXPECT_TRUE(vshmm::slowCombinations({C(0, 1000), C(0, 1600), C(0, 2300), C(0, 3000)}, 10, 10, 4).empty()); // 100: not 10 times slower than 1000
+  EXPECT_TRUE(vshmm::slowCombinations({C(0, 1000), C(0, 1500), C(0, 2350), C(0, 2850)}, 10, 10, 4).empty()); // exact resonance
 }
 
 } // namespace
