@@ -568,10 +568,11 @@ PetscErrorCode TSVSHMMAdaptBeats_Private(TS ts)
       /* found during the run, after steps whose savings slowed the level (by any factor: a beat at g
          loses g DeltaT (1 - 1 / r) of its relative phase per macro step slowed r times; one first
          step at r = 1.0033, then single-rate steps, left the run below 5.9 tol off): the beat's
-         relative phase now is the savings', not the solution's, and the bound cannot give it back. A beat whose frequency falls towards zero during the run (a resonance
-         reached: rotations at 1000 and 1500 - 333 t, x' = -x + q1 q2, found at t = 1.6, 4.2 tol
-         off at 1e-2 with the estimates at 0.8: docs/accuracy.md section 34) depends on the fast phase
-         at the passage, which no savings keep */
+         relative phase now is the savings', not the solution's, and the bound cannot give it
+         back. A beat whose frequency falls towards zero during the run (a resonance reached:
+         rotations at 1000 and 1500 - 333 t, x' = -x + q1 q2, 4.2 tol off at 1e-2 with the
+         estimates at 0.8: docs/accuracy.md section 34) depends on the fast phase at the passage,
+         which no savings keep */
       char late[512] = "";
       if (slowed > 1 + 1e-9)
         PetscCall(PetscSNPrintf(late, sizeof(late),
