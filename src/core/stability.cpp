@@ -383,11 +383,6 @@ std::vector<Combination> slowCombinations(const std::vector<std::complex<double>
   return found;
 }
 
-std::vector<double> modesRotated(const std::vector<double> &vr, const std::vector<std::complex<double>> &lambda, int n, double theta, double delta, double split)
-{
-  return modesTurned(vr, lambda, n, [&](double w) { return theta + (w > split ? delta : 0.0); });
-}
-
 std::vector<double> modesTurned(const std::vector<double> &vr, const std::vector<std::complex<double>> &lambda, int n, const std::function<double(double)> &angle)
 {
   using C = std::complex<double>;

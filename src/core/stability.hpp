@@ -146,20 +146,15 @@ struct Combination {
 };
 std::vector<Combination> slowCombinations(const std::vector<std::complex<double>> &modes, double fastAbove, double separation, int order);
 
-// e1 with every oscillating mode turned in its own plane by the angle phi(|Im lambda_j|) (the same
-// conventions as modesRotated() below, which is phi(w) = theta + (w > split ? delta : 0)). Empty
-// where the eigenvectors are singular or the result is not finite.
-std::vector<double> modesTurned(const std::vector<double> &vr, const std::vector<std::complex<double>> &lambda, int n, const std::function<double(double)> &phi);
-
 // e1 with every mode of an n x n real matrix turned in its own plane: with the eigenvalues lambda
 // and right eigenvectors vr of the matrix (column-major, as LAPACK's geev gives them: a complex
 // pair's real and imaginary parts in two columns, the one with Im > 0 first), e1 = sum_j c_j y_j,
-// and each term of a mode with Im lambda_j != 0 is multiplied by exp(i s_j phi_j), s_j the sign of
-// Im lambda_j, phi_j = theta, plus delta where |Im lambda_j| > split: every oscillation advanced by
-// the same angle theta whatever its frequency (an average over theta is an average over each one's
-// own phase), those above `split` by delta more (a relative phase). Real modes are left as they
-// are. On a Krylov space of a Jacobian started at v, V times this is v / ||v|| so turned. Empty
-// where the eigenvectors are singular or the result is not finite.
-std::vector<double> modesRotated(const std::vector<double> &vr, const std::vector<std::complex<double>> &lambda, int n, double theta, double delta, double split);
+// and each term of a mode with Im lambda_j != 0 is multiplied by exp(i s_j phi(|Im lambda_j|)), s_j
+// the sign of Im lambda_j: phi(w) = theta for every w advances every oscillation by the same angle
+// whatever its frequency (an average over theta is an average over each one's own phase), theta +
+// (w > split ? delta : 0) those above `split` by delta more (a relative phase: a beat's probe).
+// Real modes are left as they are. On a Krylov space of a Jacobian started at v, V times this is
+// v / ||v|| so turned. Empty where the eigenvectors are singular or the result is not finite.
+std::vector<double> modesTurned(const std::vector<double> &vr, const std::vector<std::complex<double>> &lambda, int n, const std::function<double(double)> &phi);
 
 } // namespace vshmm

@@ -688,7 +688,7 @@ static PetscErrorCode MayBeat(TS ts, PetscInt L, PetscBool *may)
    beats of the modes in the oscillation's part of the state P (vshmm::beatFrequencies() on the Ritz
    values of an Arnoldi space of the own splits' Jacobian started at P, on the level's own
    components where mask is given), the slower levels' field averaged over eight common phases (each
-   mode turned in its own plane by the same angle, vshmm::modesRotated(): each one's own oscillation
+   mode turned in its own plane by the same angle, vshmm::modesTurned(): each one's own oscillation
    averaged out, whatever its frequency) at four relative phases of the beat (the modes above its
    middle frequency a quarter turn further each time), less their mean, in vs->beat_phase. Only
    where the Arnoldi space is invariant (a few fast modes; P in a band wider than the space is not

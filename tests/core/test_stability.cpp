@@ -357,7 +357,7 @@ namespace {
 // mixes, so that e1 holds both): each turned by theta in its own plane, the faster one (above the
 // split 1005) by delta more, against the closed form Q R Q^T e1. A real mode stays; singular
 // eigenvectors give nothing.
-TEST(ModesRotated, EachOscillationByTheSameAngle)
+TEST(ModesTurned, EachOscillationByItsAngle)
 {
   using C                     = std::complex<double>;
   const double        h       = 1 / std::sqrt(2.0);
@@ -365,10 +365,11 @@ TEST(ModesRotated, EachOscillationByTheSameAngle)
   std::vector<double> vr(16);
   for (int i = 0; i < 4; ++i)
     for (int j = 0; j < 4; ++j) vr[i + j * 4] = Q[i][j] * h; // the block's eigenvectors (1, i) / sqrt 2 for +i w, mixed by Q
-  const std::vector<C> lambda = {C(0, 1000), C(0, -1000), C(0, 1010), C(0, -1010)};
+  const std::vector<C> lambda  = {C(0, 1000), C(0, -1000), C(0, 1010), C(0, -1010)};
+  const auto           rotated = [](double theta, double delta, double split) { return [=](double w) { return theta + (w > split ? delta : 0.0); }; };
   for (double theta : {0.0, 0.7, 2.5})
     for (double delta : {0.0, 1.5707963267948966, 3.0}) {
-      const std::vector<double> y = vshmm::modesRotated(vr, lambda, 4, theta, delta, 1005);
+      const std::vector<double> y = vshmm::modesTurned(vr, lambda, 4, rotated(theta, delta, 1005));
       ASSERT_EQ(y.size(), 4u);
       const double b[4] = {h * std::cos(theta), -h * std::sin(theta), h * std::cos(theta + delta), -h * std::sin(theta + delta)}; // Q^T e1 = (h, 0, h, 0) turned
       for (int i = 0; i < 4; ++i) {
@@ -377,11 +378,11 @@ TEST(ModesRotated, EachOscillationByTheSameAngle)
         EXPECT_NEAR(y[i], expected, 1e-14) << "theta " << theta << " delta " << delta << " component " << i;
       }
     }
-  const std::vector<double> real = vshmm::modesRotated({1.0}, {C(-1, 0)}, 1, 2.0, 1.0, 0.0);
+  const std::vector<double> real = vshmm::modesTurned({1.0}, {C(-1, 0)}, 1, rotated(2.0, 1.0, 0.0));
   ASSERT_EQ(real.size(), 1u);
   EXPECT_EQ(real[0], 1.0);
-  EXPECT_TRUE(vshmm::modesRotated(std::vector<double>(16, 0.0), lambda, 4, 1.0, 0.0, 1005).empty());
-  EXPECT_TRUE(vshmm::modesRotated(vr, {C(0, 1)}, 4, 1.0, 0.0, 0).empty()); // eigenvalues and vectors do not match
+  EXPECT_TRUE(vshmm::modesTurned(std::vector<double>(16, 0.0), lambda, 4, rotated(1.0, 0.0, 1005)).empty());
+  EXPECT_TRUE(vshmm::modesTurned(vr, {C(0, 1)}, 4, rotated(1.0, 0.0, 0)).empty()); // eigenvalues and vectors do not match
 }
 
 // Two fast rotations 10 apart beat at 10 (a slow process where the slower level's rate is 1); equal
