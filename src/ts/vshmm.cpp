@@ -282,7 +282,7 @@ static PetscErrorCode StartRun(TS ts)
   vs->beat_bound.clear(); /* a beat found in an earlier run does not bound this one's savings */
   vs->beat_effect.clear();
   vs->beat_slowed.clear();
-  for (std::vector<PetscReal> &w : vs->beat_watch) w.clear();
+  vs->beat_watch.clear();
   vs->beat_warned           = PETSC_FALSE;
   vs->beats_checked         = PETSC_FALSE;
   vs->cost_warned           = PETSC_FALSE; /* this run's work against single-rate steps (TSVSHMMAdaptCheckCost_Private()) */

@@ -95,8 +95,11 @@ struct TS_VSHMM {
   std::vector<PetscReal> beat_bound;                      // -ts_vshmm_adapt, per level: the slowest beat of the solve whose relative phase, held until the slower levels forget it, moves the observables by more than kUnaveragedShare (0: none)
   std::vector<PetscReal> beat_effect;                     // and that measure (1 = the tolerance)
   PetscBool              beat_warned = PETSC_FALSE;       // told of it in this solve
-  std::vector<PetscReal> beat_watch[4]; // -ts_vshmm_adapt, per level: the slowest difference of its own fast frequencies that is no beat yet, as 10 g / the slower of the pair (a beat below 1; 0: none), at the last spectra and the ones before, with their times (r, t, r before, t before)
-  std::vector<PetscReal> beat_slowed;                         // -ts_vshmm_adapt, per level L: the largest product r_0 ... r_{L-1} of the solve's accepted macro steps (how far savings have slowed level L's oscillations)
+  struct BeatWatch {
+    PetscReal r = 0, t = 0, r_before = 0, t_before = 0;
+  };
+  std::vector<BeatWatch> beat_watch;  // -ts_vshmm_adapt, per level: the slowest difference of its own fast frequencies that is no beat yet, as r = 10 g / the slower of the pair (a beat below 1; 0: none), at the last spectra (t) and the ones before
+  std::vector<PetscReal> beat_slowed; // -ts_vshmm_adapt, per level L: the largest product r_0 ... r_{L-1} of the solve's accepted macro steps (how far savings have slowed level L's oscillations)
   PetscBool              beats_checked      = PETSC_FALSE;    // the separation check of fixed savings looked for beats (once, at set-up)
   PetscBool              unaveraged_unknown = PETSC_FALSE;    // the fastest level oscillates, but its oscillation had no amplitude to measure unaveraged with (a state on its slow manifold, or at rest)
   std::vector<PetscReal> level_time_rate;                     // per level l >= 1: how fast its own splits' explicit time dependence moves, ||dF_l/dt|| / (rho_l ||X||) (0: none or not estimated)

@@ -763,13 +763,14 @@ static PetscErrorCode LevelBeats(TS ts, PetscInt K, Vec P, Vec mask)
       const PetscReal r = b.frequency * kBeatSeparation / b.lower;
       if (r >= 1 && (!(watch > 0) || r < watch)) watch = r;
     }
-    for (std::vector<PetscReal> &w : vs->beat_watch) w.resize(vs->level_end.size(), 0.0);
-    if (vs->beat_watch[1][K] < ts->ptime) { /* (looked at twice at one time: the earlier record stays) */
-      vs->beat_watch[2][K] = vs->beat_watch[0][K];
-      vs->beat_watch[3][K] = vs->beat_watch[1][K];
+    vs->beat_watch.resize(vs->level_end.size());
+    TS_VSHMM::BeatWatch &w = vs->beat_watch[K];
+    if (w.t < ts->ptime) { /* (looked at twice at one time: the earlier record stays) */
+      w.r_before = w.r;
+      w.t_before = w.t;
     }
-    vs->beat_watch[0][K] = watch;
-    vs->beat_watch[1][K] = ts->ptime;
+    w.r = watch;
+    w.t = ts->ptime;
   }
   std::vector<vshmm::Beat>        beats = info ? std::vector<vshmm::Beat>() : vshmm::beatFrequencies(ritz, vs->level_radius[K] / kBeatSeparation, kBeatSeparation);
   std::vector<vshmm::Combination> combinations; /* of three modes (triads) and four (quartets) */
@@ -1558,11 +1559,10 @@ PetscErrorCode TSVSHMMCheckStability_Private(TS ts)
 PetscBool TSVSHMMBeatApproaching_Private(TS ts, PetscReal t1)
 {
   const TS_VSHMM *vs = (const TS_VSHMM *)ts->data;
-  for (size_t L = 0; L < vs->beat_watch[0].size() && L < vs->beat_watch[3].size(); ++L) {
-    const PetscReal r = vs->beat_watch[0][L], t = vs->beat_watch[1][L], r0 = vs->beat_watch[2][L], t0 = vs->beat_watch[3][L];
+  for (const TS_VSHMM::BeatWatch &w : vs->beat_watch) {
     /* (a record of older spectra than the last is stale: the level was not looked at since) */
-    if (!(r > 0 && r0 > 0 && t == vs->spectra_time && t > t0 && r < (1 - vshmm::kDistinctBeats) * r0)) continue;
-    if (t + (r - 1) * (t - t0) / (r0 - r) <= t1) return PETSC_TRUE;
+    if (!(w.r > 0 && w.r_before > 0 && w.t == vs->spectra_time && w.t > w.t_before && w.r < (1 - vshmm::kDistinctBeats) * w.r_before)) continue;
+    if (w.t + (w.r - 1) * (w.t - w.t_before) / (w.r_before - w.r) <= t1) return PETSC_TRUE;
   }
   return PETSC_FALSE;
 }
