@@ -237,6 +237,14 @@ static void Field(Ctx *c, PetscReal t, const PetscScalar *u, PetscScalar *f)
     f[4]              = w * u[5] / e;
     f[5]              = -w * u[4] / e;
   } break;
+  case 38: /* an unstable slow equation (a saddle) driven by a slaved fast variable: x' = a (x - 1) + z / 2 ; z' = -(z - cos x)/eps (on the slow manifold x' = a (x - 1) + cos(x) / 2, unstable at its equilibrium x* (0.582 for a = 1, 0.811 for a = 2) with rate a - sin(x*) / 2: an error made at t grows by e^(mu (T - t))) */
+    f[0] = a * (u[0] - 1) + 0.5 * u[1];
+    f[1] = -(u[1] - PetscCosReal(u[0])) / e;
+    break;
+  case 39: /* an instability the slow split's own Jacobian (-1) does not show, made by the coupling: x' = -x + 2 z ; z' = -(z - x - 0.01)/eps (on the slow manifold x' = x + 0.02: errors grow as e^t) */
+    f[0] = -u[0] + 2 * u[1];
+    f[1] = -(u[1] - u[0] - 0.01) / e;
+    break;
   case 19: /* three-level chemistry: A' = -A + B ; B' = (A - 2 B + C)/eps ; C' = (B - C - C^3)/eps2 */
     f[0] = -u[0] + u[1];
     f[1] = (u[0] - 2 * u[1] + u[2]) / e;
@@ -401,6 +409,8 @@ static const Setup kSetups[] = {
   {35, 2, {{0, 1}, {2}}, {1, 0, 0}},
   {36, 1, {{0}, {1, 2, 3, 4, 5, 6, 7, 8}}, {0, 1, 0, 1, 0, 1, 0, 1, 0}},
   {37, 1, {{0, 1}, {2, 3, 4, 5}}, {0, 0, 1, 0, 1, 0}},
+  {38, 1, {{0}, {1}}, {0.59, 0.8309406791}},
+  {39, 1, {{0}, {1}}, {0, 0.01}},
 };
 
 int main(int argc, char **argv)
@@ -433,7 +443,7 @@ int main(int argc, char **argv)
   const Setup *setup  = nullptr;
   for (const Setup &st : kSetups)
     if (st.prob == c.prob) setup = &st;
-  PetscCheck(setup, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "-prob %d: no such problem (0-37, the cases of Field())", (int)c.prob);
+  PetscCheck(setup, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "-prob %d: no such problem (0-39, the cases of Field())", (int)c.prob);
   c.n      = (PetscInt)setup->u0.size();
   c.nobs   = setup->nobs;
   c.nsplit = (PetscInt)setup->splits.size();
