@@ -89,6 +89,8 @@ PETSC_EXTERN const char *const TSVSHMMSeparationChecks[];
 .  adapt_uncompared - accepted macro steps whose comparison was left out (nothing left to coarsen, the estimates far below their shares: the model's prediction stood in)
 .  adapt_layer_estimates - tries of the first macro step estimated again from a second comparison (an initial layer, where the error grows faster than the error model's terms)
 .  adapt_single_rate_from - the time from which -ts_vshmm_adapt took no savings because the tolerance was out of reach with them (finer savings did not lower the estimate, a single-rate step did), -1 if it did not happen
+.  adapt_growth_probes - probes of how the slow dynamics grow an error (made where the slowest level's Jacobian has a growing mode; see "Accuracy on request" in docs/user-guide.md)
+.  adapt_growth_rate - the growth rate of an error the last probe measured (per unit time; 0: none grows): each later macro step's share of the tolerance is shrunk by e^(rate (t_final - t))
 .  global_estimate  - with -ts_vshmm_adapt_global_estimate, the error at the last sampled time estimated from the carried comparison (a second solution with every error term doubled), in the TS's weighted norm (1 = the tolerance); -1 without it
 .  global_estimate_max - the largest global_estimate of the run (since TSVSHMMResetStatistics()); -1 without it
 -  single_rate_evaluations - split RHS evaluations a single-rate TSRK of the same tableau would take over the same macro steps at each one's micro step (every split at every stage); rhs_evaluations plus adapt_evaluations above it means the savings did not pay for themselves
@@ -116,6 +118,8 @@ typedef struct {
   PetscInt64        adapt_uncompared;
   PetscInt64        adapt_layer_estimates;
   PetscReal         adapt_single_rate_from;
+  PetscInt64        adapt_growth_probes;
+  PetscReal         adapt_growth_rate;
   PetscReal         global_estimate;
   PetscReal         global_estimate_max;
   PetscInt64        single_rate_evaluations;

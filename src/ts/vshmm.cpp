@@ -718,6 +718,11 @@ static PetscErrorCode TSView_VSHMM(TS ts, PetscViewer viewer)
     else if (vs->adapt_global)
       PetscCall(PetscViewerASCIIPrintf(viewer, "    global error estimate (-ts_vshmm_adapt_global_estimate, the carried comparison): %g at t = %g, largest %g over the run (1 = the tolerance)%s\n", (double)vs->global_estimate, (double)vs->carried_time,
                                        (double)vs->global_estimate_max, vs->carried_restarts ? "; the comparison blew up and started again from the solution (the estimate counts the errors since)" : ""));
+    if (vs->growth_probes > 0 && vs->growth_rate > 0)
+      PetscCall(PetscViewerASCIIPrintf(viewer, "    the slow dynamics grow an error (a growing mode of the slowest level's Jacobian, probed %" PetscInt64_FMT " time%s): the last probe measured e^(%g t), and each later macro step's share of the tolerance is shrunk by e^(%g (t_final - t))\n", vs->growth_probes, vs->growth_probes == 1 ? "" : "s",
+                                       (double)vs->growth_rate, (double)vs->growth_rate));
+    else if (vs->growth_probes > 0)
+      PetscCall(PetscViewerASCIIPrintf(viewer, "    the slow dynamics do not grow an error (a growing mode of the slowest level's Jacobian, probed %" PetscInt64_FMT " time%s: the last probe found none)\n", vs->growth_probes, vs->growth_probes == 1 ? "" : "s"));
     if (vs->observables && vs->slow_count > 0)
       PetscCall(PetscViewerASCIIPrintf(viewer, "    with the observables, the %" PetscInt_FMT " slow component%s (written by the slowest splits only, -ts_vshmm_adapt_slow_components): %" PetscInt64_FMT " of the differences led by %s\n", vs->slow_count, vs->slow_count == 1 ? "" : "s", vs->slow_led, vs->slow_count == 1 ? "it" : "them"));
     else if (vs->observables && !vs->adapt_slow_components) PetscCall(PetscViewerASCIIPrintf(viewer, "    the observables only (-ts_vshmm_adapt_slow_components false)\n"));
@@ -1110,6 +1115,8 @@ static PetscErrorCode TSVSHMMGetStatistics_VSHMM(TS ts, TSVSHMMStatistics *stats
   stats->adapt_uncompared        = vs->adapt_uncompared_total;
   stats->adapt_layer_estimates   = vs->adapt_layer_fits;
   stats->adapt_single_rate_from  = vs->adapt_single_rate_from;
+  stats->adapt_growth_probes     = vs->growth_probes;
+  stats->adapt_growth_rate       = vs->growth_rate;
   stats->global_estimate         = vs->adapt_global ? vs->global_estimate : -1;
   stats->global_estimate_max     = vs->adapt_global ? vs->global_estimate_max : -1;
   stats->single_rate_evaluations = vs->single_rate_evaluations;
@@ -1136,6 +1143,7 @@ static PetscErrorCode TSVSHMMResetStatistics_VSHMM(TS ts)
   vs->adapt_calibrations      = 0;
   vs->adapt_uncompared_total  = 0;
   vs->adapt_layer_fits        = 0;
+  vs->growth_probes           = 0;
   vs->single_rate_evaluations = 0;
   vs->slow_led                = 0;
   vs->warned_ratio.assign(nscales, 0.0);

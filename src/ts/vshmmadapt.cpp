@@ -105,8 +105,16 @@ static constexpr PetscReal kRestField       = 1e-6; /* unless h |G| is below thi
 static constexpr PetscReal kBlindTurn       = 0.35; /* radians per macro step of the slowest level's oscillation beyond which its signed errors cannot show coherence (OwnStepBudget()) */
 static constexpr PetscReal kPhaseProjection = 0.5;  /* of a step's coherent share where the sampled quantities carry an oscillation's phase: the comparison sees the phase error projected at one phase */
 static constexpr PetscReal kBlownUp         = std::numeric_limits<PetscReal>::infinity();
-static constexpr PetscReal kAmplified       = 4;     /* the carried comparison's estimate above this many times the steps' sum: errors grown by the dynamics (StepBudget()) */
-static constexpr PetscReal kMinGlobalScale  = 1e-3;  /* a step's share shrinks by that at most to this part of it */
+static constexpr PetscReal kAmplified       = 4;    /* the carried comparison's estimate above this many times the steps' sum: errors grown by the dynamics (StepBudget()) */
+static constexpr PetscReal kMinGlobalScale  = 1e-3; /* a step's share shrinks by that at most to this part of it */
+static constexpr PetscInt  kGrowthInterval  = 20;   /* accepted steps from a probe that found no growth to the next one's start (GrowthProbeAccepted()) */
+static constexpr PetscInt  kGrowthRecheck   = 5;    /* and from one that found growth: a passing growth stops shrinking the shares soon */
+static constexpr PetscReal kGrowthSaid      = 2;    /* errors grown by the slow dynamics are said where they exceed the tolerance and this many times the plain sum of the estimates */
+static constexpr PetscInt  kGrowthStages    = 3;    /* a probe's rate: the smallest growth of its last this many macro steps */
+static constexpr PetscInt  kGrowthSteps     = 8;    /* a probe starts only where at least this many macro steps are left (up to three to measure, the rest to use the rate) */
+static constexpr PetscReal kGrowthSize      = 1e-4; /* a probe's perturbation at most this part of the solution (weighted as the tolerance weighs) */
+static constexpr PetscReal kGrowthPossible  = 0.1;  /* probes where the slowest level's Ritz values could grow an error by e^this over the run */
+static constexpr PetscReal kGrowthStretch   = 2; /* or where the solution's motion over a macro step grew, step after step (kGrowthStages steps at least: one step's doubling can be an initial layer's), to this many times its size at the streak's start (the dissipative example's passing growth: 1.6) */
 static constexpr PetscReal kFixedDamping    = 0.1;   /* fixed parameters: the fastest oscillation's amplitude lost to the micro step's damping over the run beyond which it is said (CheckMicroStepDamping()) */
 static constexpr PetscReal kObsStateSize    = 1e100; /* a state whose entries are below this cannot overflow an observable of degree 3: Inf or NaN from it is the observables function's */
 
@@ -1439,6 +1447,19 @@ PetscErrorCode TSVSHMMAdaptReset_Private(TS ts)
   vs->rest_found = PETSC_FALSE;
   PetscCall(VecDestroy(&vs->Xcarried));
   PetscCall(VecDestroy(&vs->Xbase));
+  PetscCall(VecDestroy(&vs->growth_X));
+  PetscCall(VecDestroy(&vs->growth_Y));
+  vs->growth_time  = PETSC_MIN_REAL;
+  vs->growth_stage = 0;
+  vs->growth_recent.clear();
+  vs->growth_due          = 0;
+  vs->growth_measured     = PETSC_FALSE;
+  vs->growth_rate         = 0;
+  vs->growth_warned       = PETSC_FALSE;
+  vs->growth_amplified    = 0;
+  vs->growth_move         = 0;
+  vs->growth_streak       = 0;
+  vs->growth_streak_steps = 0;
   PetscCall(VecDestroy(&vs->slow_mask));
   PetscCall(VecDestroy(&vs->lag_mask));
   PetscCall(VecDestroy(&vs->lag_carried));
@@ -1615,7 +1636,9 @@ PetscErrorCode TSVSHMMAdaptSetUp_Private(TS ts)
 
 static PetscReal OwnStepBudget(TS, PetscReal);
 
-/* A macro step's share of the tolerance (OwnStepBudget()), shrunk where the carried comparison
+/* A macro step's share of the tolerance (OwnStepBudget()), shrunk by e^(mu (T - t1)) where the
+   growth probe measured the slow dynamics growing an error at the rate mu (the growth probe, below:
+   an error made in this step grows so by the run's end T), and shrunk where the carried comparison
    (CarryComparison()) shows the errors grown by the dynamics far beyond the steps' own: its
    estimate above kAmplified times the sum of the steps' estimates since it started (carried_weight;
    not the statistics' sum, which TSVSHMMResetStatistics() zeroes) (not the estimate's noise: on the
@@ -1627,8 +1650,14 @@ static PetscReal OwnStepBudget(TS, PetscReal);
    oscillator to t = 10 at 1e-2: 5.6 tol without, 1.5 with). */
 static PetscReal StepBudget(TS ts, PetscReal DeltaT)
 {
-  TS_VSHMM       *vs  = (TS_VSHMM *)ts->data;
-  const PetscReal own = OwnStepBudget(ts, DeltaT), span = RunSpan(ts);
+  TS_VSHMM       *vs   = (TS_VSHMM *)ts->data;
+  PetscReal       own  = OwnStepBudget(ts, DeltaT);
+  const PetscReal span = RunSpan(ts);
+
+  if (vs->growth_rate > 0 && span > 0) {
+    const PetscReal rest = vs->adapt_tstart + span - (ts->ptime + DeltaT);
+    if (rest > 0) own = PetscMax(own * std::exp(-vs->growth_rate * rest), kMinGlobalScale * own);
+  }
 
   if (vs->adapt_global && vs->carried_time == ts->ptime && span > 0 && vs->global_estimate > kAmplified * vs->carried_weight) {
     const PetscReal done = PetscMin(1.0, (ts->ptime + DeltaT - vs->adapt_tstart) / span), allowed = kSafety * done * done;
@@ -1798,6 +1827,255 @@ static PetscErrorCode ComparisonStart(TS ts, const vshmm::AdaptParameters &p, co
   PetscFunctionReturn(0);
 }
 
+/* The growth probe: how the slow dynamics grow an error that a macro step leaves. The steps'
+   shares of the tolerance assume that the errors of the sampled quantities add up (randomly or
+   coherently); an unstable slow equation grows each one for the rest of the run, e^(mu (T - t))
+   for an error made at t, and no step's comparison sees that (a saddle of the slow variable, x' =
+   x - 1 + z / 2, z' = -(z - cos x) / 1e-3 from x = 0.59, mu = 0.72 to t = 4: 1.8 / 3.1 / 6.7 tol
+   at 1e-3 / 5e-4 / 1e-4, the steps' estimates summing to 0.3-0.9, silently; docs/accuracy.md
+   section 35). A probe perturbs the solution at a macro step's start by kGrowthSize of its weight
+   on every component the slowest level writes (GrowthProbeBegin()), propagates the perturbed
+   solution over the step beside the solution's own run (in the step's first comparison, with its
+   parameters and from its start offset, so that a carried lag is the same in both; where the step
+   has none, with the step's parameters against the solution), and takes the perturbation's size at
+   the step's end over its size at the start (PerturbationSize(): weighted as the tolerance
+   weighs, on the slowest level's components, where the faster ones follow them within a step).
+   While it grows, the perturbation is propagated over the next step too (rescaled, on the slowest
+   level's components), for kGrowthStages steps; the smallest growth g over them gives the rate
+   mu = ln(g) / DeltaT (one step's growth can be a passing transient), and StepBudget() shrinks
+   each later step's share by e^(mu (T - t1)). Without lag_mask (additive splits) the first step
+   only settles the perturbation (its faster components decay or feed the slower ones within it)
+   and the growth counts from the second. A probe is made where an error could grow: the slowest
+   level's own Jacobian has a mode that could grow it by e^kGrowthPossible over the run, or the
+   solution's own motion over a macro step (a tangent of the flow, which the linearized dynamics
+   carry as they carry an error) grew step after step, for kGrowthStages steps at least, to
+   kGrowthStretch times its size (a coupling
+   through the faster levels that the slowest level's Jacobian does not show: x' = -x + 2 z, z' =
+   -(z - x - 0.01) / eps grows as e^t with the slowest level's Jacobian -1); and where it can be
+   used: at least kGrowthSteps macro steps left. First at the run's first step, then kGrowthRecheck
+   steps after a probe that found growth (a passing growth stops shrinking the shares soon: the
+   dissipative example at eps = 3e-2 grew an error 1.10-1.13 times per step at t = 0.6-0.9 only),
+   kGrowthInterval after one that did not. It costs one comparison run per step it propagates over
+   (a step's own run where the step has no comparison). The errors made before the first rate was
+   known grow too: where they exceed the tolerance by the final time (at the growth measured
+   since), the user is told at the solve's last step. */
+static PetscErrorCode GrowthProbeBegin(TS, PetscReal, PetscInt);
+/* In a macro step's first comparison: a probe begun or continued here propagates its perturbed
+   solution with the comparison's parameters from the comparison's start offset, in growth_Y
+   (*probe: run it beside the comparison, GrowthMeasure()). */
+static PetscErrorCode GrowthProbeStart(TS ts, PetscReal t0, PetscBool inherit, PetscBool *probe)
+{
+  TS_VSHMM *vs = (TS_VSHMM *)ts->data;
+  PetscReal norm;
+
+  PetscFunctionBegin;
+  *probe = PETSC_FALSE;
+  if (!inherit || vs->growth_measured) PetscFunctionReturn(0);
+  PetscCall(GrowthProbeBegin(ts, t0, vs->adapt_accepted));
+  if (vs->growth_stage < 1) PetscFunctionReturn(0);
+  PetscCall(VecNorm(vs->X0, NORM_1, &norm));
+  if (vs->growth_time != t0 || norm != vs->growth_norm) PetscFunctionReturn(0); /* another run, or the solution changed between the steps */
+  if (!vs->growth_Y) PetscCall(VecDuplicate(vs->X0, &vs->growth_Y));
+  PetscCall(VecWAXPY(vs->growth_Y, -1.0, vs->X0, vs->Xtrial)); /* the comparison's start offset */
+  PetscCall(VecAXPY(vs->growth_Y, 1.0, vs->growth_X));
+  *probe = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+/* The size of the perturbation b - a of a solution a on the components the slowest level writes
+   (off lag_mask; every component without it), weighted as TSErrorWeightedNorm() weighs (with the
+   tolerances' vectors where TSSetTolerances() gave them), root mean square. */
+static PetscErrorCode PerturbationSize(TS ts, Vec a, Vec b, PetscReal *size)
+{
+  TS_VSHMM          *vs = (TS_VSHMM *)ts->data;
+  const PetscScalar *xa, *xb, *m = nullptr, *va = nullptr, *vr = nullptr;
+  PetscInt           n;
+  PetscReal          sum[2] = {0, 0};
+
+  PetscFunctionBegin;
+  PetscCall(VecGetLocalSize(a, &n));
+  PetscCall(VecGetArrayRead(a, &xa));
+  PetscCall(VecGetArrayRead(b, &xb));
+  if (vs->lag_mask) PetscCall(VecGetArrayRead(vs->lag_mask, &m));
+  if (ts->vatol) PetscCall(VecGetArrayRead(ts->vatol, &va));
+  if (ts->vrtol) PetscCall(VecGetArrayRead(ts->vrtol, &vr));
+  for (PetscInt i = 0; i < n; ++i) {
+    if (m && PetscRealPart(m[i]) != 0) continue;
+    const PetscReal w = (va ? PetscRealPart(va[i]) : ts->atol) + (vr ? PetscRealPart(vr[i]) : ts->rtol) * PetscMax(PetscAbsScalar(xa[i]), PetscAbsScalar(xb[i]));
+    const PetscReal e = PetscAbsScalar(xb[i] - xa[i]) / w;
+    sum[0] += e * e;
+    sum[1] += 1;
+  }
+  if (ts->vrtol) PetscCall(VecRestoreArrayRead(ts->vrtol, &vr));
+  if (ts->vatol) PetscCall(VecRestoreArrayRead(ts->vatol, &va));
+  if (m) PetscCall(VecRestoreArrayRead(vs->lag_mask, &m));
+  PetscCall(VecRestoreArrayRead(b, &xb));
+  PetscCall(VecRestoreArrayRead(a, &xa));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, sum, 2, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)ts)));
+  *size = sum[1] > 0 ? std::sqrt(sum[0] / sum[1]) : 0;
+  PetscFunctionReturn(0);
+}
+
+/* The perturbed solution growth_Y (at t0 + DeltaT: growth_X propagated) against the solution `base`
+   there: its growth over the step, and growth_Y made the propagated perturbation. */
+static PetscErrorCode GrowthMeasure(TS ts, Vec base, PetscReal t0, PetscReal DeltaT)
+{
+  TS_VSHMM *vs = (TS_VSHMM *)ts->data;
+  PetscReal d0, D;
+
+  PetscFunctionBegin;
+  PetscCall(PerturbationSize(ts, vs->X0, vs->growth_X, &d0));
+  PetscCall(PerturbationSize(ts, base, vs->growth_Y, &D));
+  PetscCall(VecAXPY(vs->growth_Y, -1.0, base));
+  vs->growth_measured = (std::isfinite(D) && std::isfinite(d0) && d0 > 0) ? PETSC_TRUE : PETSC_FALSE;
+  vs->growth_factor   = vs->growth_measured ? D / d0 : 0;
+  PetscCall(PetscInfo(ts, "Adapt: growth probe, step %" PetscInt_FMT " over [%g, %g]: a perturbation of %g became %g (factor %g)\n", vs->growth_stage, (double)t0, (double)(t0 + DeltaT), (double)d0, (double)D, (double)vs->growth_factor));
+  PetscFunctionReturn(0);
+}
+
+/* growth_X: the solution plus the perturbation dX (overwritten), on the slowest level's components */
+static PetscErrorCode GrowthPerturb(TS ts, Vec dX, PetscReal t1)
+{
+  TS_VSHMM *vs = (TS_VSHMM *)ts->data;
+  Vec       fast;
+
+  PetscFunctionBegin;
+  if (!vs->growth_X) PetscCall(VecDuplicate(ts->vec_sol, &vs->growth_X));
+  if (vs->lag_mask) {
+    PetscCall(VecDuplicate(dX, &fast));
+    PetscCall(VecPointwiseMult(fast, dX, vs->lag_mask));
+    PetscCall(VecAXPY(dX, -1.0, fast));
+    PetscCall(VecDestroy(&fast));
+  }
+  PetscCall(VecWAXPY(vs->growth_X, 1.0, ts->vec_sol, dX));
+  {
+    /* at most kGrowthSize of the solution (relative, weighted): a perturbation that small grows as the linearized dynamics grow it (a comparison's difference at 1e-1 taken as the perturbation, 40% of the oscillators' slow state, made a run that blew up) */
+    PetscReal       size;
+    const PetscReal most = kGrowthSize / PetscMax(PetscMax(ts->rtol, ts->atol), PETSC_SMALL);
+    PetscCall(PerturbationSize(ts, ts->vec_sol, vs->growth_X, &size));
+    if (size > most) PetscCall(VecAXPBY(vs->growth_X, 1.0 - most / size, most / size, ts->vec_sol));
+  }
+  vs->growth_time = t1;
+  PetscCall(VecNorm(ts->vec_sol, NORM_1, &vs->growth_norm));
+  PetscFunctionReturn(0);
+}
+
+/* A probe starts at the step's start t0 where one is due (`before`: the steps accepted before this one) and the slowest level's own Jacobian
+   has a mode that could grow an error noticeably over the run (its Ritz values, vs->level_growth;
+   a coupling through the faster levels can grow it too, unseen here): the solution with every
+   component the slowest level writes moved by kGrowthSize of its weight (atol + rtol |x|), the
+   same sign throughout (a direction that the propagations turn towards the fastest growth). */
+static PetscErrorCode GrowthProbeBegin(TS ts, PetscReal t0, PetscInt before)
+{
+  TS_VSHMM       *vs   = (TS_VSHMM *)ts->data;
+  const PetscReal span = RunSpan(ts);
+
+  PetscFunctionBegin;
+  const PetscBool possible = ((!vs->level_growth.empty() && vs->level_growth[0] * span > kGrowthPossible) || (vs->growth_streak_steps >= kGrowthStages && vs->growth_move >= kGrowthStretch * vs->growth_streak)) ? PETSC_TRUE : PETSC_FALSE;
+  if (vs->growth_stage != 0 || before < vs->growth_due || !(span > 0) || !possible) PetscFunctionReturn(0);
+  if (vs->adapt_tstart + span - t0 < (vs->growth_rate > 0 ? kGrowthStages : kGrowthSteps) * ts->time_step * (1 - 1e-10)) PetscFunctionReturn(0); /* too few steps left to measure and use a rate (a rate in effect is measured again while it can be) */
+  const PetscScalar *x, *m = nullptr, *va = nullptr, *vr = nullptr;
+  PetscScalar       *y;
+  PetscInt           n;
+  const PetscReal    c = kGrowthSize / PetscMax(PetscMax(ts->rtol, ts->atol), PETSC_SMALL);
+  if (!vs->growth_X) PetscCall(VecDuplicate(vs->X0, &vs->growth_X));
+  PetscCall(VecGetLocalSize(vs->X0, &n));
+  PetscCall(VecGetArrayRead(vs->X0, &x));
+  PetscCall(VecGetArray(vs->growth_X, &y));
+  if (vs->lag_mask) PetscCall(VecGetArrayRead(vs->lag_mask, &m));
+  if (ts->vatol) PetscCall(VecGetArrayRead(ts->vatol, &va));
+  if (ts->vrtol) PetscCall(VecGetArrayRead(ts->vrtol, &vr));
+  for (PetscInt i = 0; i < n; ++i) y[i] = x[i] + ((m && PetscRealPart(m[i]) != 0) ? 0 : c * ((va ? PetscRealPart(va[i]) : ts->atol) + (vr ? PetscRealPart(vr[i]) : ts->rtol) * PetscAbsScalar(x[i])));
+  if (ts->vrtol) PetscCall(VecRestoreArrayRead(ts->vrtol, &vr));
+  if (ts->vatol) PetscCall(VecRestoreArrayRead(ts->vatol, &va));
+  if (m) PetscCall(VecRestoreArrayRead(vs->lag_mask, &m));
+  PetscCall(VecRestoreArray(vs->growth_X, &y));
+  PetscCall(VecRestoreArrayRead(vs->X0, &x));
+  vs->growth_time  = t0;
+  vs->growth_stage = 1;
+  PetscCall(VecNorm(vs->X0, NORM_1, &vs->growth_norm));
+  PetscFunctionReturn(0);
+}
+
+/* After an accepted macro step: the probe's perturbation propagated where the step's first
+   comparison did not (a probe begun at the step's start where one is due), its growth taken, and
+   the probe continued or ended; at the solve's last step, the errors made before the first rate
+   said where they grew beyond the tolerance. */
+static PetscErrorCode GrowthProbeAccepted(TS ts, const vshmm::AdaptParameters &p, PetscReal t0, PetscReal DeltaT)
+{
+  TS_VSHMM *vs = (TS_VSHMM *)ts->data;
+
+  PetscFunctionBegin;
+  {
+    /* the solution's own motion over the step on the slowest level's components: a tangent of the
+       flow (for an autonomous field), which the linearized dynamics carry as they carry an error;
+       where it grew step after step to kGrowthStretch times its size at the start of the streak,
+       an error can grow so too (a coupling through the faster levels that the slowest level's
+       Jacobian does not show: x' = -x + 2 z, z' = -(z - x - 0.01) / eps grows as e^t) */
+    PetscReal move;
+    PetscCall(PerturbationSize(ts, vs->X0, ts->vec_sol, &move));
+    if (!(vs->growth_move > 0 && move > vs->growth_move && vs->adapt_end == t0)) { /* the streak starts again */
+      vs->growth_streak       = move;
+      vs->growth_streak_steps = 0;
+    } else vs->growth_streak_steps++;
+    vs->growth_move = move;
+  }
+  if (!vs->growth_measured) PetscCall(GrowthProbeBegin(ts, t0, vs->adapt_accepted - 1)); /* (counted with this step already) */
+  if (vs->growth_stage >= 1 && !vs->growth_measured) {
+    /* no first comparison propagated it: with the step's parameters, against the solution */
+    PetscReal norm;
+    PetscCall(VecNorm(vs->X0, NORM_1, &norm));
+    if (vs->growth_time == t0 && norm == vs->growth_norm) {
+      if (!vs->growth_Y) PetscCall(VecDuplicate(vs->X0, &vs->growth_Y));
+      PetscCall(VecCopy(vs->growth_X, vs->growth_Y));
+      PetscCall(EstimationStep(ts, p, t0, DeltaT, vs->growth_Y));
+      PetscCall(GrowthMeasure(ts, ts->vec_sol, t0, DeltaT));
+    }
+  }
+  const PetscBool measured = vs->growth_measured;
+  vs->growth_measured      = PETSC_FALSE;
+  const PetscReal span = RunSpan(ts), T = vs->adapt_tstart + span;
+  const PetscBool last = (t0 + DeltaT >= ts->max_time - 1e-10 * DeltaT || ts->steps + 1 >= ts->max_steps || (span > 0 && t0 + 1.5 * DeltaT > T)) ? PETSC_TRUE : PETSC_FALSE;
+  /* the steps' estimates, each grown by the growth measured after it (over this step: the probe's, or at the rate in effect) */
+  vs->growth_amplified = vs->growth_amplified * (measured ? vs->growth_factor : std::exp(vs->growth_rate * DeltaT)) + (std::isfinite(vs->error_estimate) ? vs->error_estimate : 0);
+  if (vs->growth_stage >= 1 && !measured) { /* not propagated (the solution changed between the steps): a probe starts again */
+    vs->growth_stage = 0;
+    vs->growth_recent.clear();
+  }
+  if (measured) {
+    /* without lag_mask the first step's perturbation holds faster components too, which decay (or
+       feed the slower ones) within it: that step only settles it, and the growth counts from the next */
+    const PetscBool settling = (!vs->lag_mask && vs->growth_stage == 1) ? PETSC_TRUE : PETSC_FALSE;
+    if (!settling) {
+      vs->growth_recent.push_back(vs->growth_factor);
+      if (vs->growth_recent.size() > (size_t)kGrowthStages) vs->growth_recent.erase(vs->growth_recent.begin());
+    }
+    const PetscBool growing = (settling || vs->growth_factor > 1) ? PETSC_TRUE : PETSC_FALSE;
+    if (growing && vs->growth_recent.size() == (size_t)kGrowthStages) { vs->growth_rate = std::log(*std::min_element(vs->growth_recent.begin(), vs->growth_recent.end())) / DeltaT; }
+    if (growing && !last && vs->growth_recent.size() < (size_t)kGrowthStages) { /* growing so far: propagated over the next step too */
+      PetscCall(GrowthPerturb(ts, vs->growth_Y, t0 + DeltaT));
+      vs->growth_stage++;
+    } else {
+      if (!growing) vs->growth_rate = 0;
+      PetscCall(PetscInfo(ts, "Adapt: growth probe ended at t = %g after %" PetscInt_FMT " macro steps: rate %g\n", (double)(t0 + DeltaT), vs->growth_stage, (double)vs->growth_rate));
+      vs->growth_stage = 0;
+      vs->growth_recent.clear();
+      vs->growth_probes++;
+      vs->growth_due = vs->adapt_accepted + (vs->growth_rate > 0 ? kGrowthRecheck : kGrowthInterval);
+    }
+  }
+  if (!vs->growth_warned && last && vs->growth_amplified > 1 && vs->growth_amplified > kGrowthSaid * vs->error_estimate_total) {
+    /* the solve's last macro step: the errors grown by the dynamics (the steps before a growth was
+       measured had shares that did not allow for it; an error of a step's own that adds up step by
+       step grows as the solution does) exceed the tolerance, and by more than the plain sum of the
+       estimates would say */
+    vs->growth_warned = PETSC_TRUE;
+    PetscCall(TSVSHMMWarn_Private(ts, "TSVSHMM warning (-ts_vshmm_adapt): the slow dynamics grew the errors of the sampled values (an unstable slow equation: the last probe measured e^(%g t)). The macro steps' error estimates, each grown by the growth measured after it, add up to about %g times the tolerance at t = %g (their plain sum is %g): the tolerance is not met. The later macro steps took shares of the tolerance shrunk by the growth, too late for the errors made before it was measured. Tighten -ts_rtol/-ts_atol by that factor, or use a single-rate TS type. This warning is given once per solve.\n",
+                                  (double)vs->growth_rate, (double)vs->growth_amplified, (double)(t0 + DeltaT), (double)vs->error_estimate_total));
+  }
+  PetscFunctionReturn(0);
+}
+
 /* The comparison of the macro step just taken from X0 (ComparisonStart()) into Xbase with p: the same step with every
    error term doubled (vshmm::termsScaled). Under the model its difference d is the error of p
    (Estimate); the faster levels' phase at the sampling time makes it noisy (a factor 3 either way
@@ -1825,6 +2103,8 @@ static PetscErrorCode Compare(TS ts, const vshmm::AdaptParameters &p, PetscReal 
   PetscBool blown;
   vs->lag_next_valid = PETSC_FALSE;
   PetscCall(ComparisonStart(ts, p, *q, t0, inherit, vs->Xtrial));
+  PetscBool probe;
+  PetscCall(GrowthProbeStart(ts, t0, inherit, &probe));
   PetscCall(EstimationStep(ts, *q, t0, DeltaT, vs->Xtrial));
   PetscCall(ComparisonBlewUp(ts, &blown));
   if (blown && q->microStep > p.microStep) {
@@ -1836,6 +2116,7 @@ static PetscErrorCode Compare(TS ts, const vshmm::AdaptParameters &p, PetscReal 
     if (!(vshmm::cycleLength(*q) > vshmm::cycleLength(p) * 1.01)) *q = vshmm::coarsened(p, 0, kFinerComparison);
     PetscCall(PetscInfo(ts, "Adapt: the comparison with a coarser micro step blew up; comparing with dt %g, cycle %g\n", (double)q->microStep, (double)vshmm::cycleLength(*q)));
     PetscCall(ComparisonStart(ts, p, *q, t0, inherit, vs->Xtrial));
+    probe = PETSC_FALSE; /* the start's lag changed with q: the perturbation goes with the step's parameters (GrowthProbeAccepted()) */
     PetscCall(EstimationStep(ts, *q, t0, DeltaT, vs->Xtrial));
     PetscCall(ComparisonBlewUp(ts, &blown));
   }
@@ -1858,6 +2139,10 @@ static PetscErrorCode Compare(TS ts, const vshmm::AdaptParameters &p, PetscReal 
     vs->lag_next_valid = PETSC_TRUE;
     vs->lag_next_p     = p;
     vs->lag_next_q     = *q;
+  }
+  if (probe) {
+    PetscCall(EstimationStep(ts, *q, t0, DeltaT, vs->growth_Y));
+    PetscCall(GrowthMeasure(ts, vs->Xtrial, t0, DeltaT));
   }
   vs->step_signed = vs->obs_diff;
   vs->step_slow   = vs->slow_last; /* the calibrations and the layer's second comparison that may follow do not change it */
@@ -2870,6 +3155,7 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
       for (PetscInt i = 0; i < vs->nobservables; ++i) vs->adapt_signed[i] += vs->step_signed[i] * E / d;
     }
     if (vs->adapt_global) PetscCall(CarryComparison(ts, p, t0, DeltaT, E, d));
+    PetscCall(GrowthProbeAccepted(ts, p, t0, DeltaT));
     {
       PetscReal signedRms = -1;
       if (!vs->adapt_signed.empty()) {

@@ -77,6 +77,7 @@ struct TS_VSHMM {
   std::vector<PetscReal>                         level_max_step;                  // largest stable step of the inner RK for its limiting modes (inf: none)
   std::vector<std::complex<double>>              level_worst;                     // the mode that sets it
   std::vector<std::vector<std::complex<double>>> level_limiting;                  // decaying or oscillating Ritz values
+  std::vector<PetscReal>                         level_growth;                    // the largest real part of each level's Ritz values (growing modes included)
   std::vector<PetscReal>                         level_slowest;                   // smallest |Ritz value| of the block of the level's own components (0: not estimated)
   PetscReal                                      fastest_share     = 1;           // the fastest level's part of the state (TSVSHMMLevelOwnRates_Private(); 1: not estimated)
   PetscReal                                      fastest_drive     = 0;           // how far the slower levels' fields move the state over the run per relative amplitude error of the fastest level's oscillation (over ||X||; 0: not estimated)
@@ -156,11 +157,26 @@ struct TS_VSHMM {
   PetscReal              global_estimate = 0, global_estimate_max = 0; // that estimate at the last sampled time, the largest of the run (tolerance units)
   PetscBool              global_warned    = PETSC_FALSE;               // told that it exceeds the tolerance
   PetscInt               carried_restarts = 0;                         // times it blew up and started again from the solution
-  Vec                    slow_mask        = nullptr;                   // 1 on the slow components (written by the slowest level's splits only) where they are controlled with the observables
-  Vec                    lag_mask         = nullptr;                   // 1 on the components only faster levels' splits write (none where a slowest split is additive): where a comparison's end state is carried into the next one's start
-  PetscBool              lag_by_values    = PETSC_FALSE;               // lag_mask from the fields' values (additive splits): a component the slowest field is seen to write leaves it
-  PetscInt               lag_count        = 0;                         // the components on lag_mask (global)
-  PetscInt64             lag_inherited    = 0;                         // comparisons that started from the last one's end state on them (-ts_view)
+  Vec                    growth_X = nullptr, growth_Y = nullptr;       // the growth probe (GrowthProbe()): a perturbed solution (a compared step's comparison end state, propagated), and its run
+  PetscReal              growth_time  = PETSC_MIN_REAL;                // the time growth_X is at (a macro step from there propagates it)
+  PetscReal              growth_norm  = 0;                             // the solution's 1-norm then (another state there: the probe is dropped)
+  PetscInt               growth_stage = 0;                             // propagations of the present perturbation so far (-1: none started)
+  std::vector<PetscReal> growth_recent;                                // the present probe's last growth factors (kGrowthStages at most)
+  PetscInt               growth_due          = 0;                      // the accepted step from which the next probe starts
+  PetscBool              growth_measured     = PETSC_FALSE;            // a propagation was measured in the step being taken
+  PetscReal              growth_factor       = 0;                      // and its growth factor
+  PetscReal              growth_rate         = 0;                      // the slow dynamics' growth rate of an error (per unit time; 0: none measured, or none that grows)
+  PetscInt64             growth_probes       = 0;                      // probes completed (statistics)
+  PetscBool              growth_warned       = PETSC_FALSE;            // told that errors made before the rate was known exceed the tolerance
+  PetscReal              growth_amplified    = 0;                      // the steps' estimates, each grown by the growth measured after it (GrowthProbeAccepted())
+  PetscReal              growth_move         = 0;                      // the solution's motion over the last macro step on the slowest level's components (weighted)
+  PetscReal              growth_streak       = 0;                      // that motion at the start of the present streak of steps whose motion grew (GrowthProbeAccepted())
+  PetscInt               growth_streak_steps = 0;                      // and the streak's steps
+  Vec                    slow_mask           = nullptr;                // 1 on the slow components (written by the slowest level's splits only) where they are controlled with the observables
+  Vec                    lag_mask            = nullptr;                // 1 on the components only faster levels' splits write (none where a slowest split is additive): where a comparison's end state is carried into the next one's start
+  PetscBool              lag_by_values       = PETSC_FALSE;            // lag_mask from the fields' values (additive splits): a component the slowest field is seen to write leaves it
+  PetscInt               lag_count           = 0;                      // the components on lag_mask (global)
+  PetscInt64             lag_inherited       = 0;                      // comparisons that started from the last one's end state on them (-ts_view)
   Vec                    lag_carried = nullptr, lag_next = nullptr;    // the last accepted step's comparison end state less the solution's there, on lag_mask; the candidate from the latest comparison
   PetscBool              lag_valid = PETSC_FALSE, lag_next_valid = PETSC_FALSE;
   vshmm::AdaptParameters lag_p, lag_q, lag_next_p, lag_next_q; // the step's and its comparison's parameters that made them

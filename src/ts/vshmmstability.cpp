@@ -310,6 +310,7 @@ PetscErrorCode TSVSHMMLevelSpectra_Private(TS ts)
   vs->level_max_step.assign(nscales, PETSC_INFINITY);
   vs->level_worst.assign(nscales, 0.0);
   vs->level_limiting.assign(nscales, {});
+  vs->level_growth.assign(nscales, -PETSC_MAX_REAL);
   for (PetscInt level = 0; level < nscales; ++level) {
     PetscBool finite = PETSC_FALSE;
     PetscCall(LevelRitzValues(ts, level, ts->ptime, ts->vec_sol, ritz, &finite));
@@ -319,6 +320,7 @@ PetscErrorCode TSVSHMMLevelSpectra_Private(TS ts)
     }
     for (const std::complex<double> &lambda : ritz) {
       vs->level_radius[level] = std::max(vs->level_radius[level], std::abs(lambda));
+      vs->level_growth[level] = std::max(vs->level_growth[level], (PetscReal)lambda.real());
       /* A mode that grows at a rate comparable to its frequency is the problem's own growth, not a
          matter of step stability; slightly growing oscillations are judged against their own growth. */
       if (std::abs(lambda) == 0 || lambda.real() > kGrowingMode * std::abs(lambda)) continue;
