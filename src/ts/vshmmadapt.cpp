@@ -1457,6 +1457,7 @@ PetscErrorCode TSVSHMMAdaptReset_Private(TS ts)
   vs->growth_rate         = 0;
   vs->growth_warned       = PETSC_FALSE;
   vs->growth_amplified    = 0;
+  vs->growth_damped       = PETSC_FALSE;
   vs->growth_move         = 0;
   vs->growth_streak       = 0;
   vs->growth_streak_steps = 0;
@@ -1655,8 +1656,11 @@ static PetscReal StepBudget(TS ts, PetscReal DeltaT)
   const PetscReal span = RunSpan(ts);
 
   if (vs->growth_rate > 0 && span > 0) {
-    const PetscReal rest = vs->adapt_tstart + span - (ts->ptime + DeltaT);
-    if (rest > 0) own = PetscMax(own * std::exp(-vs->growth_rate * rest), kMinGlobalScale * own);
+    /* as far ahead as the run's end; where an earlier probe of the run found an error damped, the
+       growth is a phase of the dynamics (a slow equation whose Jacobian changes sign), and it is
+       taken only until the probe that checks it again */
+    const PetscReal rest = vs->adapt_tstart + span - (ts->ptime + DeltaT), ahead = vs->growth_damped ? PetscMin(rest, (kGrowthRecheck + kGrowthStages) * DeltaT) : rest;
+    if (ahead > 0) own = PetscMax(own * std::exp(-vs->growth_rate * ahead), kMinGlobalScale * own);
   }
 
   if (vs->adapt_global && vs->carried_time == ts->ptime && span > 0 && vs->global_estimate > kAmplified * vs->carried_weight) {
@@ -1972,7 +1976,7 @@ static PetscErrorCode GrowthProbeBegin(TS ts, PetscReal t0, PetscInt before)
 
   PetscFunctionBegin;
   const PetscBool possible = ((!vs->level_growth.empty() && vs->level_growth[0] * span > kGrowthPossible) || (vs->growth_streak_steps >= kGrowthStages && vs->growth_move >= kGrowthStretch * vs->growth_streak)) ? PETSC_TRUE : PETSC_FALSE;
-  if (vs->growth_stage != 0 || before < vs->growth_due || !(span > 0) || !possible) PetscFunctionReturn(0);
+  if (vs->growth_stage != 0 || before < vs->growth_due || !(span > 0) || !(possible || vs->growth_rate > 0)) PetscFunctionReturn(0);             /* (a rate in effect is measured again) */
   if (vs->adapt_tstart + span - t0 < (vs->growth_rate > 0 ? kGrowthStages : kGrowthSteps) * ts->time_step * (1 - 1e-10)) PetscFunctionReturn(0); /* too few steps left to measure and use a rate (a rate in effect is measured again while it can be) */
   const PetscScalar *x, *m = nullptr, *va = nullptr, *vr = nullptr;
   PetscScalar       *y;
@@ -2051,12 +2055,15 @@ static PetscErrorCode GrowthProbeAccepted(TS ts, const vshmm::AdaptParameters &p
       if (vs->growth_recent.size() > (size_t)kGrowthStages) vs->growth_recent.erase(vs->growth_recent.begin());
     }
     const PetscBool growing = (settling || vs->growth_factor > 1) ? PETSC_TRUE : PETSC_FALSE;
-    if (growing && vs->growth_recent.size() == (size_t)kGrowthStages) { vs->growth_rate = std::log(*std::min_element(vs->growth_recent.begin(), vs->growth_recent.end())) / DeltaT; }
+    if (growing && vs->growth_recent.size() == (size_t)kGrowthStages) vs->growth_rate = std::log(*std::min_element(vs->growth_recent.begin(), vs->growth_recent.end())) / DeltaT;
     if (growing && !last && vs->growth_recent.size() < (size_t)kGrowthStages) { /* growing so far: propagated over the next step too */
       PetscCall(GrowthPerturb(ts, vs->growth_Y, t0 + DeltaT));
       vs->growth_stage++;
     } else {
-      if (!growing) vs->growth_rate = 0;
+      if (!growing) {
+        vs->growth_rate   = 0;
+        vs->growth_damped = PETSC_TRUE;
+      }
       PetscCall(PetscInfo(ts, "Adapt: growth probe ended at t = %g after %" PetscInt_FMT " macro steps: rate %g\n", (double)(t0 + DeltaT), vs->growth_stage, (double)vs->growth_rate));
       vs->growth_stage = 0;
       vs->growth_recent.clear();

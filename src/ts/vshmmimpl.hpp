@@ -168,6 +168,7 @@ struct TS_VSHMM {
   PetscReal              growth_rate         = 0;                      // the slow dynamics' growth rate of an error (per unit time; 0: none measured, or none that grows)
   PetscInt64             growth_probes       = 0;                      // probes completed (statistics)
   PetscBool              growth_warned       = PETSC_FALSE;            // told that errors made before the rate was known exceed the tolerance
+  PetscBool              growth_damped       = PETSC_FALSE;            // a probe of the run found an error damped (a growth found later is a phase: StepBudget())
   PetscReal              growth_amplified    = 0;                      // the steps' estimates, each grown by the growth measured after it (GrowthProbeAccepted())
   PetscReal              growth_move         = 0;                      // the solution's motion over the last macro step on the slowest level's components (weighted)
   PetscReal              growth_streak       = 0;                      // that motion at the start of the present streak of steps whose motion grew (GrowthProbeAccepted())

@@ -3175,7 +3175,7 @@ TEST(VSHMMAdapt, ErrorsGrownBeforeTheGrowthWasMeasuredAreSaid)
 // 2 z (slow), z' = -(z - x - 0.01) / 1e-3 (fast), from (0, 0.01): on the slow manifold x' = x +
 // 0.02, errors grow as e^t, x(4) = 1.063. The savings' lag changes the growth rate itself (x' (1 +
 // 2 eps r) = x + 0.02 on the sampled manifold), a bias of every step that the growth amplifies:
-// 3.6 and 12 tol at 1e-2 and 1e-3, silently before the probe. The solution's motion over a macro
+// 5.9 and 13 tol at 1e-2 and 1e-3, silently before the probe (3.6 and 12 now). The motion over a macro
 // step doubles by t = 0.8: probed there (growth 1.05-1.08 per step), and the steps' estimates,
 // each grown by the growth measured after it, add up to 1.5 and 4.8 tolerances: said, not met
 // (docs/accuracy.md section 35).
