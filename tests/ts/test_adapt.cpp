@@ -240,6 +240,31 @@ PetscErrorCode SolveObservingX0(const char *options, SplitProblem &p, const std:
   return SolveObserving(options, p, x0, names, DeltaT, T, run, kind, 1, X0Observable, &p);
 }
 
+// SolveObservingX0() with the warnings written to one temporary file for every rank (its name made
+// on the first), returned in *said on every rank.
+PetscErrorCode SolveObservingX0Saying(const std::string &options, SplitProblem &p, const std::vector<PetscReal> &x0, PetscReal DeltaT, PetscReal T, AdaptRun *run, std::string *said, SplitKind kind = SplitKind::Component)
+{
+  char        path[] = "/tmp/vshmm_said_XXXXXX";
+  PetscMPIInt rank;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
+  if (!rank) {
+    const int fd = mkstemp(path);
+    PetscCheck(fd >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "no temporary file");
+    close(fd);
+  }
+  PetscCallMPI(MPI_Bcast(path, sizeof(path), MPI_CHAR, 0, PETSC_COMM_WORLD));
+  const std::string    all  = options + " -ts_vshmm_warnings_viewer ascii:" + path;
+  const PetscErrorCode ierr = SolveObservingX0(all.c_str(), p, x0, {"slow", "fast"}, DeltaT, T, run, kind);
+  std::ifstream        in(path);
+  said->assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  PetscCallMPI(MPI_Barrier(PETSC_COMM_WORLD)); /* every rank has read it */
+  if (!rank) std::remove(path);
+  PetscCall(ierr);
+  PetscFunctionReturn(0);
+}
+
 // Solves the two-scale problem `terms` (component splits slow {x[0]}, fast; x[0] observed) from x0
 // to T with the sampling interval DeltaT and -ts_vshmm_adapt at tolerance tol (-ts_rtol and
 // -ts_atol), and expects x[0](T) within bound tol (1 + |x[0]|) of a converged RK4 reference (step
@@ -2753,25 +2778,12 @@ void PassFast(const void *, PetscReal, const PetscScalar *x, PetscScalar *f)
 TEST(VSHMMAdapt, ABeatReachedDuringTheRunIsFoundBeforeItsPassage)
 {
   for (const char *tol : {"1e-2", "1e-3"}) {
-    char        path[] = "/tmp/vshmm_passage_XXXXXX"; /* one file for every rank: its name made on the first */
-    PetscMPIInt rank;
-    ASSERT_EQ(MPI_Comm_rank(PETSC_COMM_WORLD, &rank), MPI_SUCCESS);
-    if (!rank) {
-      const int fd = mkstemp(path);
-      ASSERT_GE(fd, 0);
-      close(fd);
-    }
-    ASSERT_EQ(MPI_Bcast(path, sizeof(path), MPI_CHAR, 0, PETSC_COMM_WORLD), MPI_SUCCESS);
-    SplitProblem      p;
-    AdaptRun          run;
-    const std::string options = std::string("-ts_vshmm_adapt -ts_rtol ") + tol + " -ts_atol " + tol + " -ts_vshmm_warnings_viewer ascii:" + path;
-    p.terms                   = {PassSlow, PassFast};
-    p.components              = {{0, 1}, {2, 3, 4, 5}};
-    ASSERT_EQ(SolveObservingX0(options.c_str(), p, {0.0, 0.0, 1.0, 0.0, 1.0, 0.0}, {"slow", "fast"}, 0.1, 1.3, &run), 0);
-    std::ifstream     in(path);
-    const std::string said((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    ASSERT_EQ(MPI_Barrier(PETSC_COMM_WORLD), MPI_SUCCESS); /* every rank has read it */
-    if (!rank) std::remove(path);
+    SplitProblem p;
+    AdaptRun     run;
+    std::string  said;
+    p.terms      = {PassSlow, PassFast};
+    p.components = {{0, 1}, {2, 3, 4, 5}};
+    ASSERT_EQ(SolveObservingX0Saying(std::string("-ts_vshmm_adapt -ts_rtol ") + tol + " -ts_atol " + tol, p, {0.0, 0.0, 1.0, 0.0, 1.0, 0.0}, 0.1, 1.3, &run, &said), 0);
     EXPECT_NE(said.find("beat at frequency"), std::string::npos) << tol << ": " << said;
     EXPECT_NE(said.find("found during the run, after macro steps whose savings slowed level 1"), std::string::npos) << tol << ": " << said;
   }
@@ -3143,27 +3155,14 @@ TEST(VSHMMAdapt, AnUnstableSlowEquationShrinksTheLaterShares)
 
 TEST(VSHMMAdapt, ErrorsGrownBeforeTheGrowthWasMeasuredAreSaid)
 {
-  const double              a      = 2;
-  const std::vector<double> x0     = {0.81, std::cos(0.81)};
-  char                      path[] = "/tmp/vshmm_saddle_XXXXXX"; /* one file for every rank: its name made on the first */
-  PetscMPIInt               rank;
-  ASSERT_EQ(MPI_Comm_rank(PETSC_COMM_WORLD, &rank), MPI_SUCCESS);
-  if (!rank) {
-    const int fd = mkstemp(path);
-    ASSERT_GE(fd, 0);
-    close(fd);
-  }
-  ASSERT_EQ(MPI_Bcast(path, sizeof(path), MPI_CHAR, 0, PETSC_COMM_WORLD), MPI_SUCCESS);
-  SplitProblem      p;
-  AdaptRun          run;
-  const std::string options = std::string("-ts_vshmm_adapt -ts_rtol 1e-3 -ts_atol 1e-3 -ts_vshmm_warnings_viewer ascii:") + path;
-  p.terms                   = {SaddleSlow, SaddleFast};
-  p.params                  = &a;
-  ASSERT_EQ(SolveObservingX0(options.c_str(), p, x0, {"slow", "fast"}, 0.1, 4, &run), 0);
-  std::ifstream     in(path);
-  const std::string said((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  ASSERT_EQ(MPI_Barrier(PETSC_COMM_WORLD), MPI_SUCCESS); /* every rank has read it */
-  if (!rank) std::remove(path);
+  const double              a  = 2;
+  const std::vector<double> x0 = {0.81, std::cos(0.81)};
+  SplitProblem              p;
+  AdaptRun                  run;
+  std::string               said;
+  p.terms  = {SaddleSlow, SaddleFast};
+  p.params = &a;
+  ASSERT_EQ(SolveObservingX0Saying("-ts_vshmm_adapt -ts_rtol 1e-3 -ts_atol 1e-3", p, x0, 0.1, 4, &run, &said), 0);
   EXPECT_NE(said.find("the slow dynamics grew the errors of the sampled values"), std::string::npos) << said;
   EXPECT_NE(said.find("the tolerance is not met"), std::string::npos) << said;
   EXPECT_GE(run.stats.adapt_growth_probes, 2) << said;                                          /* the growth found at the start, and probed again (x runs away: the error's relative growth stops later) */
@@ -3195,24 +3194,11 @@ TEST(VSHMMAdapt, AGrowthTheSlowJacobianDoesNotShowIsProbed)
   const std::vector<double> x0  = {0.0, 0.01};
   const double              ref = ConvergedReference({CoupledSlow, CoupledFast}, nullptr, x0, 4, 1e-5, 5e-6, 1e-9);
   for (const char *tol : {"1e-2", "1e-3"}) {
-    char        path[] = "/tmp/vshmm_coupled_XXXXXX"; /* one file for every rank: its name made on the first */
-    PetscMPIInt rank;
-    ASSERT_EQ(MPI_Comm_rank(PETSC_COMM_WORLD, &rank), MPI_SUCCESS);
-    if (!rank) {
-      const int fd = mkstemp(path);
-      ASSERT_GE(fd, 0);
-      close(fd);
-    }
-    ASSERT_EQ(MPI_Bcast(path, sizeof(path), MPI_CHAR, 0, PETSC_COMM_WORLD), MPI_SUCCESS);
-    SplitProblem      p;
-    AdaptRun          run;
-    const std::string options = std::string("-ts_vshmm_adapt -ts_rtol ") + tol + " -ts_atol " + tol + " -ts_vshmm_warnings_viewer ascii:" + path;
-    p.terms                   = {CoupledSlow, CoupledFast};
-    ASSERT_EQ(SolveObservingX0(options.c_str(), p, x0, {"slow", "fast"}, 0.1, 4, &run), 0);
-    std::ifstream     in(path);
-    const std::string said((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    ASSERT_EQ(MPI_Barrier(PETSC_COMM_WORLD), MPI_SUCCESS); /* every rank has read it */
-    if (!rank) std::remove(path);
+    SplitProblem p;
+    AdaptRun     run;
+    std::string  said;
+    p.terms = {CoupledSlow, CoupledFast};
+    ASSERT_EQ(SolveObservingX0Saying(std::string("-ts_vshmm_adapt -ts_rtol ") + tol + " -ts_atol " + tol, p, x0, 0.1, 4, &run, &said), 0);
     EXPECT_GE(run.stats.adapt_growth_probes, 1) << tol;
     const double t = std::atof(tol), error = std::abs(run.x[0] - ref) / (t * (1 + std::abs(ref)));
     EXPECT_GT(error, 2) << tol; /* not met: the savings' lag changes the growth rate itself (by 2 eps (r - 1)), an error every step makes */
