@@ -1867,18 +1867,31 @@ static PetscErrorCode GrowthProbeBegin(TS, PetscReal, PetscInt);
 /* In a macro step's first comparison: a probe begun or continued here propagates its perturbed
    solution with the comparison's parameters from the comparison's start offset, in growth_Y
    (*probe: run it beside the comparison, GrowthMeasure()). */
-static PetscErrorCode GrowthProbeStart(TS ts, PetscReal t0, PetscBool inherit, PetscBool *probe)
+/* Whether a probe's perturbed solution waits at the step's start t0 (not from another run, nor a
+   solution changed between the steps). */
+static PetscErrorCode GrowthPerturbedAt(TS ts, PetscReal t0, PetscBool *at)
 {
   TS_VSHMM *vs = (TS_VSHMM *)ts->data;
   PetscReal norm;
 
   PetscFunctionBegin;
+  *at = PETSC_FALSE;
+  if (vs->growth_stage < 1 || vs->growth_time != t0) PetscFunctionReturn(0);
+  PetscCall(VecNorm(vs->X0, NORM_1, &norm));
+  *at = norm == vs->growth_norm ? PETSC_TRUE : PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode GrowthProbeStart(TS ts, PetscReal t0, PetscBool inherit, PetscBool *probe)
+{
+  TS_VSHMM *vs = (TS_VSHMM *)ts->data;
+
+  PetscFunctionBegin;
   *probe = PETSC_FALSE;
   if (!inherit || vs->growth_measured) PetscFunctionReturn(0);
   PetscCall(GrowthProbeBegin(ts, t0, vs->adapt_accepted));
-  if (vs->growth_stage < 1) PetscFunctionReturn(0);
-  PetscCall(VecNorm(vs->X0, NORM_1, &norm));
-  if (vs->growth_time != t0 || norm != vs->growth_norm) PetscFunctionReturn(0); /* another run, or the solution changed between the steps */
+  PetscCall(GrowthPerturbedAt(ts, t0, probe));
+  if (!*probe) PetscFunctionReturn(0);
   if (!vs->growth_Y) PetscCall(VecDuplicate(vs->X0, &vs->growth_Y));
   PetscCall(VecWAXPY(vs->growth_Y, -1.0, vs->X0, vs->Xtrial)); /* the comparison's start offset */
   PetscCall(VecAXPY(vs->growth_Y, 1.0, vs->growth_X));
@@ -2025,16 +2038,13 @@ static PetscErrorCode GrowthProbeAccepted(TS ts, const vshmm::AdaptParameters &p
     vs->growth_move = move;
   }
   if (!vs->growth_measured) PetscCall(GrowthProbeBegin(ts, t0, vs->adapt_accepted - 1)); /* (counted with this step already) */
-  if (vs->growth_stage >= 1 && !vs->growth_measured) {
-    /* no first comparison propagated it: with the step's parameters, against the solution */
-    PetscReal norm;
-    PetscCall(VecNorm(vs->X0, NORM_1, &norm));
-    if (vs->growth_time == t0 && norm == vs->growth_norm) {
-      if (!vs->growth_Y) PetscCall(VecDuplicate(vs->X0, &vs->growth_Y));
-      PetscCall(VecCopy(vs->growth_X, vs->growth_Y));
-      PetscCall(EstimationStep(ts, p, t0, DeltaT, vs->growth_Y));
-      PetscCall(GrowthMeasure(ts, ts->vec_sol, t0, DeltaT));
-    }
+  PetscBool at = PETSC_FALSE;
+  if (!vs->growth_measured) PetscCall(GrowthPerturbedAt(ts, t0, &at));
+  if (at) { /* no first comparison propagated it: with the step's parameters, against the solution */
+    if (!vs->growth_Y) PetscCall(VecDuplicate(vs->X0, &vs->growth_Y));
+    PetscCall(VecCopy(vs->growth_X, vs->growth_Y));
+    PetscCall(EstimationStep(ts, p, t0, DeltaT, vs->growth_Y));
+    PetscCall(GrowthMeasure(ts, ts->vec_sol, t0, DeltaT));
   }
   const PetscBool measured = vs->growth_measured;
   vs->growth_measured      = PETSC_FALSE;
