@@ -53,6 +53,8 @@ PROBLEMS = [
     ('a saddle, a = 2: errors grow e^(1.7 t), to t = 4 (section 35)', 38, 4, 1e-5, ['-eps', '1e-3', '-a', '2', '-x0', '0.81,0.6895']),
     ('a saddle from x = 0.3: runs away (section 35)', 38, 4, 1e-5, ['-eps', '1e-3', '-x0', '0.3,0.9553']),
     ('a growth the slow Jacobian does not show, e^t, to t = 4 (section 35)', 39, 4, 1e-5, ['-eps', '1e-3']),
+    ("Kapitza's pendulum, inverted, A = 0.002, w = 1000, to t = 4: an error turned by a slow oscillation (section 36)", 40, 4, 1e-5, ['-eps', '1e-3', '-a', '0.002']),
+    ('a slow predator-prey cycle (a center), the predator fed by a slaved fast variable, to t = 8 (section 36)', 41, 8, 1e-5, ['-eps', '1e-3']),
     ('the beat through squares, 8 q1^2 q2^2 - 2 (section 26)', 33, 2, 1e-6, ['-eps', '1e-3', '-a', '5']),
     ('a fast band whose slowest rate is 30 (section 27: savings that do not pay)', 34, 2, 1e-5, ['-eps', '1e-3', '-a', '30']),
     ('a slow rotation at 20, 2 radians a macro step, scales not separated (section 28)', 35, 2, 1e-5, ['-eps', '1e-2', '-a', '20']),

@@ -245,6 +245,17 @@ static void Field(Ctx *c, PetscReal t, const PetscScalar *u, PetscScalar *f)
     f[0] = -u[0] + 2 * u[1];
     f[1] = -(u[1] - u[0] - 0.01) / e;
     break;
+  case 40: /* Kapitza's pendulum, the pivot vibrating as a fast oscillator (q, p) of frequency 1/eps and amplitude a: theta' = v, v' = -(1 - a q / eps^2) sin(theta) ; q' = -p/eps, p' = q/eps (the inverted position is stable where (a / eps)^2 > 2: an error turns with the slow oscillation about it, and grows for a part of its turn) */
+    f[0] = u[1];
+    f[1] = -(1 - a * u[2] / (e * e)) * PetscSinReal(u[0]);
+    f[2] = -u[3] / e;
+    f[3] = u[2] / e;
+    break;
+  case 41: /* a slow predator-prey cycle (a center: Lotka-Volterra) whose predator grows with a slaved fast variable: x' = x (2 - y), y' = y (z - 1) ; z' = -(z - x)/eps (on the slow manifold y' = y (x - 1): closed orbits about (1, 2), an error carried round them, neither growing nor damped on average) */
+    f[0] = u[0] * (2 - u[1]);
+    f[1] = u[1] * (u[2] - 1);
+    f[2] = -(u[2] - u[0]) / e;
+    break;
   case 19: /* three-level chemistry: A' = -A + B ; B' = (A - 2 B + C)/eps ; C' = (B - C - C^3)/eps2 */
     f[0] = -u[0] + u[1];
     f[1] = (u[0] - 2 * u[1] + u[2]) / e;
@@ -309,6 +320,7 @@ static void Obs(Ctx *c, PetscReal t, const PetscScalar *u, PetscReal *q)
     q[1] = u[3];
     break;
   case 4:
+  case 41:
   case 13:
   case 15:
   case 35:
@@ -411,6 +423,8 @@ static const Setup kSetups[] = {
   {37, 1, {{0, 1}, {2, 3, 4, 5}}, {0, 0, 1, 0, 1, 0}},
   {38, 1, {{0}, {1}}, {0.59, 0.8309406791}},
   {39, 1, {{0}, {1}}, {0, 0.01}},
+  {40, 1, {{0, 1}, {2, 3}}, {2.8415926535897931, 0, 1, 0}},
+  {41, 2, {{0, 1}, {2}}, {2, 2, 2}},
 };
 
 int main(int argc, char **argv)
@@ -443,7 +457,7 @@ int main(int argc, char **argv)
   const Setup *setup  = nullptr;
   for (const Setup &st : kSetups)
     if (st.prob == c.prob) setup = &st;
-  PetscCheck(setup, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "-prob %d: no such problem (0-39, the cases of Field())", (int)c.prob);
+  PetscCheck(setup, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "-prob %d: no such problem (0-41, the cases of Field())", (int)c.prob);
   c.n      = (PetscInt)setup->u0.size();
   c.nobs   = setup->nobs;
   c.nsplit = (PetscInt)setup->splits.size();

@@ -162,22 +162,25 @@ struct TS_VSHMM {
   PetscReal              growth_norm  = 0;                             // the solution's 1-norm then (another state there: the probe is dropped)
   PetscInt               growth_stage = 0;                             // propagations of the present perturbation so far (-1: none started)
   std::vector<PetscReal> growth_recent;                                // the present probe's last growth factors (kGrowthStages at most)
-  PetscInt               growth_due          = 0;                      // the accepted step from which the next probe starts
-  PetscBool              growth_measured     = PETSC_FALSE;            // a propagation was measured in the step being taken
-  PetscReal              growth_factor       = 0;                      // and its growth factor
-  PetscReal              growth_rate         = 0;                      // the slow dynamics' growth rate of an error (per unit time; 0: none measured, or none that grows)
-  PetscInt64             growth_probes       = 0;                      // probes completed (statistics)
-  PetscBool              growth_warned       = PETSC_FALSE;            // told that errors made before the rate was known exceed the tolerance
-  PetscBool              growth_damped       = PETSC_FALSE;            // a probe of the run found an error damped (a growth found later is a phase: StepBudget())
-  PetscReal              growth_amplified    = 0;                      // the steps' estimates, each grown by the growth measured after it (GrowthProbeAccepted())
-  PetscReal              growth_move         = 0;                      // the solution's motion over the last macro step on the slowest level's components (weighted)
-  PetscReal              growth_streak       = 0;                      // that motion at the start of the present streak of steps whose motion grew (GrowthProbeAccepted())
-  PetscInt               growth_streak_steps = 0;                      // and the streak's steps
-  Vec                    slow_mask           = nullptr;                // 1 on the slow components (written by the slowest level's splits only) where they are controlled with the observables
-  Vec                    lag_mask            = nullptr;                // 1 on the components only faster levels' splits write (none where a slowest split is additive): where a comparison's end state is carried into the next one's start
-  PetscBool              lag_by_values       = PETSC_FALSE;            // lag_mask from the fields' values (additive splits): a component the slowest field is seen to write leaves it
-  PetscInt               lag_count           = 0;                      // the components on lag_mask (global)
-  PetscInt64             lag_inherited       = 0;                      // comparisons that started from the last one's end state on them (-ts_view)
+  PetscInt               growth_due              = 0;                  // the accepted step from which the next probe starts
+  PetscBool              growth_measured         = PETSC_FALSE;        // a propagation was measured in the step being taken
+  PetscReal              growth_factor           = 0;                  // and its growth factor
+  PetscReal              growth_rate             = 0;                  // the slow dynamics' growth rate of an error (per unit time; 0: none measured, or none that grows)
+  PetscReal              growth_rate_max         = 0;                  // the largest such rate of the solve (the warning's)
+  PetscInt64             growth_probes           = 0;                  // probes completed (statistics)
+  PetscBool              growth_warned           = PETSC_FALSE;        // told that errors made before the rate was known exceed the tolerance
+  PetscBool              growth_damped           = PETSC_FALSE;        // a probe of the run found an error damped (a growth found later is a phase: StepBudget())
+  PetscReal              growth_amplified        = 0;                  // the steps' estimates, each grown by the growth measured after it (GrowthProbeAccepted())
+  PetscReal              growth_amplified_before = 0;                  // growth_amplified before the present probe's first step
+  PetscReal              growth_probe_estimates  = 0;                  // and the estimates of the probe's steps (an uneven growth is undone: GrowthProbeAccepted())
+  PetscReal              growth_move             = 0;                  // the solution's motion over the last macro step on the slowest level's components (weighted)
+  PetscReal              growth_streak           = 0;                  // that motion at the start of the present streak of steps whose motion grew (GrowthProbeAccepted())
+  PetscInt               growth_streak_steps     = 0;                  // and the streak's steps
+  Vec                    slow_mask               = nullptr;            // 1 on the slow components (written by the slowest level's splits only) where they are controlled with the observables
+  Vec                    lag_mask                = nullptr;            // 1 on the components only faster levels' splits write (none where a slowest split is additive): where a comparison's end state is carried into the next one's start
+  PetscBool              lag_by_values           = PETSC_FALSE;        // lag_mask from the fields' values (additive splits): a component the slowest field is seen to write leaves it
+  PetscInt               lag_count               = 0;                  // the components on lag_mask (global)
+  PetscInt64             lag_inherited           = 0;                  // comparisons that started from the last one's end state on them (-ts_view)
   Vec                    lag_carried = nullptr, lag_next = nullptr;    // the last accepted step's comparison end state less the solution's there, on lag_mask; the candidate from the latest comparison
   PetscBool              lag_valid = PETSC_FALSE, lag_next_valid = PETSC_FALSE;
   vshmm::AdaptParameters lag_p, lag_q, lag_next_p, lag_next_q; // the step's and its comparison's parameters that made them

@@ -3205,3 +3205,41 @@ TEST(VSHMMAdapt, AGrowthTheSlowJacobianDoesNotShowIsProbed)
     EXPECT_NE(said.find("the slow dynamics grew the errors of the sampled values"), std::string::npos) << tol << ": " << error << " tol, " << said;
   }
 }
+
+// Kapitza's pendulum: a pivot vibrating fast, A cos(w t) with A = 0.002, w = 1000, the vibration an
+// oscillator of the fast split (q' = -w p, p' = w q); the slow split theta' = v, v' = -(1 - A w^2 q)
+// sin(theta). The inverted position is stable ((A w)^2 > 2): from theta = pi - 0.3 the pendulum turns
+// about it (period about 6), theta observed. An error turned by that oscillation grows for a part of
+// its turn (v carries the fast phase, and its weight differs from theta's) and shrinks later: a
+// probe's factors 1.53, 2.27, 1.15 were taken as a rate e^(1.4 t), which shrank the later shares a
+// hundredfold, and the steps' estimates, grown by it, were said to miss the tolerance at 0.15 tol.
+// A rate is now taken from a steady growth only (the saddles above: within 3%); the uneven one is
+// propagated until it is damped (factor 0.98) and is no growth (docs/accuracy.md section 36).
+void KapitzaSlow(const void *, PetscReal, const PetscScalar *x, PetscScalar *f)
+{
+  f[0] = x[1];
+  f[1] = -(1 - 0.002 * 1e6 * x[2]) * std::sin(x[0]);
+  f[2] = f[3] = 0;
+}
+void KapitzaFast(const void *, PetscReal, const PetscScalar *x, PetscScalar *f)
+{
+  f[0] = f[1] = 0;
+  f[2]        = -1000 * x[3];
+  f[3]        = 1000 * x[2];
+}
+
+TEST(VSHMMAdapt, AnOscillationThatTurnsAnErrorIsNoGrowth)
+{
+  const std::vector<double> x0  = {PETSC_PI - 0.3, 0, 1, 0};
+  const double              ref = ConvergedReference({KapitzaSlow, KapitzaFast}, nullptr, x0, 4, 1e-5, 5e-6, 1e-7); /* 3.3714763 */
+  SplitProblem              p;
+  AdaptRun                  run;
+  std::string               said;
+  p.terms      = {KapitzaSlow, KapitzaFast};
+  p.components = {{0, 1}, {2, 3}};
+  ASSERT_EQ(SolveObservingX0Saying("-ts_vshmm_adapt -ts_rtol 1e-3 -ts_atol 1e-3", p, x0, 0.1, 4, &run, &said), 0);
+  EXPECT_GE(run.stats.adapt_growth_probes, 1);
+  EXPECT_EQ(run.stats.adapt_growth_rate, 0);
+  EXPECT_EQ(said.find("the slow dynamics grew the errors"), std::string::npos) << said;
+  EXPECT_LE(std::abs(run.x[0] - ref), 1e-3 * (1 + std::abs(ref))) << "theta(4) = " << run.x[0] << ", reference " << ref;
+}
