@@ -42,6 +42,8 @@
 
 static constexpr PetscReal kZeroEstimate           = 1e-3; /* of the share: the model's error after a comparison that changed nothing */
 static constexpr PetscReal kMinSeparation          = 10;   /* a pair of levels this far apart in spectral radius is separated */
+static constexpr PetscReal kForcedRatio            = 2;    /* a faster level's oscillation forcing the slower components this many times as hard as their own dynamics (TSVSHMMForcingRatio_Private(); the paper's oscillators 0.5-0.9) */
+static constexpr PetscReal kForcedDrift            = 0.1;  /* and savings changing the second-order drift it makes by this much of the slow components' size over the run: said (CheckForcedSlowComponents()) */
 static constexpr PetscReal kLostDecaySeparation    = 8;    /* a decaying pair separated at set-up has lost its separation below this (LostSeparation()) */
 static constexpr PetscReal kInitialSeparation      = 10;   /* effective separation sigma_l of the first parameters */
 static constexpr PetscReal kInitialDecaySeparation = 2;    /* the same where the faster level only decays */
@@ -1358,6 +1360,45 @@ static PetscErrorCode CheckSlowedOscillations(TS ts)
   PetscFunctionReturn(0);
 }
 
+/* Fixed savings (no -ts_vshmm_adapt): a faster level whose oscillation forces the slower level's
+   components much harder than their own dynamics move them (TSVSHMMForcingRatio_Private(): kappa
+   times) makes them swing at its frequency, and where the slower field's Jacobian turns with the
+   oscillation too, the correlation of that swing with it drifts the slow dynamics (the
+   second-order averaging of a fast force: Kapitza's pendulum stands inverted on it). Savings that
+   slow the faster level by r enlarge the swing in phase with the force r^2 times, and the drift
+   with it: where the change over the run exceeds kForcedDrift of the slow components' size, the
+   answer is wrong, and no comparison of VSHMM runs (each with savings) shows it (Kapitza's
+   pendulum, kappa 13.5, a drift of 0.56 per unit time: savings factor 0.05 ended 0.14 off, 1 ended
+   0.37 off, 10 and 100 spun it round, silently). The paper's oscillators (kappa 0.9 and 0.5) and a
+   force without a turning Jacobian (x' = -x + q^2: no drift) are not concerned. */
+static PetscErrorCode CheckForcedSlowComponents(TS ts)
+{
+  TS_VSHMM                 *vs     = (TS_VSHMM *)ts->data;
+  const PetscInt            K      = (PetscInt)vs->level_end.size() - 1;
+  const std::vector<double> ratios = vshmm::timeRatiosFromSavings(vs->savings_used);
+  const PetscReal           span   = TSVSHMMAmplitudeSpan_Private(ts);
+  std::string               pairs;
+
+  PetscFunctionBegin;
+  for (PetscInt l = 0; l < K && l < (PetscInt)ratios.size(); ++l) {
+    if (!(ratios[l] > 1.0)) continue; /* (even small savings: a drift of the order of the slow dynamics changes by 2 (r - 1) of itself) */
+    PetscReal kappa, drift, omega;
+    PetscCall(TSVSHMMForcingRatio_Private(ts, ts->ptime, ts->vec_sol, l, &kappa, &drift, &omega));
+    const PetscReal change = drift * (ratios[l] * ratios[l] - 1) * span; /* over the run, relative to 1 + |x| */
+    if (!(kappa > kForcedRatio && change > kForcedDrift)) continue;
+    char pair[400];
+    PetscCall(PetscSNPrintf(pair, sizeof pair, "level %d's oscillation (frequency %.3g) forces level %d's components %.3g times as hard as their own dynamics, and their swing drifts them by %.3g of their size per unit time; the savings slow the oscillation by the time ratio %.3g (savings factor alpha_%d = %g), which multiplies that drift by %.3g: a change of about %.3g of their size over the run", (int)l + 1, (double)omega, (int)l, (double)kappa, (double)drift, (double)ratios[l], (int)l + 1,
+                            (double)vs->savings_used[l], (double)(ratios[l] * ratios[l]), (double)change));
+    pairs += (pairs.empty() ? "" : "; ") + std::string(pair);
+  }
+  if (pairs.empty()) PetscFunctionReturn(0);
+  PetscCheck(vs->check_separation != TSVSHMM_SEPARATION_ERROR, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_INCOMP, "TSVSHMM separation check at t = %g: %s. A fast force on slow components (a vibrating pivot, a particle in a fast oscillating field) acts on the slow dynamics through the swing it gives them, which slowing the force enlarges: VSHMM's averaging does not apply. Use a single-rate TS type (-ts_type rk), or -ts_vshmm_adapt (its comparisons refuse such savings); -ts_vshmm_check_separation warn runs anyway",
+             (double)ts->ptime, pairs.c_str());
+  PetscCall(TSVSHMMWarn_Private(ts, "TSVSHMM warning: separation check at t = %g: %s. A fast force on slow components (a vibrating pivot, a particle in a fast oscillating field) acts on the slow dynamics through the swing it gives them, which slowing the force enlarges: VSHMM's averaging does not apply, and the answer will be wrong by an amount it cannot estimate. Use a single-rate TS type (-ts_type rk), or -ts_vshmm_adapt (its comparisons refuse such savings). (-ts_vshmm_check_separation error makes this an error, off silences it.)\n",
+                                (double)ts->ptime, pairs.c_str()));
+  PetscFunctionReturn(0);
+}
+
 /* Fixed parameters (no -ts_vshmm_adapt): where the fastest level oscillates, the Runge-Kutta
    method's |R(i omega dt)| < 1 at the micro step damps its amplitude at every one of its steps, and
    over the run that can take most of it (three levels, the fastest a rotation at 1,000 driving the
@@ -1409,6 +1450,7 @@ PetscErrorCode TSVSHMMCheckSeparation_Private(TS ts)
   PetscCall(PetscInfo(ts, "Separation check at t = %g: %s\n", (double)ts->ptime, figures.c_str()));
   if (!vs->adapt && vs->check_stability) PetscCall(CheckMicroStepDamping(ts));
   if (!vs->no_separation && !vs->adapt && vs->check_separation != TSVSHMM_SEPARATION_OFF) PetscCall(CheckSlowedOscillations(ts));
+  if (!vs->no_separation && !vs->adapt && vs->check_separation != TSVSHMM_SEPARATION_OFF) PetscCall(CheckForcedSlowComponents(ts));
   if (!vs->no_separation || vs->check_separation == TSVSHMM_SEPARATION_OFF) PetscFunctionReturn(0);
   const char *what = (vs->separations.empty() && !own) ? "ratio of the spectral radii of consecutive levels" : "separation of consecutive levels";
   /* the slowest level alone as stiff as the whole field: the stiff split may have come first (the

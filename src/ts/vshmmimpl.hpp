@@ -288,6 +288,7 @@ PETSC_INTERN PetscErrorCode TSVSHMMCheckSplitsSum_Private(TS); /* at set-up: the
 PETSC_INTERN PetscErrorCode TSVSHMMLevelSpectra_Private(TS);
 PETSC_INTERN PetscErrorCode TSVSHMMLevelOwnRates_Private(TS);
 PETSC_INTERN PetscErrorCode TSVSHMMLevelOwnSlowest_Private(TS, PetscInt, PetscReal *);                                                      /* the slowest own rate of a level at ts->vec_sol (component splits; 0 otherwise), not stored */
+PETSC_INTERN PetscErrorCode TSVSHMMForcingRatio_Private(TS, PetscReal, Vec, PetscInt, PetscReal *, PetscReal *, PetscReal *);               /* how hard a faster level's oscillation forces the slower components */
 PETSC_INTERN PetscErrorCode TSVSHMMFastQuantities_Private(TS, PetscReal, Vec, PetscReal, PetscInt *, PetscInt *, PetscReal *, PetscReal *); /* sampled quantities a faster level moves on its own scale */
 /* vshmmadapt.cpp: the separation check, accuracy control */
 PETSC_INTERN PetscErrorCode TSVSHMMCheckSeparation_Private(TS);

@@ -1219,6 +1219,129 @@ static PetscReal SustainedFrequency(const TS_VSHMM *vs, PetscInt level, PetscRea
   return omega;
 }
 
+/* How hard a faster level l+1 with a sustained oscillation forces the slower levels' components
+   at (t, X), against their own dynamics: the slower field's change along the faster level's own
+   motion, w = d F_l / dt (a forward difference along its own splits), makes an oscillating force of
+   amplitude |w_i| / omega (omega its frequency) on component i; *ratio is the largest such force over
+   rho_l (1 + |x_i|), rho_l level l's spectral radius (0: no sustained oscillation, or none measured).
+   About 1 where the slower equations take the fast variables as an O(1) input (the paper's
+   oscillators); large where the force is of the order of the fast frequency (a vibrating pivot, a
+   particle in a fast oscillating field): the slower components then carry a fast swing of about
+   ratio rho_l (1 + |x|) / omega (*frequency: omega), whose correlation with the force is a second-order drift of the
+   slow dynamics (Kapitza's pendulum stands inverted on it) that savings r multiply by r^2. Split
+   evaluations are the stability checks'. */
+PetscErrorCode TSVSHMMForcingRatio_Private(TS ts, PetscReal t, Vec X, PetscInt l, PetscReal *ratio, PetscReal *drift, PetscReal *frequency)
+{
+  TS_VSHMM *vs = (TS_VSHMM *)ts->data;
+  Vec       V, A, F0, F1, F2, F3, W, Xp;
+  PetscReal vmax, amax, xmax, omega;
+
+  PetscFunctionBegin;
+  *ratio     = 0;
+  *drift     = 0;
+  *frequency = 0;
+  if ((PetscInt)vs->level_radius.size() <= l + 1 || !(vs->level_radius[l] > 0) || !SustainedOscillation(vs, l + 1, ts->time_step)) PetscFunctionReturn(0);
+  omega      = SustainedFrequency(vs, l + 1, ts->time_step);
+  *frequency = omega;
+  if (!(omega > 0)) PetscFunctionReturn(0);
+  const StabilityCounting counting(vs);
+  PetscCall(VecDuplicate(X, &V));
+  PetscCall(VecDuplicate(X, &A));
+  PetscCall(VecDuplicate(X, &F0));
+  PetscCall(VecDuplicate(X, &F1));
+  PetscCall(VecDuplicate(X, &F2));
+  PetscCall(VecDuplicate(X, &F3));
+  PetscCall(VecDuplicate(X, &W));
+  PetscCall(VecDuplicate(X, &Xp));
+  PetscCall(VecNorm(X, NORM_INFINITY, &xmax));
+  const PetscReal h = kDifferenceStep * (1 + xmax);
+  PetscCall(TSVSHMMEvaluateOwnSplits_Private(vs, l + 1, t, X, V));
+  PetscCall(VecNorm(V, NORM_INFINITY, &vmax));
+  std::vector<PetscReal> drift2, force2;
+  if (vmax > 0 && std::isfinite(vmax)) {
+    PetscCall(VecWAXPY(Xp, h / vmax, V, X));
+    PetscCall(TSVSHMMEvaluateOwnSplits_Private(vs, l + 1, t, Xp, A));
+    PetscCall(VecAXPY(A, -1.0, V));
+    PetscCall(VecScale(A, vmax / h)); /* J_f V: the acceleration */
+    PetscCall(VecNorm(A, NORM_INFINITY, &amax));
+    PetscCall(TSVSHMMEvaluateLevel_Private(vs, l, t, X, F0));
+    PetscInt n;
+    PetscCall(VecGetLocalSize(X, &n));
+    drift2.assign(n, 0.0);
+    force2.assign(n, 0.0);
+    for (int k = 0; k < 2; ++k) {
+      /* the fast displacement d over a turn: V / omega, or A / omega^2 a quarter turn on */
+      Vec             D     = k ? A : V;
+      const PetscReal scale = k ? 1.0 / (omega * omega) : 1.0 / omega;
+      PetscReal       dmax;
+      PetscCall(VecNorm(D, NORM_INFINITY, &dmax));
+      if (!(dmax > 0 && std::isfinite(dmax))) continue;
+      /* the force w = F_l(X + d) - F_l(X) (a difference quotient along d, times |d|) */
+      const PetscReal dd = h / dmax;
+      PetscCall(VecWAXPY(Xp, dd, D, X));
+      PetscCall(TSVSHMMEvaluateLevel_Private(vs, l, t, Xp, W));
+      PetscCall(VecAXPY(W, -1.0, F0));
+      PetscCall(VecScale(W, scale / dd));
+      /* the slow components' swing in phase with the force: xi = J_l w / omega^2 */
+      PetscReal wmax;
+      PetscCall(VecNorm(W, NORM_INFINITY, &wmax));
+      if (!(wmax > 0 && std::isfinite(wmax))) continue;
+      PetscCall(VecWAXPY(Xp, h / wmax, W, X));
+      PetscCall(TSVSHMMEvaluateLevel_Private(vs, l, t, Xp, F1));
+      PetscCall(VecAXPY(F1, -1.0, F0));
+      PetscCall(VecScale(F1, wmax / h / (omega * omega))); /* xi */
+      PetscReal ximax;
+      PetscCall(VecNorm(F1, NORM_INFINITY, &ximax));
+      if (!(ximax > 0 && std::isfinite(ximax))) continue;
+      /* the drift: the slow Jacobian's change along d applied to xi, a mixed second difference */
+      const PetscReal dx = h / ximax;
+      PetscCall(VecWAXPY(Xp, dd, D, X));
+      PetscCall(VecAXPY(Xp, dx, F1));
+      PetscCall(TSVSHMMEvaluateLevel_Private(vs, l, t, Xp, F2)); /* F(X + d + xi) */
+      PetscCall(VecWAXPY(Xp, dx, F1, X));
+      PetscCall(TSVSHMMEvaluateLevel_Private(vs, l, t, Xp, F3)); /* F(X + xi) */
+      const PetscScalar *f0, *f2, *f3, *w;
+      PetscCall(VecGetArrayRead(F0, &f0));
+      PetscCall(VecGetArrayRead(F2, &f2));
+      PetscCall(VecGetArrayRead(F3, &f3));
+      PetscCall(VecGetArrayRead(W, &w));
+      for (PetscInt i = 0; i < n; ++i) {
+        /* F(X+d+xi) - F(X+xi) - (F(X+d) - F(X)), with F(X+d) - F(X) = w dd / scale */
+        const PetscReal m = PetscRealPart(f2[i] - f3[i] - PetscRealPart(w[i]) * dd / scale) / (dd * dx) * scale; /* along the displacement d = D scale and the swing xi */
+        drift2[i] += 0.25 * m * m;
+        force2[i] += PetscRealPart(w[i]) * PetscRealPart(w[i]);
+      }
+      PetscCall(VecRestoreArrayRead(W, &w));
+      PetscCall(VecRestoreArrayRead(F3, &f3));
+      PetscCall(VecRestoreArrayRead(F2, &f2));
+      PetscCall(VecRestoreArrayRead(F0, &f0));
+    }
+    const PetscScalar *x, *f0;
+    PetscReal          most[2] = {0, 0};
+    PetscCall(VecGetArrayRead(X, &x));
+    PetscCall(VecGetArrayRead(F0, &f0));
+    for (PetscInt i = 0; i < n; ++i) {
+      most[0] = PetscMax(most[0], PetscSqrtReal(drift2[i]) / (1 + PetscAbsScalar(x[i])));
+      most[1] = PetscMax(most[1], PetscSqrtReal(force2[i]) / (vs->level_radius[l] * (1 + PetscAbsScalar(x[i]))));
+    }
+    PetscCall(VecRestoreArrayRead(F0, &f0));
+    PetscCall(VecRestoreArrayRead(X, &x));
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, most, 2, MPIU_REAL, MPIU_MAX, PetscObjectComm((PetscObject)ts)));
+    *drift = most[0];
+    *ratio = most[1];
+    PetscCall(PetscInfo(ts, "Separation check at t = %g: levels %d/%d: level %d's oscillation (frequency %g) forces level %d's components %g times as hard as their own dynamics, a second-order drift of %g of their size per unit time\n", (double)t, (int)l, (int)l + 1, (int)l + 1, (double)omega, (int)l, (double)most[1], (double)most[0]));
+  }
+  PetscCall(VecDestroy(&Xp));
+  PetscCall(VecDestroy(&W));
+  PetscCall(VecDestroy(&F3));
+  PetscCall(VecDestroy(&F2));
+  PetscCall(VecDestroy(&F1));
+  PetscCall(VecDestroy(&F0));
+  PetscCall(VecDestroy(&A));
+  PetscCall(VecDestroy(&V));
+  PetscFunctionReturn(0);
+}
+
 /* The sampled quantities (the observables, or the state in the TS's weighted norm) that a faster
    level with a sustained oscillation moves on its own time scale at (t, X): they carry its phase,
    which VSHMM does not compute with savings below that level (vshmm::fastSwingSquares()). The
