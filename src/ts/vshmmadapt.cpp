@@ -113,8 +113,9 @@ static constexpr PetscInt  kGrowthInterval  = 20;   /* accepted steps from a pro
 static constexpr PetscInt  kGrowthRecheck   = 5;    /* and from one that found growth: a passing growth stops shrinking the shares soon */
 static constexpr PetscReal kGrowthSaid      = 2;    /* errors grown by the slow dynamics are said where they exceed the tolerance and this many times the plain sum of the estimates */
 static constexpr PetscInt  kGrowthStages    = 3;    /* a probe's rate: the smallest growth of its last this many macro steps */
-static constexpr PetscReal kGrowthSteady    = 2;    /* where they grew steadily: the largest at most the smallest to this power (an exponential growth; an error that an oscillation turns grows unevenly: Kapitza's pendulum, 1.53, 2.27, 1.15) */
-static constexpr PetscInt  kGrowthMaxStages = 6;    /* an uneven growth is propagated for at most this many macro steps, then taken as none */
+static constexpr PetscReal kGrowthSteady    = 2;    /* where they grew steadily: the largest at most the smallest to this power, */
+static constexpr PetscReal kGrowthSpread    = 0.1;  /* or within this of it in logarithm (an exponential growth; an error that an oscillation turns grows unevenly: Kapitza's pendulum, 1.53, 2.27, 1.15) */
+static constexpr PetscInt  kGrowthMaxStages = 6;    /* an uneven growth is propagated for at most this many macro steps, then its mean growth taken */
 static constexpr PetscInt  kGrowthSteps     = 8;    /* a probe starts only where at least this many macro steps are left (up to three to measure, the rest to use the rate) */
 static constexpr PetscReal kGrowthSize      = 1e-4; /* a probe's perturbation at most this part of the solution (weighted as the tolerance weighs) */
 static constexpr PetscReal kGrowthPossible  = 0.1;  /* probes where the slowest level's Ritz values could grow an error by e^this over the run */
@@ -1504,6 +1505,8 @@ PetscErrorCode TSVSHMMAdaptReset_Private(TS ts)
   vs->growth_amplified_before = 0;
   vs->growth_rate_max         = 0;
   vs->growth_probe_estimates  = 0;
+  vs->growth_log_sum          = 0;
+  vs->growth_log_count        = 0;
   vs->growth_damped           = PETSC_FALSE;
   vs->growth_move             = 0;
   vs->growth_streak           = 0;
@@ -2102,6 +2105,8 @@ static PetscErrorCode GrowthProbeAccepted(TS ts, const vshmm::AdaptParameters &p
   if (measured && vs->growth_stage == 1) { /* the probe's first step: what the estimates would add up to without its growth, should it turn out uneven */
     vs->growth_amplified_before = vs->growth_amplified;
     vs->growth_probe_estimates  = 0;
+    vs->growth_log_sum          = 0;
+    vs->growth_log_count        = 0;
   }
   if (measured) vs->growth_probe_estimates += E;
   vs->growth_amplified = vs->growth_amplified * (measured ? vs->growth_factor : std::exp(vs->growth_rate * DeltaT)) + E;
@@ -2114,6 +2119,8 @@ static PetscErrorCode GrowthProbeAccepted(TS ts, const vshmm::AdaptParameters &p
        feed the slower ones) within it: that step only settles it, and the growth counts from the next */
     const PetscBool settling = (!vs->lag_mask && vs->growth_stage == 1) ? PETSC_TRUE : PETSC_FALSE;
     if (!settling) {
+      vs->growth_log_sum += std::log(vs->growth_factor);
+      vs->growth_log_count++;
       vs->growth_recent.push_back(vs->growth_factor);
       if (vs->growth_recent.size() > (size_t)kGrowthStages) vs->growth_recent.erase(vs->growth_recent.begin());
     }
@@ -2126,24 +2133,30 @@ static PetscErrorCode GrowthProbeAccepted(TS ts, const vshmm::AdaptParameters &p
          shrinks later; taken as a rate for the rest of the run it shrank the shares a hundredfold
          (Kapitza's pendulum: factors 1.53, 2.27, 1.15, "e^(1.4 t)"; the saddles' within 3%) */
       const auto [lo, hi] = std::minmax_element(vs->growth_recent.begin(), vs->growth_recent.end());
-      steady              = std::log(*hi) <= kGrowthSteady * std::log(*lo) ? PETSC_TRUE : PETSC_FALSE;
+      steady              = (std::log(*hi) <= kGrowthSteady * std::log(*lo) || std::log(*hi) - std::log(*lo) <= kGrowthSpread) ? PETSC_TRUE : PETSC_FALSE;
       if (steady) vs->growth_rate = std::log(*lo) / DeltaT;
     }
     if (growing && !last && (!full || (!steady && vs->growth_stage < kGrowthMaxStages))) { /* growing so far (unevenly: until it is steady, or for kGrowthMaxStages steps): propagated over the next step too */
       PetscCall(GrowthPerturb(ts, vs->growth_Y, t0 + DeltaT));
       vs->growth_stage++;
     } else {
-      if (!growing || (full && !steady)) {
-        /* damped, or an uneven growth to the probe's end: none that lasts, and the probe's steps'
-           estimates add up as they are (an oscillation grows an error for a part of its turn and
-           shrinks it later: Kapitza's pendulum, 1.53, 2.27, 1.15, then 0.98, counted 4x was said
-           to miss the tolerance at 0.15 tol) */
+      PetscBool lasting = growing;
+      if (growing && full && !steady) { /* uneven to the probe's end: its mean growth over the probe, where it grew */
+        const PetscReal mean = vs->growth_log_count > 0 ? vs->growth_log_sum / (PetscReal)vs->growth_log_count : 0;
+        lasting              = mean > 0 ? PETSC_TRUE : PETSC_FALSE;
+        if (lasting) vs->growth_rate = mean / DeltaT;
+      }
+      if (!lasting) {
+        /* damped: no growth that lasts, and the probe's steps' estimates add up as they are (an
+           oscillation grows an error for a part of its turn and shrinks it later: Kapitza's
+           pendulum, 1.53, 2.27, 1.15, then 0.98, counted 4x was said to miss the tolerance at
+           0.15 tol) */
         vs->growth_amplified = vs->growth_amplified_before + vs->growth_probe_estimates;
         vs->growth_rate      = 0;
         vs->growth_damped    = PETSC_TRUE;
       }
       vs->growth_rate_max = PetscMax(vs->growth_rate_max, vs->growth_rate);
-      PetscCall(PetscInfo(ts, "Adapt: growth probe ended at t = %g after %" PetscInt_FMT " macro steps: rate %g%s\n", (double)(t0 + DeltaT), vs->growth_stage, (double)vs->growth_rate, growing && full && !steady ? " (an uneven growth: none that lasts)" : ""));
+      PetscCall(PetscInfo(ts, "Adapt: growth probe ended at t = %g after %" PetscInt_FMT " macro steps: rate %g%s\n", (double)(t0 + DeltaT), vs->growth_stage, (double)vs->growth_rate, growing && full && !steady ? " (an uneven growth: its mean)" : ""));
       vs->growth_stage = 0;
       vs->growth_recent.clear();
       vs->growth_probes++;

@@ -173,6 +173,8 @@ struct TS_VSHMM {
   PetscReal              growth_amplified        = 0;                  // the steps' estimates, each grown by the growth measured after it (GrowthProbeAccepted())
   PetscReal              growth_amplified_before = 0;                  // growth_amplified before the present probe's first step
   PetscReal              growth_probe_estimates  = 0;                  // and the estimates of the probe's steps (an uneven growth is undone: GrowthProbeAccepted())
+  PetscReal              growth_log_sum          = 0;                  // the present probe's growths' logarithms, summed (its mean growth where it stays uneven)
+  PetscInt               growth_log_count        = 0;                  // and their number
   PetscReal              growth_move             = 0;                  // the solution's motion over the last macro step on the slowest level's components (weighted)
   PetscReal              growth_streak           = 0;                  // that motion at the start of the present streak of steps whose motion grew (GrowthProbeAccepted())
   PetscInt               growth_streak_steps     = 0;                  // and the streak's steps
