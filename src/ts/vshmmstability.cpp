@@ -1219,17 +1219,21 @@ static PetscReal SustainedFrequency(const TS_VSHMM *vs, PetscInt level, PetscRea
   return omega;
 }
 
-/* How hard a faster level l+1 with a sustained oscillation forces the slower levels' components
-   at (t, X), against their own dynamics: the slower field's change along the faster level's own
-   motion, w = d F_l / dt (a forward difference along its own splits), makes an oscillating force of
-   amplitude |w_i| / omega (omega its frequency) on component i; *ratio is the largest such force over
-   rho_l (1 + |x_i|), rho_l level l's spectral radius (0: no sustained oscillation, or none measured).
-   About 1 where the slower equations take the fast variables as an O(1) input (the paper's
-   oscillators); large where the force is of the order of the fast frequency (a vibrating pivot, a
-   particle in a fast oscillating field): the slower components then carry a fast swing of about
-   ratio rho_l (1 + |x|) / omega (*frequency: omega), whose correlation with the force is a second-order drift of the
-   slow dynamics (Kapitza's pendulum stands inverted on it) that savings r multiply by r^2. Split
-   evaluations are the stability checks'. */
+/* How a faster level l+1 with a sustained oscillation (frequency omega, *frequency) forces the
+   slower level's components at (t, X). Over a turn the faster level's state moves by about d = V /
+   omega and, a quarter turn on, A / omega^2 (V its own splits' field, A = J V their change along
+   it); the slower field F_l changes along d by w, an oscillating force on the slower components.
+   *ratio: the largest |w_i| (both directions in quadrature) over rho_l (1 + |x_i|), rho_l level l's
+   spectral radius: how much harder the force pushes them than their own dynamics (about 1 where the
+   slower equations take the fast variables as an O(1) input, the paper's oscillators; large where
+   the force is of the order of the fast frequency: a vibrating pivot, a particle in a fast
+   oscillating field). The force swings the slower components in phase with it by xi = J_l w /
+   omega^2, and where F_l's Jacobian turns with the oscillation too, the two correlate: the
+   second-order drift (J_l(X + d) - J_l(X)) xi / 2 over a turn (a mixed second difference), on which
+   Kapitza's pendulum stands inverted. *drift: its largest size over 1 + |x_i|, per unit time; savings
+   that slow the oscillation by r multiply it by r^2 (CheckForcedSlowComponents()). 0 where level
+   l+1 has no sustained oscillation. Split evaluations (2 of level l+1's own, up to 9 of level l)
+   are the stability checks'. */
 PetscErrorCode TSVSHMMForcingRatio_Private(TS ts, PetscReal t, Vec X, PetscInt l, PetscReal *ratio, PetscReal *drift, PetscReal *frequency)
 {
   TS_VSHMM *vs = (TS_VSHMM *)ts->data;
@@ -1300,8 +1304,7 @@ PetscErrorCode TSVSHMMForcingRatio_Private(TS ts, PetscReal t, Vec X, PetscInt l
       PetscCall(TSVSHMMEvaluateLevel_Private(vs, l, t, Xp, F2)); /* F(X + d + xi) */
       PetscCall(VecWAXPY(Xp, dx, F1, X));
       PetscCall(TSVSHMMEvaluateLevel_Private(vs, l, t, Xp, F3)); /* F(X + xi) */
-      const PetscScalar *f0, *f2, *f3, *w;
-      PetscCall(VecGetArrayRead(F0, &f0));
+      const PetscScalar *f2, *f3, *w;
       PetscCall(VecGetArrayRead(F2, &f2));
       PetscCall(VecGetArrayRead(F3, &f3));
       PetscCall(VecGetArrayRead(W, &w));
@@ -1314,17 +1317,14 @@ PetscErrorCode TSVSHMMForcingRatio_Private(TS ts, PetscReal t, Vec X, PetscInt l
       PetscCall(VecRestoreArrayRead(W, &w));
       PetscCall(VecRestoreArrayRead(F3, &f3));
       PetscCall(VecRestoreArrayRead(F2, &f2));
-      PetscCall(VecRestoreArrayRead(F0, &f0));
     }
-    const PetscScalar *x, *f0;
+    const PetscScalar *x;
     PetscReal          most[2] = {0, 0};
     PetscCall(VecGetArrayRead(X, &x));
-    PetscCall(VecGetArrayRead(F0, &f0));
     for (PetscInt i = 0; i < n; ++i) {
       most[0] = PetscMax(most[0], PetscSqrtReal(drift2[i]) / (1 + PetscAbsScalar(x[i])));
       most[1] = PetscMax(most[1], PetscSqrtReal(force2[i]) / (vs->level_radius[l] * (1 + PetscAbsScalar(x[i]))));
     }
-    PetscCall(VecRestoreArrayRead(F0, &f0));
     PetscCall(VecRestoreArrayRead(X, &x));
     PetscCall(MPIU_Allreduce(MPI_IN_PLACE, most, 2, MPIU_REAL, MPIU_MAX, PetscObjectComm((PetscObject)ts)));
     *drift = most[0];
