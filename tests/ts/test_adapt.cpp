@@ -3242,6 +3242,11 @@ TEST(VSHMMAdapt, AnOscillationThatTurnsAnErrorIsNoGrowth)
   EXPECT_EQ(run.stats.adapt_growth_rate, 0);
   EXPECT_EQ(said.find("the slow dynamics grew the errors"), std::string::npos) << said;
   EXPECT_LE(std::abs(run.x[0] - ref), 1e-3 * (1 + std::abs(ref))) << "theta(4) = " << run.x[0] << ", reference " << ref;
+  /* to t = 1.3 the probe of t = 0.4 is the run's only one: its uneven growth (taken as e^(1.4 t) where
+     any three growing steps gave a rate) is no rate */
+  ASSERT_EQ(SolveObservingX0Saying("-ts_vshmm_adapt -ts_rtol 1e-3 -ts_atol 1e-3", p, x0, 0.1, 1.3, &run, &said), 0);
+  EXPECT_EQ(run.stats.adapt_growth_probes, 1);
+  EXPECT_EQ(run.stats.adapt_growth_rate, 0);
 }
 
 // The same pendulum with savings set by the user: the vibration forces v 13.5 times as hard as the
