@@ -1237,8 +1237,8 @@ static PetscReal SustainedFrequency(const TS_VSHMM *vs, PetscInt level, PetscRea
 PetscErrorCode TSVSHMMForcingRatio_Private(TS ts, PetscReal t, Vec X, PetscInt l, PetscReal *ratio, PetscReal *drift, PetscReal *frequency)
 {
   TS_VSHMM *vs = (TS_VSHMM *)ts->data;
-  Vec       V, A, F0, F1, F2, F3, W, Xp;
-  PetscReal vmax, amax, xmax, omega;
+  Vec      *work;
+  PetscReal vmax, xmax, omega;
 
   PetscFunctionBegin;
   *ratio     = 0;
@@ -1249,14 +1249,8 @@ PetscErrorCode TSVSHMMForcingRatio_Private(TS ts, PetscReal t, Vec X, PetscInt l
   *frequency = omega;
   if (!(omega > 0)) PetscFunctionReturn(0);
   const StabilityCounting counting(vs);
-  PetscCall(VecDuplicate(X, &V));
-  PetscCall(VecDuplicate(X, &A));
-  PetscCall(VecDuplicate(X, &F0));
-  PetscCall(VecDuplicate(X, &F1));
-  PetscCall(VecDuplicate(X, &F2));
-  PetscCall(VecDuplicate(X, &F3));
-  PetscCall(VecDuplicate(X, &W));
-  PetscCall(VecDuplicate(X, &Xp));
+  PetscCall(VecDuplicateVecs(X, 8, &work));
+  Vec V = work[0], A = work[1], F0 = work[2], F1 = work[3], F2 = work[4], F3 = work[5], W = work[6], Xp = work[7];
   PetscCall(VecNorm(X, NORM_INFINITY, &xmax));
   const PetscReal h = kDifferenceStep * (1 + xmax);
   PetscCall(TSVSHMMEvaluateOwnSplits_Private(vs, l + 1, t, X, V));
@@ -1267,7 +1261,6 @@ PetscErrorCode TSVSHMMForcingRatio_Private(TS ts, PetscReal t, Vec X, PetscInt l
     PetscCall(TSVSHMMEvaluateOwnSplits_Private(vs, l + 1, t, Xp, A));
     PetscCall(VecAXPY(A, -1.0, V));
     PetscCall(VecScale(A, vmax / h)); /* J_f V: the acceleration */
-    PetscCall(VecNorm(A, NORM_INFINITY, &amax));
     PetscCall(TSVSHMMEvaluateLevel_Private(vs, l, t, X, F0));
     PetscInt n;
     PetscCall(VecGetLocalSize(X, &n));
@@ -1331,14 +1324,7 @@ PetscErrorCode TSVSHMMForcingRatio_Private(TS ts, PetscReal t, Vec X, PetscInt l
     *ratio = most[1];
     PetscCall(PetscInfo(ts, "Separation check at t = %g: levels %d/%d: level %d's oscillation (frequency %g) forces level %d's components %g times as hard as their own dynamics, a second-order drift of %g of their size per unit time\n", (double)t, (int)l, (int)l + 1, (int)l + 1, (double)omega, (int)l, (double)most[1], (double)most[0]));
   }
-  PetscCall(VecDestroy(&Xp));
-  PetscCall(VecDestroy(&W));
-  PetscCall(VecDestroy(&F3));
-  PetscCall(VecDestroy(&F2));
-  PetscCall(VecDestroy(&F1));
-  PetscCall(VecDestroy(&F0));
-  PetscCall(VecDestroy(&A));
-  PetscCall(VecDestroy(&V));
+  PetscCall(VecDestroyVecs(8, &work));
   PetscFunctionReturn(0);
 }
 
