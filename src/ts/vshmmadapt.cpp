@@ -79,7 +79,8 @@ static constexpr PetscReal kMissFactor             = 2;    /* a retry whose esti
 static constexpr PetscInt  kSavingsTests           = 3;    /* scales not separated: time ratios tested against a single-rate step at most this many times */
 static constexpr PetscReal kWorthTesting           = 4;    /* the product of the time ratios at least this for a savings test */
 static constexpr PetscReal kSavingsMargin          = 0.5;  /* and admitted where they differ by at most this fraction of the step's coherent share */
-static constexpr PetscReal kUncomparedBelow        = 10;   /* a steady step's last two estimates below 1/this of their shares: its comparison may be left out */
+static constexpr PetscReal kUncomparedBelow        = 10;   /* a single-rate step pinned at its bounds after one below 1/this of its share, or a steady step where the slow dynamics grow an error after two: its comparison may be left out */
+static constexpr PetscReal kSteadyBelow            = 2;    /* a steady step's last two estimates below 1/this of their shares: its comparison may be left out */
 static constexpr PetscInt  kMaxUncompared          = 3;    /* at most this many steps in a row */
 static constexpr PetscReal kOffManifold            = 10;   /* a field at a try's end that would move the state by this many times its norm plus its change in a macro step: a fast variable off its slow manifold, the try compared */
 static constexpr PetscReal kPostponeBelow          = 10;   /* a scheduled calibration at a step whose estimate is below 1/this of its share waits a step */
@@ -1150,8 +1151,9 @@ static std::vector<double> Saturations(TS ts, const vshmm::AdaptParameters &p)
 
 /* A steady step, whose comparison is left out (the model's prediction stands in): where every
    faster level decays, a step that cannot be coarsened (micro step and cycle at their bounds),
-   after two accepted steps far below their shares (kUncomparedBelow) whose estimates agreed
-   within kMissFactor, at most kMaxUncompared steps in a row. */
+   after two accepted steps below their shares (kSteadyBelow) whose estimates agreed
+   within kMissFactor, at most kMaxUncompared steps in a row; where a growth probe has found the
+   slow dynamics growing an error, far below their shares (kUncomparedBelow). */
 static bool SteadyStep(TS_VSHMM *vs, const vshmm::AdaptParameters &p, const vshmm::AdaptBounds &b)
 {
   const PetscReal last = vs->adapt_last_ratio, prev = vs->adapt_prev_ratio;
@@ -1159,7 +1161,9 @@ static bool SteadyStep(TS_VSHMM *vs, const vshmm::AdaptParameters &p, const vshm
   if (!vs->adapt_calibrated || !FasterLevelsDecay(vs) || vs->adapt_uncompared >= kMaxUncompared) return false;
   if (!(b.maxCycle > 0) || vshmm::cycleLength(p) < 0.999 * b.maxCycle || (!b.fixedMicroStep && p.microStep < 0.999 * b.maxMicroStep)) return false; /* something left to coarsen */
   const bool steady = last < kMissFactor * prev;                                                                                                    /* not rising: a fall only makes the model's prediction (the last estimate) an overestimate */
-  return last < 1.0 / kUncomparedBelow && prev < 1.0 / kUncomparedBelow && steady;
+  /* where the slow dynamics grow every step's error, far below their shares only */
+  const PetscReal below = vs->growth_rate > 0 ? kUncomparedBelow : kSteadyBelow;
+  return last < 1.0 / below && prev < 1.0 / below && steady;
 }
 
 /* The first time ratios of -ts_vshmm_adapt as if every pair were separated. */
