@@ -55,6 +55,7 @@ PROBLEMS = [
     ('a growth the slow Jacobian does not show, e^t, to t = 4 (section 35)', 39, 4, 1e-5, ['-eps', '1e-3']),
     ("Kapitza's pendulum, inverted, A = 0.002, w = 1000, to t = 4: an error turned by a slow oscillation (section 36)", 40, 4, 1e-5, ['-eps', '1e-3', '-a', '0.002']),
     ('a slow predator-prey cycle (a center), the predator fed by a slaved fast variable, to t = 8 (section 36)', 41, 8, 1e-5, ['-eps', '1e-3']),
+    ("a switch in the fast level: its equilibrium jumps by 3 at t = 2.47, inside a steady step, to t = 5 (section 37)", 42, 5, 1e-5, ['-eps', '1e-3', '-a', '3', '-b', '2.47']),
     ('the beat through squares, 8 q1^2 q2^2 - 2 (section 26)', 33, 2, 1e-6, ['-eps', '1e-3', '-a', '5']),
     ('a fast band whose slowest rate is 30 (section 27: savings that do not pay)', 34, 2, 1e-5, ['-eps', '1e-3', '-a', '30']),
     ('a slow rotation at 20, 2 radians a macro step, scales not separated (section 28)', 35, 2, 1e-5, ['-eps', '1e-2', '-a', '20']),

@@ -256,6 +256,10 @@ static void Field(Ctx *c, PetscReal t, const PetscScalar *u, PetscScalar *f)
     f[1] = u[1] * (u[2] - 1);
     f[2] = -(u[2] - u[0]) / e;
     break;
+  case 42: /* a switch in the fast level: the slaved variable's equilibrium jumps by a at t = b: x' = -x + z ; z' = -(z - cos x - a H(t - b))/eps (the slow split sees the jump only through z) */
+    f[0] = -u[0] + u[1];
+    f[1] = -(u[1] - PetscCosReal(u[0]) - (t >= c->b ? a : 0.0)) / e;
+    break;
   case 19: /* three-level chemistry: A' = -A + B ; B' = (A - 2 B + C)/eps ; C' = (B - C - C^3)/eps2 */
     f[0] = -u[0] + u[1];
     f[1] = (u[0] - 2 * u[1] + u[2]) / e;
@@ -425,6 +429,7 @@ static const Setup kSetups[] = {
   {39, 1, {{0}, {1}}, {0, 0.01}},
   {40, 1, {{0, 1}, {2, 3}}, {2.8415926535897931, 0, 1, 0}},
   {41, 2, {{0, 1}, {2}}, {2, 2, 2}},
+  {42, 1, {{0}, {1}}, {1, 0.5}},
 };
 
 int main(int argc, char **argv)
@@ -457,7 +462,7 @@ int main(int argc, char **argv)
   const Setup *setup  = nullptr;
   for (const Setup &st : kSetups)
     if (st.prob == c.prob) setup = &st;
-  PetscCheck(setup, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "-prob %d: no such problem (0-41, the cases of Field())", (int)c.prob);
+  PetscCheck(setup, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "-prob %d: no such problem (0-42, the cases of Field())", (int)c.prob);
   c.n      = (PetscInt)setup->u0.size();
   c.nobs   = setup->nobs;
   c.nsplit = (PetscInt)setup->splits.size();

@@ -82,6 +82,7 @@ static constexpr PetscReal kSavingsMargin          = 0.5;  /* and admitted where
 static constexpr PetscReal kUncomparedBelow        = 10;   /* a single-rate step pinned at its bounds after one below 1/this of its share, or a steady step where the slow dynamics grow an error after two: its comparison may be left out */
 static constexpr PetscReal kSteadyBelow            = 2;    /* a steady step's last two estimates below 1/this of their shares: its comparison may be left out */
 static constexpr PetscInt  kMaxUncompared          = 3;    /* at most this many steps in a row */
+static constexpr PetscReal kSteadyFieldRise        = 4;    /* and the field at its end at most this many times that at the last step's end (a change within the step: a comparison) */
 static constexpr PetscReal kOffManifold            = 10;   /* a field at a try's end that would move the state by this many times its norm plus its change in a macro step: a fast variable off its slow manifold, the try compared */
 static constexpr PetscReal kPostponeBelow          = 10;   /* a scheduled calibration at a step whose estimate is below 1/this of its share waits a step */
 static constexpr PetscReal kNegligibleTerm         = 0.1;  /* a calibration difference below this fraction of the largest: a negligible term */
@@ -936,6 +937,7 @@ static PetscErrorCode FollowRatesAtTryEnd(TS ts, PetscReal t1, PetscBool *redo)
   PetscReal slowed = 1;
   for (double r : vs->adapt_params.ratios) slowed *= r;
   vs->adapt_off_manifold = (!ierr && FasterLevelsDecay(vs) && std::isfinite(speed) && ts->time_step * speed > kOffManifold * slowed * (xnorm + moved)) ? PETSC_TRUE : PETSC_FALSE;
+  vs->adapt_try_speed    = (!ierr && std::isfinite(speed)) ? speed : 0;
   /* a decaying fastest level whose rate fell by kRadiusFall since the spectra were estimated (a fold
      of its slow manifold ahead, where the rate goes to 0): the rate at the end bounds the savings
      of this step (Bounds(): the level relaxes in micro time), and the spectra are estimated again
@@ -1153,13 +1155,17 @@ static std::vector<double> Saturations(TS ts, const vshmm::AdaptParameters &p)
    faster level decays, a step that cannot be coarsened (micro step and cycle at their bounds),
    after two accepted steps below their shares (kSteadyBelow) whose estimates agreed
    within kMissFactor, at most kMaxUncompared steps in a row; where a growth probe has found the
-   slow dynamics growing an error, far below their shares (kUncomparedBelow). */
+   slow dynamics growing an error, far below their shares (kUncomparedBelow). Not where the field
+   at the step's end is more than kSteadyFieldRise times that at the last step's end: something
+   changed within the step (a switch in a fast level's equilibrium, whose jump the savings slow:
+   a lag that no prediction sees). */
 static bool SteadyStep(TS_VSHMM *vs, const vshmm::AdaptParameters &p, const vshmm::AdaptBounds &b)
 {
   const PetscReal last = vs->adapt_last_ratio, prev = vs->adapt_prev_ratio;
 
   if (!vs->adapt_calibrated || !FasterLevelsDecay(vs) || vs->adapt_uncompared >= kMaxUncompared) return false;
   if (!(b.maxCycle > 0) || vshmm::cycleLength(p) < 0.999 * b.maxCycle || (!b.fixedMicroStep && p.microStep < 0.999 * b.maxMicroStep)) return false; /* something left to coarsen */
+  if (vs->adapt_end_speed > 0 && vs->adapt_try_speed > kSteadyFieldRise * vs->adapt_end_speed) return false;                                        /* the field at its end jumped: something changed within the step */
   const bool steady = last < kMissFactor * prev;                                                                                                    /* not rising: a fall only makes the model's prediction (the last estimate) an overestimate */
   /* where the slow dynamics grow every step's error, far below their shares only */
   const PetscReal below = vs->growth_rate > 0 ? kUncomparedBelow : kSteadyBelow;
@@ -1485,6 +1491,21 @@ PetscErrorCode TSVSHMMCheckSeparation_Private(TS ts)
   PetscFunctionReturn(0);
 }
 
+/* The accepted steps' history that the step rules read (coherence, steady steps, the end's field):
+   none yet (a new run, or adapt's parameters chosen again). */
+static void ResetStepHistory(TS_VSHMM *vs)
+{
+  vs->adapt_signed.clear();
+  vs->adapt_coherence      = 0.5;
+  vs->adapt_accepted       = 0;
+  vs->adapt_start_accepted = 0;
+  vs->adapt_last_ratio     = PETSC_MAX_REAL;
+  vs->adapt_prev_ratio     = PETSC_MAX_REAL;
+  vs->adapt_uncompared     = 0;
+  vs->adapt_end_speed      = 0;
+  vs->adapt_try_speed      = 0;
+}
+
 PetscErrorCode TSVSHMMAdaptReset_Private(TS ts)
 {
   TS_VSHMM *vs = (TS_VSHMM *)ts->data;
@@ -1536,13 +1557,7 @@ PetscErrorCode TSVSHMMAdaptReset_Private(TS ts)
   vs->unstable_warned = PETSC_FALSE;
   vs->adapt_no_savings.clear();
   vs->adapt_merged.clear();
-  vs->adapt_signed.clear();
-  vs->adapt_coherence        = 0.5;
-  vs->adapt_accepted         = 0;
-  vs->adapt_start_accepted   = 0;
-  vs->adapt_last_ratio       = PETSC_MAX_REAL;
-  vs->adapt_prev_ratio       = PETSC_MAX_REAL;
-  vs->adapt_uncompared       = 0;
+  ResetStepHistory(vs);
   vs->floor_warned           = PETSC_FALSE;
   vs->global_warned          = PETSC_FALSE;
   vs->carried_time           = PETSC_MIN_REAL;
@@ -1678,13 +1693,7 @@ PetscErrorCode TSVSHMMAdaptSetUp_Private(TS ts)
   vs->error_estimate = vs->error_estimate_total = vs->error_estimate_squares = 0;
   vs->unaveraged_max                                                         = vs->unaveraged;
   vs->level_time_rate_max                                                    = vs->level_time_rate;
-  vs->adapt_signed.clear();
-  vs->adapt_coherence      = 0.5;
-  vs->adapt_accepted       = 0;
-  vs->adapt_start_accepted = 0;
-  vs->adapt_last_ratio     = PETSC_MAX_REAL;
-  vs->adapt_prev_ratio     = PETSC_MAX_REAL;
-  vs->adapt_uncompared     = 0;
+  ResetStepHistory(vs);
   PetscCall(PetscInfo(ts, "Adapt: first parameters dt = %g, cycle %g (DeltaT %g), tolerance %g\n", (double)p.microStep, (double)vshmm::cycleLength(p), (double)DeltaT, (double)tol));
   PetscFunctionReturn(0);
 }
@@ -2960,6 +2969,7 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
         continue;
       }
     }
+    vs->adapt_try_speed = 0;
     if (radiusChecks < kMaxRadiusChecks && attempt + 1 < kMaxAttempts) {
       PetscBool redo;
       radiusChecks++;
@@ -3293,6 +3303,7 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
     }
     vs->adapt_end = t1;
     PetscCall(VecNorm(ts->vec_sol, NORM_1, &vs->adapt_end_norm));
+    vs->adapt_end_speed  = vs->adapt_try_speed;
     vs->adapt_prev_ratio = vs->adapt_last_ratio;
     /* the rules that leave a later step's comparison out (SteadyStep(), a pinned step) compare estimates of one kind: the comparison's */
     vs->adapt_last_ratio = std::isfinite(Ecompared) && Ecompared >= 0 ? Ecompared / budget : PETSC_MAX_REAL;

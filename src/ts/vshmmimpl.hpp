@@ -117,6 +117,8 @@ struct TS_VSHMM {
   PetscReal              adapt_prev_ratio   = PETSC_MAX_REAL; // the one before it
   PetscInt               adapt_uncompared   = 0;              // accepted steps in a row whose comparison was left out
   PetscBool              adapt_off_manifold = PETSC_FALSE;    // the last try ended with a decaying fast variable off its slow manifold (its comparison is made)
+  PetscReal              adapt_try_speed    = 0;              // the field's norm at the end of the present try (FollowRatesAtTryEnd(); 0: not measured)
+  PetscReal              adapt_end_speed    = 0;              // and at the end of the last accepted step (a steady step's end must not jump from it: SteadyStep())
   PetscBool              rest_track         = PETSC_FALSE;    // -ts_vshmm_adapt: a try keeps its last micro step's stages (SpuriousRest())
   std::vector<Vec>       rest_stages;                         // they, swapped with K after each of its micro steps (no copy)
   PetscReal              rest_h     = 0;                      // and its micro step
