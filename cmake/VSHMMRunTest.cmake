@@ -1,6 +1,7 @@
 # Runs one test program for vshmm_example_test() (see VSHMMTesting.cmake):
 #   cmake -DNAME=<test> -DNUMDIFF=<numdiff.sh> [-DOUTPUT=<expected>] [-DRTOL=r] [-DATOL=a]
-#         [-DREGEX=<regex>] [-DSTDERR_REGEX=<regex>] [-DVALUE_REGEX=<regex> -DVALUE_MAX=<x>]
+#         [-DREGEX=<regex>] [-DSTDERR_REGEX=<regex>] [-DSTDERR_NOT_REGEX=<regex>]
+#         [-DVALUE_REGEX=<regex> -DVALUE_MAX=<x>]
 #         [-DEXPECT_FAILURE=1] [-DFILE=<file> -DFILE_REGEX=<regex>]
 #         -P VSHMMRunTest.cmake -- <command> <args>...
 # in the test's working directory; stdout is kept in stdout.txt there.
@@ -45,6 +46,9 @@ if(DEFINED REGEX AND NOT out MATCHES "${REGEX}")
 endif()
 if(DEFINED STDERR_REGEX AND NOT err MATCHES "${STDERR_REGEX}")
   message(FATAL_ERROR "${NAME}: FAILED, stderr does not match the regular expression '${STDERR_REGEX}'")
+endif()
+if(DEFINED STDERR_NOT_REGEX AND err MATCHES "${STDERR_NOT_REGEX}")
+  message(FATAL_ERROR "${NAME}: FAILED, stderr matches the regular expression '${STDERR_NOT_REGEX}', which it must not")
 endif()
 if(DEFINED VALUE_REGEX)
   if(NOT out MATCHES "${VALUE_REGEX}")

@@ -27,7 +27,8 @@ endfunction()
 #[[
 vshmm_example_test(NAME <test> EXE <target> [NP <n>] [ARGS <arg>...]
                    [OUTPUT <expected file>] [RTOL <r>] [ATOL <a>] [REGEX <regex>]
-                   [STDERR_REGEX <regex>] [VALUE_REGEX <regex> VALUE_MAX <x>] [EXPECT_FAILURE]
+                   [STDERR_REGEX <regex>] [STDERR_NOT_REGEX <regex>]
+                   [VALUE_REGEX <regex> VALUE_MAX <x>] [EXPECT_FAILURE]
                    [FILE <file> FILE_REGEX <regex>]
                    [ENVIRONMENT <VAR=value>...] [LABELS <label>...]   (default: example)
                    [TIMEOUT <seconds>])                               (default: 300)
@@ -36,6 +37,8 @@ Runs `mpiexec -n <n> <flags> <target's file> <args>` (NP defaults to 1) in
 <build>/tests/output/<test>/ and passes when the program exits with 0 (with EXPECT_FAILURE:
 with any other status) and
   - REGEX (if given) matches its standard output, STDERR_REGEX (if given) its standard error,
+    and STDERR_NOT_REGEX (if given) does not match its standard error (a warning that must not
+    be given),
   - the first group of VALUE_REGEX (if given) in its standard output is a number <= VALUE_MAX,
   - the file FILE (if given; relative to the working directory, removed before the run) exists
     and matches FILE_REGEX, and
@@ -47,7 +50,7 @@ The standard output is kept in <build>/tests/output/<test>/stdout.txt; to (re)ge
 expected file, copy it from there after checking it. EXE may also be a path to a program.
 #]]
 function(vshmm_example_test)
-  cmake_parse_arguments(PARSE_ARGV 0 arg "EXPECT_FAILURE" "NAME;EXE;NP;OUTPUT;RTOL;ATOL;REGEX;STDERR_REGEX;VALUE_REGEX;VALUE_MAX;FILE;FILE_REGEX;TIMEOUT" "ARGS;ENVIRONMENT;LABELS")
+  cmake_parse_arguments(PARSE_ARGV 0 arg "EXPECT_FAILURE" "NAME;EXE;NP;OUTPUT;RTOL;ATOL;REGEX;STDERR_REGEX;STDERR_NOT_REGEX;VALUE_REGEX;VALUE_MAX;FILE;FILE_REGEX;TIMEOUT" "ARGS;ENVIRONMENT;LABELS")
   if(arg_UNPARSED_ARGUMENTS)
     message(FATAL_ERROR "vshmm_example_test: unknown arguments ${arg_UNPARSED_ARGUMENTS}")
   endif()
@@ -81,7 +84,7 @@ function(vshmm_example_test)
     endif()
     list(APPEND defs "-DFILE=${arg_FILE}")
   endif()
-  foreach(opt REGEX STDERR_REGEX VALUE_REGEX FILE_REGEX)
+  foreach(opt REGEX STDERR_REGEX STDERR_NOT_REGEX VALUE_REGEX FILE_REGEX)
     if(DEFINED arg_${opt})
       string(REPLACE ";" "\\;" regex "${arg_${opt}}")
       list(APPEND defs "-D${opt}=${regex}")

@@ -61,7 +61,9 @@ PETSC_EXTERN PetscClassId VSHMMSPECTRAL_CLASSID;
 .  cache_hits       - split calls that reused the physical-space field of the same state
 .  detection_steps  - time steps of the cluster detection's direct simulation (set-up work, not in the counts above)
 .  detection_evaluations - operator evaluations of the cluster detection (its direct simulation and the auto rule's F(u0)), each on every mode
--  detection_time   - wall time of the cluster detection, seconds
+.  detection_time   - wall time of the cluster detection, seconds
+.  truncation_share - the truncation check's largest model of the share of ||u|| that the clusters leave out (sparse mode; 0 before a solve or with -spectral_truncation_check none)
+-  truncation_time  - where it was largest
 
    Level: intermediate
 
@@ -78,6 +80,8 @@ typedef struct {
   PetscInt64     detection_steps;
   PetscInt64     detection_evaluations;
   PetscLogDouble detection_time;
+  PetscReal      truncation_share;
+  PetscReal      truncation_time;
 } VSHMMSpectralStatistics;
 
 PETSC_EXTERN PetscErrorCode VSHMMSpectralInitializePackage(void);
@@ -107,9 +111,30 @@ PETSC_EXTERN PetscErrorCode VSHMMSpectralGetStableTimeStep(VSHMMSpectral, TSRKTy
 PETSC_EXTERN PetscErrorCode VSHMMSpectralGetStableTimeStepAt(VSHMMSpectral, Vec, TSRKType, PetscReal *);
 PETSC_EXTERN PetscErrorCode VSHMMSpectralGetSpectralRadius(VSHMMSpectral, PetscReal *, PetscReal *);
 PETSC_EXTERN PetscErrorCode VSHMMSpectralSetGrowthBound(VSHMMSpectral, PetscReal);
-PETSC_EXTERN PetscErrorCode VSHMMSpectralSetClusterTolerance(VSHMMSpectral, PetscReal);
-PETSC_EXTERN PetscErrorCode VSHMMSpectralSetClusterThreshold(VSHMMSpectral, PetscReal);
-PETSC_EXTERN PetscErrorCode VSHMMSpectralGrowthMonitor(TS, PetscInt, PetscReal, Vec, void *);
-PETSC_EXTERN PetscErrorCode VSHMMSpectralGetStatistics(VSHMMSpectral, VSHMMSpectralStatistics *);
+
+/*E
+   VSHMMSpectralTruncationCheck - what the truncation check of a sparse run does when the
+   wavenumbers its clusters leave out exceed the clusters' tolerance (`VSHMMSpectralTruncationMonitor()`)
+
+$  VSHMMSPECTRAL_TRUNCATION_NONE - no check
+$  VSHMMSPECTRAL_TRUNCATION_WARN - a warning on the standard error, once per solve (the default)
+$  VSHMMSPECTRAL_TRUNCATION_ERROR - the solve stops with PETSC_ERR_NOT_CONVERGED
+
+   Level: intermediate
+
+.seealso: `VSHMMSpectralSetTruncationCheck()`
+E*/
+typedef enum {
+  VSHMMSPECTRAL_TRUNCATION_NONE,
+  VSHMMSPECTRAL_TRUNCATION_WARN,
+  VSHMMSPECTRAL_TRUNCATION_ERROR
+} VSHMMSpectralTruncationCheck;
+PETSC_EXTERN const char *const VSHMMSpectralTruncationChecks[];
+PETSC_EXTERN PetscErrorCode    VSHMMSpectralSetTruncationCheck(VSHMMSpectral, VSHMMSpectralTruncationCheck);
+PETSC_EXTERN PetscErrorCode    VSHMMSpectralSetClusterTolerance(VSHMMSpectral, PetscReal);
+PETSC_EXTERN PetscErrorCode    VSHMMSpectralSetClusterThreshold(VSHMMSpectral, PetscReal);
+PETSC_EXTERN PetscErrorCode    VSHMMSpectralGrowthMonitor(TS, PetscInt, PetscReal, Vec, void *);
+PETSC_EXTERN PetscErrorCode    VSHMMSpectralTruncationMonitor(TS, PetscInt, PetscReal, Vec, void *);
+PETSC_EXTERN PetscErrorCode    VSHMMSpectralGetStatistics(VSHMMSpectral, VSHMMSpectralStatistics *);
 
 #endif

@@ -36,6 +36,7 @@ SCENES = {
     "diffsource": ("diffusion", "diffsource_auto.yaml", 1.5e-5, None, [1e-4, 2e-4, 3e-4, 4.5e-4], [2, 5, 10, 25, 50, 100, 200, 400]),
     "diffreact": ("diffusion", "diffreact_auto.yaml", 5e-6, None, [2e-5, 5e-5, 1e-4, 2e-4], [2, 5, 10, 25, 50, 100, 200, 400]),
     "diffnear": ("diffusion", "diffnear_auto.yaml", 2e-6, None, [1e-5, 2e-5, 4e-5, 8e-5], [2, 5, 10, 25, 50, 100, 200, 400]),
+    "diffburgers": ("diffusion", "diffburgers_auto.yaml", 4e-6, None, [5e-5, 1e-4, 2e-4, 4e-4], [2, 5, 10, 25, 50, 100, 200, 400]),
     # our nonlinear scene: its "paper's" clusters and parameters are the hand-set scene's (nonlinear.yaml)
     "nonlinear": ("diffusion", "nonlinear_auto.yaml", 2e-5, "0:5,12:19,46:50,62:66,78:82", [1e-4, 2e-4, 4e-4, 5e-4], [1.5, 3, 10, 21, 50, 150, 400]),
 }

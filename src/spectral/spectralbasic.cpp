@@ -9,15 +9,16 @@
 #include <fstream>
 #include <sstream>
 
-PetscClassId  VSHMMSPECTRAL_CLASSID = 0;
-PetscLogEvent VSHMMSPECTRAL_SetUp, VSHMMSPECTRAL_RHS, VSHMMSPECTRAL_Split, VSHMMSPECTRAL_Physical, VSHMMSPECTRAL_ForwardFFT, VSHMMSPECTRAL_ProjDirect, VSHMMSPECTRAL_MatVec, VSHMMSPECTRAL_Eigen, VSHMMSPECTRAL_Growth, VSHMMSPECTRAL_Detect;
+PetscClassId VSHMMSPECTRAL_CLASSID = 0;
+PetscLogEvent VSHMMSPECTRAL_SetUp, VSHMMSPECTRAL_RHS, VSHMMSPECTRAL_Split, VSHMMSPECTRAL_Physical, VSHMMSPECTRAL_ForwardFFT, VSHMMSPECTRAL_ProjDirect, VSHMMSPECTRAL_MatVec, VSHMMSPECTRAL_Eigen, VSHMMSPECTRAL_Growth, VSHMMSPECTRAL_Truncation, VSHMMSPECTRAL_Detect;
 
-const char *const VSHMMSpectralModes[]          = {"dns", "sparse", "VSHMMSpectralMode", "VSHMMSPECTRAL_MODE_", nullptr};
-const char *const VSHMMSpectralDetects[]        = {"none", "initial", "dns", "file", "auto", "VSHMMSpectralDetect", "VSHMMSPECTRAL_DETECT_", nullptr};
-const char *const VSHMMSpectralProjections[]    = {"auto", "fft", "direct", "VSHMMSpectralProjection", "VSHMMSPECTRAL_PROJECTION_", nullptr};
-const char *const VSHMMSpectralEvaluations[]    = {"fft", "matrix", "VSHMMSpectralEvaluation", "VSHMMSPECTRAL_EVALUATION_", nullptr};
-const char *const VSHMMSpectralPlanners[]       = {"estimate", "measure", "patient", "VSHMMSpectralPlanner", "VSHMMSPECTRAL_PLANNER_", nullptr};
-const char *const VSHMMSpectralNormalizations[] = {"unitary", "series", "dft", "relative", "Normalization", "", nullptr};
+const char *const VSHMMSpectralModes[]            = {"dns", "sparse", "VSHMMSpectralMode", "VSHMMSPECTRAL_MODE_", nullptr};
+const char *const VSHMMSpectralDetects[]          = {"none", "initial", "dns", "file", "auto", "VSHMMSpectralDetect", "VSHMMSPECTRAL_DETECT_", nullptr};
+const char *const VSHMMSpectralProjections[]      = {"auto", "fft", "direct", "VSHMMSpectralProjection", "VSHMMSPECTRAL_PROJECTION_", nullptr};
+const char *const VSHMMSpectralEvaluations[]      = {"fft", "matrix", "VSHMMSpectralEvaluation", "VSHMMSPECTRAL_EVALUATION_", nullptr};
+const char *const VSHMMSpectralPlanners[]         = {"estimate", "measure", "patient", "VSHMMSpectralPlanner", "VSHMMSPECTRAL_PLANNER_", nullptr};
+const char *const VSHMMSpectralTruncationChecks[] = {"none", "warn", "error", "VSHMMSpectralTruncationCheck", "VSHMMSPECTRAL_TRUNCATION_", nullptr};
+const char *const VSHMMSpectralNormalizations[]   = {"unitary", "series", "dft", "relative", "Normalization", "", nullptr};
 
 static PetscBool VSHMMSpectralPackageInitialized = PETSC_FALSE;
 
@@ -69,6 +70,7 @@ PetscErrorCode VSHMMSpectralInitializePackage(void)
   PetscCall(PetscLogEventRegister("SpecMatVec", VSHMMSPECTRAL_CLASSID, &VSHMMSPECTRAL_MatVec));
   PetscCall(PetscLogEventRegister("SpecEigen", VSHMMSPECTRAL_CLASSID, &VSHMMSPECTRAL_Eigen));
   PetscCall(PetscLogEventRegister("SpecGrowth", VSHMMSPECTRAL_CLASSID, &VSHMMSPECTRAL_Growth));
+  PetscCall(PetscLogEventRegister("SpecTruncation", VSHMMSPECTRAL_CLASSID, &VSHMMSPECTRAL_Truncation));
   PetscCall(PetscLogEventRegister("SpecDetect", VSHMMSPECTRAL_CLASSID, &VSHMMSPECTRAL_Detect));
   PetscCall(PetscRegisterFinalize(VSHMMSpectralFinalizePackage));
   PetscFunctionReturn(0);

@@ -21,6 +21,7 @@
 #include "detect.hpp"
 #include "spectral.hpp"
 #include "stable.hpp"
+#include "truncation.hpp"
 
 #include <complex>
 
@@ -168,6 +169,14 @@ struct VSHMMSpectral_Data {
   PetscBool                         growth_started = PETSC_FALSE, growth_needs_max = PETSC_FALSE;
   spc::GrowthBound                  growth;
   PetscReal                         growth_max = 0; /* max|u| on the grid at the last check */
+
+  /* the truncation check (spectralstable.cpp): the left-out wavenumbers of a sparse run */
+  VSHMMSpectralTruncationCheck           truncation_check = VSHMMSPECTRAL_TRUNCATION_WARN; /* -spectral_truncation_check */
+  std::unique_ptr<spc::Layout>           full_layout;                                      /* every wavenumber, and the operator on it */
+  std::unique_ptr<spc::SpectralOperator> full_op;
+  spc::TruncationModel                   truncation;                                                        /* the left-out wavenumbers */
+  spc::TruncationModel                   feedback;                                                          /* what they change in the retained ones */
+  PetscBool                              truncation_started = PETSC_FALSE, truncation_warned = PETSC_FALSE; /* its share and time: stats */
 };
 
 typedef struct _VSHMMSpectralOps *VSHMMSpectralOps;
@@ -182,7 +191,7 @@ struct _p_VSHMMSpectral {
 };
 
 /* log events (registered by VSHMMSpectralInitializePackage()) */
-PETSC_INTERN PetscLogEvent VSHMMSPECTRAL_SetUp, VSHMMSPECTRAL_RHS, VSHMMSPECTRAL_Split, VSHMMSPECTRAL_Physical, VSHMMSPECTRAL_ForwardFFT, VSHMMSPECTRAL_ProjDirect, VSHMMSPECTRAL_MatVec, VSHMMSPECTRAL_Eigen, VSHMMSPECTRAL_Growth, VSHMMSPECTRAL_Detect;
+PETSC_INTERN PetscLogEvent VSHMMSPECTRAL_SetUp, VSHMMSPECTRAL_RHS, VSHMMSPECTRAL_Split, VSHMMSPECTRAL_Physical, VSHMMSPECTRAL_ForwardFFT, VSHMMSPECTRAL_ProjDirect, VSHMMSPECTRAL_MatVec, VSHMMSPECTRAL_Eigen, VSHMMSPECTRAL_Growth, VSHMMSPECTRAL_Truncation, VSHMMSPECTRAL_Detect;
 
 /* The options prefix of sp ("" without one), for error messages that name an option. */
 static inline const char *VSHMMSpectralPrefix(VSHMMSpectral sp)

@@ -87,7 +87,8 @@ PetscErrorCode VSHMMSpectralSetInitialCondition(VSHMMSpectral sp, Vec U)
   PetscCall(VecGetArray(U, &x));
   for (PetscInt i = lo; i < hi; ++i) x[i - lo] = c[i];
   PetscCall(VecRestoreArray(U, &x));
-  sp->data->growth_started = PETSC_FALSE; /* the growth check starts from this state */
+  sp->data->growth_started     = PETSC_FALSE; /* the growth and truncation checks start from this state */
+  sp->data->truncation_started = PETSC_FALSE;
   PetscFunctionReturn(0);
 }
 
@@ -372,8 +373,9 @@ PetscErrorCode VSHMMSpectralSetUpTS(VSHMMSpectral sp, TS ts)
   PetscCall(VSHMMSpectralSetUp(sp));
   s = sp->data;
   PetscCall(TSSetRHSFunction(ts, NULL, VSHMMSpectralRHSFunction, sp));
-  PetscCall(TSSetProblemType(ts, s->op && s->op->isNonlinear() ? TS_NONLINEAR : TS_LINEAR)); /* implicit types: Newton, or one linear solve per stage */
-  PetscCall(TSMonitorSet(ts, VSHMMSpectralGrowthMonitor, sp, NULL));                         /* the growth check, spectralstable.cpp */
+  PetscCall(TSSetProblemType(ts, s->op && s->op->isNonlinear() ? TS_NONLINEAR : TS_LINEAR));                              /* implicit types: Newton, or one linear solve per stage */
+  PetscCall(TSMonitorSet(ts, VSHMMSpectralGrowthMonitor, sp, NULL));                                                      /* the growth check, spectralstable.cpp */
+  if (sp->data->mode == VSHMMSPECTRAL_MODE_SPARSE) PetscCall(TSMonitorSet(ts, VSHMMSpectralTruncationMonitor, sp, NULL)); /* the truncation check */
   if (s->mode != VSHMMSPECTRAL_MODE_SPARSE) PetscFunctionReturn(0);
   PetscCall(TSGetSolution(ts, &U));
   PetscCheck(U, PetscObjectComm((PetscObject)sp), PETSC_ERR_ARG_WRONGSTATE, "VSHMMSpectralSetUpTS(): call TSSetSolution() first");

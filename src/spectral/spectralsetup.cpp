@@ -747,7 +747,10 @@ PetscErrorCode VSHMMSpectralSetUp(VSHMMSpectral sp)
   s->weights                     = spc::parsevalWeights(*s->layout); /* spectralstable.cpp */
   s->ritz_done                   = PETSC_FALSE;
   s->growth_started              = PETSC_FALSE;
-  sp->setupcalled                = PETSC_TRUE;
+  s->truncation_started          = PETSC_FALSE;
+  s->full_op.reset(); /* the truncation check's operator on every wavenumber, made at its first look */
+  s->full_layout.reset();
+  sp->setupcalled = PETSC_TRUE;
   PetscCall(PetscLogEventEnd(VSHMMSPECTRAL_SetUp, sp, 0, 0, 0));
   PetscFunctionReturn(0);
 }

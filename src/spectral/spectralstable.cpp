@@ -17,16 +17,20 @@
 */
 #include "spectralimpl.hpp"
 
+#include <climits>
+
 #include <petscblaslapack.h>
 
 #include "stability.hpp"
 
 #include <cmath>
 
-static constexpr int       kArnoldiSteps   = 40;
-static constexpr PetscReal kSafety         = 0.9;
-static constexpr PetscReal kGrowingMode    = 0.1; /* Re lambda > this |lambda|: a growing mode, not limiting */
-static constexpr PetscInt  kGrowthInterval = 8;   /* the growth check looks at every 8th step */
+static constexpr int       kArnoldiSteps    = 40;
+static constexpr PetscReal kSafety          = 0.9;
+static constexpr PetscReal kGrowingMode     = 0.1; /* Re lambda > this |lambda|: a growing mode, not limiting */
+static constexpr PetscInt  kGrowthInterval  = 8;   /* the growth check looks at every 8th step */
+static constexpr PetscReal kTruncationLooks = 64;  /* the truncation check looks after each 1/64 of a solve's span */
+static constexpr PetscInt  kTruncationEvery = 256; /* and at every 256th step */
 
 PetscErrorCode VSHMMSpectralRitzValues_Private(MPI_Comm comm, spc::SpectralOperator &op, const std::vector<double> &c0, std::vector<std::complex<double>> &ritz, PetscInt *evaluations)
 {
@@ -425,5 +429,241 @@ PetscErrorCode VSHMMSpectralSetGrowthBound(VSHMMSpectral sp, PetscReal factor)
   VSHMMValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
   PetscCheck(std::isfinite(factor) && (factor == 0 || factor >= 1), PetscObjectComm((PetscObject)sp), PETSC_ERR_ARG_OUTOFRANGE, "The growth bound factor (-%sspectral_growth_bound) must be 0 (no check) or a finite factor >= 1, got %g", VSHMMSpectralPrefix(sp), (double)factor);
   sp->data->growth_factor = factor;
+  PetscFunctionReturn(0);
+}
+
+/*@
+   VSHMMSpectralSetTruncationCheck - Sets what the truncation check of a sparse run does when the
+   dynamics drive the wavenumbers that the clusters leave out beyond the clusters' tolerance
+
+   Logically collective
+
+   Input Parameters:
++  sp - the object
+-  check - `VSHMMSPECTRAL_TRUNCATION_NONE`, `VSHMMSPECTRAL_TRUNCATION_WARN` (default) or `VSHMMSPECTRAL_TRUNCATION_ERROR`
+
+   Options Database Key:
+.  -spectral_truncation_check <none,warn,error> - the same
+
+   Level: intermediate
+
+.seealso: `VSHMMSpectralTruncationMonitor()`, `VSHMMSpectralSetClusterTolerance()`, `VSHMMSpectralGetStatistics()`
+@*/
+PetscErrorCode VSHMMSpectralSetTruncationCheck(VSHMMSpectral sp, VSHMMSpectralTruncationCheck check)
+{
+  PetscFunctionBegin;
+  VSHMMValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
+  PetscCheck(check >= VSHMMSPECTRAL_TRUNCATION_NONE && check <= VSHMMSPECTRAL_TRUNCATION_ERROR, PetscObjectComm((PetscObject)sp), PETSC_ERR_ARG_OUTOFRANGE, "Unknown truncation check %d (-%sspectral_truncation_check): none (0), warn (1) or error (2)", (int)check, VSHMMSpectralPrefix(sp));
+  sp->data->truncation_check = check;
+  PetscFunctionReturn(0);
+}
+
+/* The truncation check's model: the left-out wavenumbers of the sparse layout, their decay rates
+   (mean(d) k^2 for diffusion, less the mean linear rate r c1 of a reaction) and the left-out
+   part of the initial data u0; the operator on every wavenumber that gives their forcing. */
+static PetscErrorCode StartTruncationModel(VSHMMSpectral sp, PetscReal t)
+{
+  VSHMMSpectral_Data *s = sp->data;
+  std::vector<double> D, A, u0;
+  spc::ExtraTerms     extra;
+
+  PetscFunctionBegin;
+  PetscCall(VSHMMSpectralBuildCoefficients_Private(sp, D, A));
+  PetscCall(VSHMMSpectralBuildExtraTerms_Private(sp, extra));
+  const int N = (int)s->N;
+  if (!s->full_op) {
+    s->full_layout = std::make_unique<spc::Layout>(spc::Layout::full(N));
+    try {
+      s->full_op = std::make_unique<spc::SpectralOperator>(*s->full_layout, D, A, extra, spc::Planner::Estimate);
+    } catch (const std::exception &e) {
+      SETERRQ(PetscObjectComm((PetscObject)sp), PETSC_ERR_LIB, "Spectral operator (truncation check): %s", e.what());
+    }
+  }
+  double meanD = 0, linear = 0, meanA = 0;
+  for (double d : D) meanD += d / N;
+  for (double a : A) meanA += a / N;
+  if (!extra.rate.empty()) {
+    for (double r : extra.rate) linear += r * extra.reaction[1] / N;
+  }
+  PetscCall(VSHMMSpectralSampleField_Private(sp, "u0", s->u0, u0));
+  std::vector<double> c0(s->full_layout->size());
+  s->full_op->analyze(u0.data(), c0.data());
+  std::vector<int>        modes;
+  std::vector<double>     rates, weights, a0;
+  const std::vector<int> &kept = s->layout->modes(); /* sorted within each cluster */
+  for (int k = 0; k <= spc::maxWavenumber(N); ++k) {
+    if (s->layout->indexOf(k) >= 0) continue;
+    int dist = N;
+    for (int q : kept) dist = std::min(dist, std::abs(k - q));
+    const int o = s->full_layout->offset(s->full_layout->indexOf(k));
+    modes.push_back(k);
+    rates.push_back(meanD * k * k - linear + std::abs(meanA) * dist);
+    weights.push_back(spc::isRealOnly(N, k) ? 1.0 : 2.0);
+    a0.push_back(spc::isRealOnly(N, k) ? std::abs(c0[o]) : std::hypot(c0[o], c0[o + 1]));
+  }
+  s->truncation = spc::TruncationModel(modes, rates, weights, t, a0);
+  modes.clear();
+  rates.clear();
+  weights.clear();
+  for (int k : kept) { /* the damped ones: on the others (advection, Burgers alone) the feedback turns with their phases */
+    if (!(meanD * k * k - linear > 0)) continue;
+    modes.push_back(k);
+    rates.push_back(meanD * k * k - linear);
+    weights.push_back(spc::isRealOnly(N, k) ? 1.0 : 2.0);
+  }
+  s->feedback               = spc::TruncationModel(modes, rates, weights, t, {});
+  s->truncation_started     = PETSC_TRUE;
+  s->truncation_warned      = PETSC_FALSE;
+  s->stats.truncation_share = 0;
+  s->stats.truncation_time  = t;
+  PetscFunctionReturn(0);
+}
+
+/* The truncation check's message: the share, the wavenumbers that hold most of it, and the buffers
+   of -spectral_cluster_buffers that would retain them (each named wavenumber's distance to its
+   nearest cluster). */
+static PetscErrorCode TruncationMessage(VSHMMSpectral sp, PetscReal t, PetscReal share, PetscReal norm, std::string &text)
+{
+  VSHMMSpectral_Data *s      = sp->data;
+  const char         *pre    = VSHMMSpectralPrefix(sp);
+  const auto          named  = s->truncation.largest(0.25 * s->cluster_tol * norm);
+  const int           nclust = (int)s->cluster_modes.size();
+  std::vector<int>    buffers(nclust, 0);
+  char                buf[1024];
+
+  PetscFunctionBegin;
+  for (int k : named) {
+    int best = 0, dist = INT_MAX;
+    for (int j = 0; j < nclust; ++j)
+      for (PetscInt q : s->cluster_modes[j])
+        if (std::abs(k - (int)q) < dist) {
+          dist = std::abs(k - (int)q);
+          best = j;
+        }
+    buffers[best] = std::max(buffers[best], dist);
+  }
+  std::string list;
+  for (int j = 0; j < nclust; ++j) list += (j ? "," : "") + std::to_string(buffers[j]);
+  PetscCall(PetscSNPrintf(buf, sizeof(buf),
+                          "truncation check at t = %g: the dynamics drive the wavenumbers that the clusters leave out to about %.3g of ||u|| (a model of them as forced, damped modes), above the clusters' tolerance -%sspectral_cluster_tolerance %g: "
+                          "the sparse solution misses at least about that much. Most of it is in the wavenumbers %s. Widen the clusters to hold them "
+                          "(-%sspectral_cluster_buffers %s, or -%sspectral_clusters), or let the detection look longer (-%sspectral_cluster_detect_times: its direct simulation sees the fast time scales, not what the slow dynamics create later). "
+                          "(-%sspectral_truncation_check %s, none silences it.)",
+                          (double)t, (double)share, pre, (double)s->cluster_tol, spc::formatModes(named).c_str(), pre, list.c_str(), pre, pre, pre, s->truncation_check == VSHMMSPECTRAL_TRUNCATION_ERROR ? "warn makes this a warning" : "error makes this an error"));
+  text = buf;
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   VSHMMSpectralTruncationMonitor - The TS monitor of the truncation check (set by
+   `VSHMMSpectralSetUpTS()` in sparse mode): warns (or stops the solve) when the dynamics drive the
+   wavenumbers that the clusters leave out beyond the clusters' tolerance
+
+   Collective
+
+   Input Parameters:
++  ts - the TS
+.  step - the step number
+.  t - the time
+.  U - the state
+-  ctx - the VSHMMSpectral
+
+   Notes:
+   At the first step (the start of a run: also any step at a time before the last look), after
+   each 1/64 of the solve's span (so at every TSVSHMM macro step of a short run), at every 256th
+   step and at the TS's final time, the full operator is evaluated on the state (zero on the
+   left-out wavenumbers): its components f_k on the left-out wavenumbers force them. Each is
+   modelled as a damped mode a_k' = -lambda_k a_k + |f_k| (`spc::TruncationModel`; lambda_k =
+   mean(d) k^2 for diffusion, less a reaction's mean linear rate, plus |mean(a)| times the
+   distance to the nearest retained wavenumber for advection, which detunes the forcing), from
+   the left-out part of u0. A second evaluation, with the left-out modes at their modelled
+   amplitudes in the phase of their forcing, gives what they change in the damped retained
+   modes' tendency: the feedback the sparse run does not have, modelled the same way. Where the
+   two together exceed the clusters' tolerance (`VSHMMSpectralSetClusterTolerance()`) times the
+   solution's norm at a look after the start, the check says so once per solve (or stops the
+   solve), naming the left-out wavenumbers of the largest modelled amplitudes and the buffers
+   that would hold them. The largest share is in `VSHMMSpectralGetStatistics()`. It measures the
+   clusters, not TSVSHMM's own error; on the explicit sparse method it read 0.8-1.5 times the error
+   against a converged DNS, on advection up to 3 times above (docs/spectral.md, "The truncation
+   check").
+
+   Options Database Key:
+.  -spectral_truncation_check <warn,error,none> - what a failed check does (default warn)
+
+   Level: developer
+
+.seealso: `VSHMMSpectralSetUpTS()`, `VSHMMSpectralGrowthMonitor()`, `VSHMMSpectralSetClusterTolerance()`
+@*/
+PetscErrorCode VSHMMSpectralTruncationMonitor(TS ts, PetscInt step, PetscReal t, Vec U, void *ctx)
+{
+  VSHMMSpectral       sp = (VSHMMSpectral)ctx;
+  VSHMMSpectral_Data *s;
+  PetscReal           tmax, norm;
+  const PetscScalar  *c;
+
+  PetscFunctionBegin;
+  VSHMMValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 5);
+  s = sp->data;
+  if (s->truncation_check == VSHMMSPECTRAL_TRUNCATION_NONE || s->mode != VSHMMSPECTRAL_MODE_SPARSE) PetscFunctionReturn(0);
+  PetscCall(TSGetMaxTime(ts, &tmax));
+  const bool start = !s->truncation_started || t < s->truncation.time();
+  if (start) PetscCall(StartTruncationModel(sp, t));
+  else {
+    const bool at_end = t >= tmax - 1e-12 * PetscMax(1.0, PetscAbsReal(tmax));
+    const bool due    = t - s->truncation.time() >= (tmax - s->truncation.startTime()) / kTruncationLooks || step % kTruncationEvery == 0;
+    if (!at_end && !due) PetscFunctionReturn(0);
+  }
+  PetscCall(PetscLogEventBegin(VSHMMSPECTRAL_Truncation, sp, 0, 0, 0));
+  const int           N = (int)s->N;
+  std::vector<double> coef(s->full_layout->size(), 0.0), F(s->full_layout->size());
+  PetscCall(VSHMMSpectralGetCoefficients_Private(sp, U, &c));
+  for (int i = 0; i < s->layout->modeCount(); ++i) {
+    const int k = s->layout->mode(i), o = s->layout->offset(i), fo = s->full_layout->offset(s->full_layout->indexOf(k));
+    for (int r = 0; r < spc::realsOf(N, k); ++r) coef[fo + r] = PetscRealPart(c[o + r]);
+  }
+  PetscCall(VSHMMSpectralRestoreCoefficients_Private(sp, U, &c));
+  s->full_op->apply(coef.data(), F.data());
+  double sum = 0;
+  for (int i = 0; i < (int)coef.size(); ++i) sum += (i == 0 || (N % 2 == 0 && i == N - 1) ? 1.0 : 2.0) * coef[i] * coef[i];
+  norm                         = std::sqrt(sum);
+  const std::vector<int> &left = s->truncation.modes();
+  std::vector<double>     forcing(left.size());
+  for (size_t i = 0; i < left.size(); ++i) {
+    const int fo = s->full_layout->offset(s->full_layout->indexOf(left[i]));
+    forcing[i]   = spc::isRealOnly(N, left[i]) ? std::abs(F[fo]) : std::hypot(F[fo], F[fo + 1]);
+  }
+  s->truncation.advance(t, forcing);
+  /* the left-out modes at their modelled amplitudes, in the phase of their forcing, and what
+     they change in the retained modes' tendency (the feedback the sparse run does not have) */
+  std::vector<double> F1(F.size());
+  for (size_t i = 0; i < left.size(); ++i) {
+    if (!(forcing[i] > 0)) continue;
+    const int    fo = s->full_layout->offset(s->full_layout->indexOf(left[i]));
+    const double g  = s->truncation.amplitudes()[i] / forcing[i];
+    for (int r = 0; r < spc::realsOf(N, left[i]); ++r) coef[fo + r] = g * F[fo + r];
+  }
+  s->full_op->apply(coef.data(), F1.data());
+  const std::vector<int> &damped = s->feedback.modes();
+  std::vector<double>     change(damped.size());
+  for (size_t i = 0; i < damped.size(); ++i) {
+    const int k = damped[i], fo = s->full_layout->offset(s->full_layout->indexOf(k));
+    change[i] = spc::isRealOnly(N, k) ? std::abs(F1[fo] - F[fo]) : std::hypot(F1[fo] - F[fo], F1[fo + 1] - F[fo + 1]);
+  }
+  s->feedback.advance(t, change);
+  PetscCall(PetscLogEventEnd(VSHMMSPECTRAL_Truncation, sp, 0, 0, 0));
+  const PetscReal share = norm > 0 ? std::hypot(s->truncation.norm(), s->feedback.norm()) / norm : 0;
+  PetscCall(PetscInfo(sp, "truncation check at t = %g: the left-out wavenumbers modelled at %g of ||u|| (themselves %g, their feedback on the retained ones %g; -spectral_cluster_tolerance %g)\n", (double)t, (double)share,
+                      (double)(norm > 0 ? s->truncation.norm() / norm : 0), (double)(norm > 0 ? s->feedback.norm() / norm : 0), (double)s->cluster_tol));
+  if (share > s->stats.truncation_share) {
+    s->stats.truncation_share = share;
+    s->stats.truncation_time  = t;
+  }
+  if (!start && s->cluster_tol > 0 && share > s->cluster_tol && !s->truncation_warned) { /* the initial data's own truncation counts where it lasts */
+    std::string text;
+    PetscCall(TruncationMessage(sp, t, share, norm, text));
+    s->truncation_warned = PETSC_TRUE;
+    PetscCheck(s->truncation_check != VSHMMSPECTRAL_TRUNCATION_ERROR, PetscObjectComm((PetscObject)sp), PETSC_ERR_NOT_CONVERGED, "%s", text.c_str());
+    PetscCall(PetscFPrintf(PetscObjectComm((PetscObject)sp), PETSC_STDERR, "VSHMMSpectral warning: %s\n", text.c_str()));
+  }
   PetscFunctionReturn(0);
 }

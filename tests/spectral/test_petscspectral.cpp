@@ -442,3 +442,73 @@ TEST(VSHMMSpectralObject, ScaleSeparationsOfTheClusters)
   PetscPopErrorHandler();
   EXPECT_EQ(VSHMMSpectralSetClusterThreshold(dns.sp, 3e-5), 0);
 }
+
+namespace {
+// A sparse run of u_t = (d u_x)_x, d = 1 + 0.5 cos 2x, u0 = cos x on the cluster {0, 1}: the retained
+// mode decays as A = e^{-0.75 t} (F(cos x) = -0.75 cos x - 0.75 cos 3x) and forces the left-out
+// wavenumber 3 by f_3 = 0.375 A (|c_3| of -0.75 A cos 3x); the truncation check's model of it is
+// a_3' = -9 a_3 + 0.375 A (mean(d) 3^2), and its feedback on wavenumber 1 (F of c_3 = a_3, the
+// function 2 a_3 cos 3x, on wavenumber 1: 0.75 a_3) e_1' = -e_1 + 0.75 a_3. Returns the statistics after TSSolve to T
+// and TSSolve's error code.
+PetscErrorCode TruncationRun(VSHMMSpectralTruncationCheck check, PetscReal T, VSHMMSpectralStatistics *stats)
+{
+  Scene s("-spectral_grid_points 32 -spectral_mode sparse -spectral_clusters 0:1 -spectral_diffusion_coefficient fourier -spectral_diffusion_coefficient_offset 1 "
+          "-spectral_diffusion_coefficient_wavenumbers 2 -spectral_diffusion_coefficient_cos 0.5 -spectral_u0 fourier -spectral_u0_wavenumbers 1 -spectral_u0_cos 1");
+  EXPECT_EQ(s.error(), "");
+  Vec     U;
+  TS      ts;
+  TSAdapt adapt;
+  EXPECT_EQ(VSHMMSpectralSetTruncationCheck(s.sp, check), 0);
+  EXPECT_EQ(VSHMMSpectralCreateVec(s.sp, &U), 0);
+  EXPECT_EQ(VSHMMSpectralSetInitialCondition(s.sp, U), 0);
+  EXPECT_EQ(TSCreate(PETSC_COMM_WORLD, &ts), 0);
+  EXPECT_EQ(TSSetSolution(ts, U), 0);
+  EXPECT_EQ(VSHMMSpectralSetUpTS(s.sp, ts), 0);
+  EXPECT_EQ(TSSetType(ts, TSRK), 0);
+  EXPECT_EQ(TSGetAdapt(ts, &adapt), 0);
+  EXPECT_EQ(TSAdaptSetType(adapt, TSADAPTNONE), 0);
+  EXPECT_EQ(TSSetTimeStep(ts, 1e-3), 0);
+  EXPECT_EQ(TSSetMaxTime(ts, T), 0);
+  EXPECT_EQ(TSSetExactFinalTime(ts, TS_EXACTFINALTIME_MATCHSTEP), 0);
+  PetscPushErrorHandler(PetscReturnErrorHandler, nullptr);
+  PetscErrorCode ierr = TSSolve(ts, U);
+  PetscPopErrorHandler();
+  EXPECT_EQ(VSHMMSpectralGetStatistics(s.sp, stats), 0);
+  TSDestroy(&ts);
+  VecDestroy(&U);
+  return ierr;
+}
+} // namespace
+
+TEST(VSHMMSpectralTruncation, ModelOfAForcedLeftOutMode)
+{
+  const PetscReal         T = 0.5;
+  VSHMMSpectralStatistics st;
+  EXPECT_EQ(TruncationRun(VSHMMSPECTRAL_TRUNCATION_WARN, T, &st), 0); // warns on stderr, carries on
+  double a3 = 0, e1 = 0, h = 1e-5;                                    // the model's equations, finely
+  for (double t = 0; t < T - h / 2; t += h) {
+    auto rhs = [](double t, double a, double e, double *da, double *de) {
+      *da = -9 * a + 0.375 * std::exp(-0.75 * t);
+      *de = -e + 0.75 * a;
+    };
+    double k1a, k1e, k2a, k2e, k3a, k3e, k4a, k4e;
+    rhs(t, a3, e1, &k1a, &k1e);
+    rhs(t + h / 2, a3 + h / 2 * k1a, e1 + h / 2 * k1e, &k2a, &k2e);
+    rhs(t + h / 2, a3 + h / 2 * k2a, e1 + h / 2 * k2e, &k3a, &k3e);
+    rhs(t + h, a3 + h * k3a, e1 + h * k3e, &k4a, &k4e);
+    a3 += h / 6 * (k1a + 2 * k2a + 2 * k3a + k4a);
+    e1 += h / 6 * (k1e + 2 * k2e + 2 * k3e + k4e);
+  }
+  const double share = std::hypot(a3, e1) * std::sqrt(2.0) / (std::sqrt(2.0) * 0.5 * std::exp(-0.75 * T)); // ||u|| = sqrt(2) A / 2
+  EXPECT_NEAR(st.truncation_share, share, 2e-3 * share);                                                   // the looks' trapezoid, 64 per solve
+  EXPECT_NEAR(st.truncation_time, T, 1e-12);                                                               // the share grows: largest at the end
+  EXPECT_GT(share, 0.05);
+  EXPECT_EQ(TruncationRun(VSHMMSPECTRAL_TRUNCATION_ERROR, T, &st), PETSC_ERR_NOT_CONVERGED); // above the default tolerance 1e-2
+  EXPECT_LT(st.truncation_time, 0.05);                                                       // stopped at its first look above it
+  EXPECT_EQ(TruncationRun(VSHMMSPECTRAL_TRUNCATION_NONE, T, &st), 0);
+  EXPECT_EQ(st.truncation_share, 0);
+  Scene s("-spectral_grid_points 32");
+  PetscPushErrorHandler(PetscReturnErrorHandler, nullptr);
+  EXPECT_EQ(VSHMMSpectralSetTruncationCheck(s.sp, (VSHMMSpectralTruncationCheck)3), PETSC_ERR_ARG_OUTOFRANGE);
+  PetscPopErrorHandler();
+}

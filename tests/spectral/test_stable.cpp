@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "stable.hpp"
+#include "truncation.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -171,4 +172,44 @@ TEST(SpectralStable, GrowthBoundAlongARun)
   EXPECT_EQ(a.bound(), 1.0);
   a.advance(2.0, 0.0); // time going back is ignored
   EXPECT_EQ(a.time(), 3.0);
+}
+
+TEST(SpectralTruncation, AForcedDampedMode)
+{
+  // a' = -2 a + 3 from a(0) = 0.5, looked at every 0.1: exact for a constant forcing
+  TruncationModel m({7}, {2.0}, {2.0}, 0.0, {-0.5});
+  EXPECT_EQ(m.amplitudes()[0], 0.5); // |c_k| of the initial data
+  for (int i = 0; i <= 10; ++i) m.advance(0.1 * i, {-3.0});
+  const double a = 0.5 * std::exp(-2.0) + 3.0 * (1 - std::exp(-2.0)) / 2.0;
+  EXPECT_NEAR(m.amplitudes()[0], a, 1e-12);
+  EXPECT_NEAR(m.norm(), std::sqrt(2.0) * a, 1e-12); // weight 2: the mode stands for +-k
+  EXPECT_EQ(m.time(), 1.0);
+  EXPECT_EQ(m.startTime(), 0.0);
+
+  // a forcing that grows like t: the trapezoid of the looks' forcings, O(dt^2) of
+  // int_0^t e^{-lambda (t - s)} s ds = t / lambda - (1 - e^{-lambda t}) / lambda^2
+  TruncationModel g({3}, {2.0}, {1.0}, 0.0, {});
+  for (int i = 0; i <= 1000; ++i) g.advance(1e-3 * i, {1e-3 * i});
+  EXPECT_NEAR(g.amplitudes()[0], 0.5 - (1 - std::exp(-2.0)) / 4.0, 1e-6);
+
+  // undamped (rate 0) and growing (a negative rate is taken as 0) modes integrate their forcing
+  TruncationModel u({1, 2}, {0.0, -5.0}, {2.0, 2.0}, 1.0, {});
+  u.advance(1.0, {0.2, 0.2});
+  u.advance(1.5, {0.4, 0.4});
+  EXPECT_NEAR(u.amplitudes()[0], 0.15, 1e-15);
+  EXPECT_NEAR(u.amplitudes()[1], 0.15, 1e-15);
+  u.advance(1.2, {9.0, 9.0}); // an earlier time adds nothing
+  EXPECT_NEAR(u.amplitudes()[0], 0.15, 1e-15);
+  EXPECT_EQ(u.time(), 1.5);
+}
+
+TEST(SpectralTruncation, TheLargestModes)
+{
+  TruncationModel m({4, 9, 13, 40}, {0, 0, 0, 0}, {2, 2, 2, 1}, 0.0, {0.3, 0.01, 0.2, 0.05});
+  EXPECT_NEAR(m.norm(), std::sqrt(2 * (0.09 + 1e-4 + 0.04) + 0.0025), 1e-15);
+  EXPECT_EQ(m.largest(0.1), (std::vector<int>{4, 13})); // what is left: sqrt(2e-4 + 0.0025) = 0.052
+  EXPECT_EQ(m.largest(0.03), (std::vector<int>{4, 13, 40}));
+  EXPECT_EQ(m.largest(1.0), std::vector<int>());
+  EXPECT_THROW(TruncationModel({1, 2}, {0}, {2, 2}, 0.0, {}), std::invalid_argument);
+  EXPECT_THROW(m.advance(1.0, {1.0}), std::invalid_argument);
 }
