@@ -27,10 +27,10 @@
 
 static constexpr int       kArnoldiSteps    = 40;
 static constexpr PetscReal kSafety          = 0.9;
-static constexpr PetscReal kGrowingMode     = 0.1; /* Re lambda > this |lambda|: a growing mode, not limiting */
-static constexpr PetscInt  kGrowthInterval  = 8;   /* the growth check looks at every 8th step */
-static constexpr PetscReal kTruncationLooks = 64;  /* the truncation check looks after each 1/64 of a solve's span */
-static constexpr PetscInt  kTruncationEvery = 256; /* and at every 256th step */
+static constexpr PetscReal kGrowingMode     = 0.1;  /* Re lambda > this |lambda|: a growing mode, not limiting */
+static constexpr PetscInt  kGrowthInterval  = 8;    /* the growth check looks at every 8th step */
+static constexpr PetscReal kTruncationLooks = 64;   /* the truncation check looks after each 1/64 of a solve's span */
+static constexpr PetscInt  kTruncationEvery = 1024; /* and at every 1024th step */
 
 PetscErrorCode VSHMMSpectralRitzValues_Private(MPI_Comm comm, spc::SpectralOperator &op, const std::vector<double> &c0, std::vector<std::complex<double>> &ritz, PetscInt *evaluations)
 {
@@ -570,7 +570,7 @@ static PetscErrorCode TruncationMessage(VSHMMSpectral sp, PetscReal t, PetscReal
 
    Notes:
    At the first step (the start of a run: also any step at a time before the last look), after
-   each 1/64 of the solve's span (so at every TSVSHMM macro step of a short run), at every 256th
+   each 1/64 of the solve's span (so at every TSVSHMM macro step of a short run), at every 1024th
    step and at the TS's final time, the full operator is evaluated on the state (zero on the
    left-out wavenumbers): its components f_k on the left-out wavenumbers force them. Each is
    modelled as a damped mode a_k' = -lambda_k a_k + |f_k| (`spc::TruncationModel`; lambda_k =
