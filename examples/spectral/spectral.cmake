@@ -395,6 +395,21 @@ vshmm_example_test(NAME spectral_auto_advection_zero_tuning EXE advection
 set_tests_properties(spectral_auto_advection_dns_ref PROPERTIES FIXTURES_SETUP spectral_auto_advection_ref LABELS "example;spectral")
 set_tests_properties(spectral_auto_advection_zero_tuning PROPERTIES FIXTURES_REQUIRED spectral_auto_advection_ref LABELS "example;spectral")
 set_tests_properties(spectral_detect_auto_advection PROPERTIES LABELS "example;spectral")
+# A coefficient wavenumber close to u0's band (d = 0.025 + 0.275 exp(sin 20x) + 0.058 exp(sin 48x),
+# u0 a periodic Gaussian of width 1.16, N = 512): F(u0) widens u0's band 0..5 into one band with
+# the fast modes, so the clusters of F(u0) were as many as u0's and the auto rule took u0 alone
+# ({0..5}): TSVSHMM stopped (one cluster) and the explicit sparse method on {0..5} was 3.7e-2 off
+# the DNS, silently. The widening now calls the DNS: {0..5}, {17..51,66..70}, 3.2e-3 at t = 0.3
+# (the DNS at its stable step agrees with RK3 at 2e-6 to 9e-14).
+set(_sp_widened -spectral_grid_points 512 -spectral_diffusion_coefficient expsin -spectral_diffusion_coefficient_offset 0.025 -spectral_diffusion_coefficient_weights 0.275,0.058
+                -spectral_diffusion_coefficient_wavenumbers 20,48 -spectral_u0 gaussian -spectral_u0_width 1.16 -spectral_u0_periodic true -output_times 0.1,0.3 -no_timing)
+vshmm_example_test(NAME spectral_detect_auto_widened_dns_ref EXE diffusion ARGS ${_sp_widened} -grid_solution_file dns LABELS example spectral TIMEOUT 120)
+vshmm_example_test(NAME spectral_detect_auto_widened EXE diffusion
+                   ARGS ${_sp_widened} -spectral_mode sparse -ts_type vshmm -ts_vshmm_adapt -ts_rtol 1e-2 -ts_atol 1e-2
+                        -compare_grid_solution ${_sp_dir}/spectral_detect_auto_widened_dns_ref/dns -compare_tolerance 5e-3
+                   REGEX "auto: F[(]u0[)] widens the bands of u0 by 248 wavenumbers .*K0 = {0..5}: .*K1 = {17..51,66..70}: .*compare t 0.3 relative_l2_error" LABELS example spectral TIMEOUT 60)
+set_tests_properties(spectral_detect_auto_widened_dns_ref PROPERTIES FIXTURES_SETUP spectral_detect_auto_widened_ref LABELS "example;spectral")
+set_tests_properties(spectral_detect_auto_widened PROPERTIES FIXTURES_REQUIRED spectral_detect_auto_widened_ref LABELS "example;spectral")
 vshmm_example_test(NAME spectral_detect_auto_advection_tol1e-4 EXE advection
                    ARGS ${_sp_adv_auto} -spectral_grid_points 2048 -ts_rtol 1e-4 -ts_atol 1e-4 -output_times 0.001
                    STDERR_REGEX "-ts_type vshmm needs at least two clusters \\(time scales\\), but the scene has one \\(the detection found one band of wavenumbers\\)"

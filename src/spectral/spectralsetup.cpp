@@ -77,6 +77,7 @@ static std::vector<double> FullMagnitudes(const spc::Layout &full, int N, const 
 static constexpr double kDecayingBand     = 0.5; /* -spectral_cluster_min_band_share leaves out only a band whose decay share (spc::bandAction()) is at least this */
 static constexpr double kMaxBandInfluence = 1.0; /* and whose influence on the other retained bands is below this */
 static constexpr int    kRKCStepsPerLook  = 8;   /* RKC steps of the detection DNS between consecutive looks */
+static constexpr size_t kAutoWidening     = 3;   /* -spectral_cluster_detect auto: F(u0) widening u0's bands by more wavenumbers than this (and half of u0's) needs the DNS */
 static constexpr double kRKCSafety        = 0.9; /* the RKC step's margin on the Ritz values (as RK3's) */
 
 /* The detection DNS's right-hand side, with its work counted. */
@@ -445,9 +446,15 @@ static PetscErrorCode AutoNeedsDNS(VSHMMSpectral sp, DetectCtx *dctx, const std:
   const std::vector<double> m0 = FullMagnitudes(full, N, c.data()), mf = FullMagnitudes(full, N, f.data());
   PetscCall(ClustersOf(sp, {m0}, spc::Normalization::Relative, lambda, s0, &c0));
   PetscCall(ClustersOf(sp, {m0, mf}, spc::Normalization::Relative, lambda, s1, &c1));
-  *dns = c1.size() > c0.size();
+  /* new bands, or bands widened by more than half the wavenumbers u0 shows (a coefficient's
+     wavenumber close to u0's band widens it into one: d = 0.025 + 0.275 exp(sin 20x) + ... on a
+     Gaussian u0 made 0..5 into 0..27, and the clusters of u0 alone missed the fast modes) */
+  size_t added = 0;
+  for (int k : s1) added += std::binary_search(s0.begin(), s0.end(), k) ? 0 : 1;
+  *dns = c1.size() > c0.size() || added > std::max<size_t>(kAutoWidening, s0.size() / 2);
   std::ostringstream m;
-  if (*dns) m << "auto: F(u0) reaches " << c1.size() << " clusters (" << c1.format() << "), u0 shows " << c0.size() << ": short direct simulation";
+  if (c1.size() > c0.size()) m << "auto: F(u0) reaches " << c1.size() << " clusters (" << c1.format() << "), u0 shows " << c0.size() << ": short direct simulation";
+  else if (*dns) m << "auto: F(u0) widens the bands of u0 by " << added << " wavenumbers (" << c1.format() << ", u0 shows " << c0.format() << "): short direct simulation";
   else m << "auto: the initial data shows every cluster F(u0) reaches (" << c0.size() << "): initial data only";
   s->detection.rule = m.str();
   PetscFunctionReturn(0);
