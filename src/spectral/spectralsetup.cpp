@@ -427,8 +427,9 @@ static PetscErrorCode DetectionDNS(VSHMMSpectral sp, DetectCtx *dctx, const std:
 
 /* -spectral_cluster_detect auto: does the initial data show every cluster? F(u0) is computed on
    every mode; if the wavenumbers of u0 and F(u0) (each above lambda relative to its own norm)
-   form more clusters than those of u0 alone, the operator creates modes u0 does not show and a
-   short direct simulation is needed. */
+   form more bands than those of u0 alone, or widen them by more than kAutoWidening wavenumbers
+   and half of u0's, the operator creates modes u0 does not show and a short direct simulation is
+   needed. */
 static PetscErrorCode AutoNeedsDNS(VSHMMSpectral sp, DetectCtx *dctx, const std::vector<double> &u0, bool *dns)
 {
   VSHMMSpectral_Data *s    = sp->data;
@@ -447,8 +448,8 @@ static PetscErrorCode AutoNeedsDNS(VSHMMSpectral sp, DetectCtx *dctx, const std:
   PetscCall(ClustersOf(sp, {m0}, spc::Normalization::Relative, lambda, s0, &c0));
   PetscCall(ClustersOf(sp, {m0, mf}, spc::Normalization::Relative, lambda, s1, &c1));
   /* new bands, or bands widened by more than half the wavenumbers u0 shows (a coefficient's
-     wavenumber close to u0's band widens it into one: d = 0.025 + 0.275 exp(sin 20x) + ... on a
-     Gaussian u0 made 0..5 into 0..27, and the clusters of u0 alone missed the fast modes) */
+     wavenumber close to u0's band joins them: d = 0.025 + 0.275 exp(sin 20x) + ... on a Gaussian
+     u0 made its 0..5 and the fast modes one band, and the clusters of u0 alone missed them) */
   size_t added = 0;
   for (int k : s1) added += std::binary_search(s0.begin(), s0.end(), k) ? 0 : 1;
   *dns = c1.size() > c0.size() || added > std::max<size_t>(kAutoWidening, s0.size() / 2);
