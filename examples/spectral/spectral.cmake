@@ -669,6 +669,12 @@ vshmm_example_test(NAME spectral_truncation_diffburgers_feedback EXE diffusion A
 # undamped left-out modes the advection detunes, 6.9e-3 at 1e-2)
 vshmm_example_test(NAME spectral_truncation_diffburgers_widened EXE diffusion ARGS ${_sp_burg} -spectral_cluster_buffers 6,1
                    STDERR_NOT_REGEX "truncation check" LABELS example spectral TIMEOUT 60)
+# any TS type: burgers_growth.yaml in sparse mode with the detected cluster {0..5} and RK3 (the
+# example's stable steps) steepens beyond it: 3.6e-3, 2.9e-2 and 0.22 off the DNS (RK3 at 1e-4,
+# 5e-5 agreeing to 3e-10) at t = 1, 2, 3, silently before; warned at t = 1.6 (1.08e-2 modelled)
+vshmm_example_test(NAME spectral_truncation_burgers_growth_rk EXE diffusion
+                   ARGS -options_file_yaml ${PROJECT_SOURCE_DIR}/examples/scenes/burgers_growth.yaml -spectral_mode sparse -ts_rtol 1e-2 -ts_atol 1e-2 -no_timing
+                   STDERR_REGEX "truncation check at t = 1.6: [^\n]* to about 0.0108 of" LABELS example spectral TIMEOUT 60)
 vshmm_example_test(NAME spectral_truncation_quiet_diffusion EXE diffusion ARGS -options_file_yaml ${PROJECT_SOURCE_DIR}/examples/scenes/diffusion_auto.yaml -no_timing
                    STDERR_NOT_REGEX "truncation check" LABELS example spectral TIMEOUT 60)
 vshmm_example_test(NAME spectral_truncation_quiet_advection2 EXE advection ARGS -options_file_yaml ${PROJECT_SOURCE_DIR}/examples/scenes/advection2_auto.yaml -no_timing
