@@ -23,6 +23,7 @@
 #include "stable.hpp"
 #include "truncation.hpp"
 
+#include <cmath>
 #include <complex>
 
 #include <exception>
@@ -192,6 +193,18 @@ struct _p_VSHMMSpectral {
 
 /* log events (registered by VSHMMSpectralInitializePackage()) */
 PETSC_INTERN PetscLogEvent VSHMMSPECTRAL_SetUp, VSHMMSPECTRAL_RHS, VSHMMSPECTRAL_Split, VSHMMSPECTRAL_Physical, VSHMMSPECTRAL_ForwardFFT, VSHMMSPECTRAL_ProjDirect, VSHMMSPECTRAL_MatVec, VSHMMSPECTRAL_Eigen, VSHMMSPECTRAL_Growth, VSHMMSPECTRAL_Truncation, VSHMMSPECTRAL_Detect;
+
+/* |c_k|, k = 0..N/2, of coefficients in the full layout (Layout::full()): the detection's and the
+   truncation check's magnitudes. */
+static inline std::vector<double> VSHMMSpectralFullMagnitudes(const spc::Layout &full, const double *c)
+{
+  std::vector<double> m(full.modeCount());
+  for (int i = 0; i < full.modeCount(); ++i) {
+    const int k = full.mode(i), o = full.offset(i);
+    m[k] = spc::isRealOnly(full.N(), k) ? std::fabs(c[o]) : std::hypot(c[o], c[o + 1]);
+  }
+  return m;
+}
 
 /* The options prefix of sp ("" without one), for error messages that name an option. */
 static inline const char *VSHMMSpectralPrefix(VSHMMSpectral sp)

@@ -63,17 +63,6 @@ PetscErrorCode VSHMMSpectralBuildExtraTerms_Private(VSHMMSpectral sp, spc::Extra
   PetscFunctionReturn(0);
 }
 
-/* |c_k|, k = 0..N/2, of coefficients in the full layout. */
-static std::vector<double> FullMagnitudes(const spc::Layout &full, int N, const double *c)
-{
-  std::vector<double> m(full.modeCount());
-  for (int i = 0; i < full.modeCount(); ++i) {
-    const int k = full.mode(i), o = full.offset(i);
-    m[k] = spc::isRealOnly(N, k) ? std::fabs(c[o]) : std::hypot(c[o], c[o + 1]);
-  }
-  return m;
-}
-
 static constexpr double kDecayingBand     = 0.5; /* -spectral_cluster_min_band_share leaves out only a band whose decay share (spc::bandAction()) is at least this */
 static constexpr double kMaxBandInfluence = 1.0; /* and whose influence on the other retained bands is below this */
 static constexpr int    kRKCStepsPerLook  = 8;   /* RKC steps of the detection DNS between consecutive looks */
@@ -140,7 +129,7 @@ static PetscErrorCode DetectPostStep(TS ts)
     const PetscScalar *c;
     PetscCall(TSGetSolution(ts, &U));
     PetscCall(VecGetArrayRead(U, &c));
-    d->keep(FullMagnitudes(*d->full, d->full->size(), c) /* full layout: N reals */);
+    d->keep(VSHMMSpectralFullMagnitudes(*d->full, c) /* full layout: N reals */);
     PetscCall(VecRestoreArrayRead(U, &c));
   }
   PetscFunctionReturn(0);
@@ -314,7 +303,7 @@ static PetscErrorCode DetectionDNS(VSHMMSpectral sp, DetectCtx *dctx, const std:
     const PetscScalar *c;
     dctx->full = &full;
     PetscCall(VecGetArrayRead(U, &c));
-    dctx->keep(FullMagnitudes(full, (int)s->N, c));
+    dctx->keep(VSHMMSpectralFullMagnitudes(full, c));
     PetscCall(VecRestoreArrayRead(U, &c));
   }
   spc::ClusterSet     last, anchor;
@@ -344,7 +333,7 @@ static PetscErrorCode DetectionDNS(VSHMMSpectral sp, DetectCtx *dctx, const std:
         for (double v : y)
           if (!std::isfinite(v)) *rkc_failed = true; /* the caller runs the detection again with RK3 */
         if (*rkc_failed) break;
-        dctx->keep(FullMagnitudes(full, (int)s->N, y.data()), h / dt);
+        dctx->keep(VSHMMSpectralFullMagnitudes(full, y.data()), h / dt);
       }
       if (*rkc_failed) break;
       t_rkc = t;
@@ -367,7 +356,7 @@ static PetscErrorCode DetectionDNS(VSHMMSpectral sp, DetectCtx *dctx, const std:
     else {
       const PetscScalar *c;
       PetscCall(VecGetArrayRead(U, &c));
-      mags.push_back(FullMagnitudes(full, (int)s->N, c));
+      mags.push_back(VSHMMSpectralFullMagnitudes(full, c));
       PetscCall(VecRestoreArrayRead(U, &c));
     }
     s->detection.times.push_back(t);
@@ -444,7 +433,7 @@ static PetscErrorCode AutoNeedsDNS(VSHMMSpectral sp, DetectCtx *dctx, const std:
   dctx->op->analyze(u0.data(), c.data());
   dctx->op->apply(c.data(), f.data());
   dctx->evaluations++;
-  const std::vector<double> m0 = FullMagnitudes(full, N, c.data()), mf = FullMagnitudes(full, N, f.data());
+  const std::vector<double> m0 = VSHMMSpectralFullMagnitudes(full, c.data()), mf = VSHMMSpectralFullMagnitudes(full, f.data());
   PetscCall(ClustersOf(sp, {m0}, spc::Normalization::Relative, lambda, s0, &c0));
   PetscCall(ClustersOf(sp, {m0, mf}, spc::Normalization::Relative, lambda, s1, &c1));
   /* new bands, or bands widened by more than half the wavenumbers u0 shows (a coefficient's

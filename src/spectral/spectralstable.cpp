@@ -488,18 +488,18 @@ static PetscErrorCode StartTruncationModel(VSHMMSpectral sp, PetscReal t)
   PetscCall(VSHMMSpectralSampleField_Private(sp, "u0", s->u0, u0));
   std::vector<double> c0(s->full_layout->size());
   s->full_op->analyze(u0.data(), c0.data());
-  std::vector<int>        modes;
-  std::vector<double>     rates, weights, a0;
-  const std::vector<int> &kept = s->layout->modes(); /* sorted within each cluster */
+  const std::vector<double> m0 = VSHMMSpectralFullMagnitudes(*s->full_layout, c0.data());
+  std::vector<int>          modes;
+  std::vector<double>       rates, weights, a0;
+  const std::vector<int>   &kept = s->layout->modes(); /* sorted within each cluster */
   for (int k = 0; k <= spc::maxWavenumber(N); ++k) {
     if (s->layout->indexOf(k) >= 0) continue;
     int dist = N;
     for (int q : kept) dist = std::min(dist, std::abs(k - q));
-    const int o = s->full_layout->offset(s->full_layout->indexOf(k));
     modes.push_back(k);
     rates.push_back(meanD * k * k - linear + std::abs(meanA) * dist);
     weights.push_back(spc::isRealOnly(N, k) ? 1.0 : 2.0);
-    a0.push_back(spc::isRealOnly(N, k) ? std::abs(c0[o]) : std::hypot(c0[o], c0[o + 1]));
+    a0.push_back(m0[k]);
   }
   s->truncation = spc::TruncationModel(modes, rates, weights, t, a0);
   modes.clear();
@@ -614,6 +614,7 @@ PetscErrorCode VSHMMSpectralTruncationMonitor(TS ts, PetscInt step, PetscReal t,
     if (!at_end && !due) PetscFunctionReturn(0);
   }
   PetscCall(PetscLogEventBegin(VSHMMSPECTRAL_Truncation, sp, 0, 0, 0));
+  PetscCall(StateNorms(sp, U, &norm, nullptr));
   const int           N = (int)s->N;
   std::vector<double> coef(s->full_layout->size(), 0.0), F(s->full_layout->size());
   PetscCall(VSHMMSpectralGetCoefficients_Private(sp, U, &c));
@@ -623,32 +624,26 @@ PetscErrorCode VSHMMSpectralTruncationMonitor(TS ts, PetscInt step, PetscReal t,
   }
   PetscCall(VSHMMSpectralRestoreCoefficients_Private(sp, U, &c));
   s->full_op->apply(coef.data(), F.data());
-  double sum = 0;
-  for (int i = 0; i < (int)coef.size(); ++i) sum += (i == 0 || (N % 2 == 0 && i == N - 1) ? 1.0 : 2.0) * coef[i] * coef[i];
-  norm                         = std::sqrt(sum);
-  const std::vector<int> &left = s->truncation.modes();
-  std::vector<double>     forcing(left.size());
-  for (size_t i = 0; i < left.size(); ++i) {
-    const int fo = s->full_layout->offset(s->full_layout->indexOf(left[i]));
-    forcing[i]   = spc::isRealOnly(N, left[i]) ? std::abs(F[fo]) : std::hypot(F[fo], F[fo + 1]);
-  }
+  const std::vector<double> mF   = VSHMMSpectralFullMagnitudes(*s->full_layout, F.data());
+  const std::vector<int>   &left = s->truncation.modes();
+  std::vector<double>       forcing(left.size());
+  for (size_t i = 0; i < left.size(); ++i) forcing[i] = mF[left[i]];
   s->truncation.advance(t, forcing);
   /* the left-out modes at their modelled amplitudes, in the phase of their forcing, and what
      they change in the retained modes' tendency (the feedback the sparse run does not have) */
-  std::vector<double> F1(F.size());
+  std::vector<double> dF(F.size()); /* F with the left-out modes, then less F */
   for (size_t i = 0; i < left.size(); ++i) {
     if (!(forcing[i] > 0)) continue;
     const int    fo = s->full_layout->offset(s->full_layout->indexOf(left[i]));
     const double g  = s->truncation.amplitudes()[i] / forcing[i];
     for (int r = 0; r < spc::realsOf(N, left[i]); ++r) coef[fo + r] = g * F[fo + r];
   }
-  s->full_op->apply(coef.data(), F1.data());
-  const std::vector<int> &damped = s->feedback.modes();
-  std::vector<double>     change(damped.size());
-  for (size_t i = 0; i < damped.size(); ++i) {
-    const int k = damped[i], fo = s->full_layout->offset(s->full_layout->indexOf(k));
-    change[i] = spc::isRealOnly(N, k) ? std::abs(F1[fo] - F[fo]) : std::hypot(F1[fo] - F[fo], F1[fo + 1] - F[fo + 1]);
-  }
+  s->full_op->apply(coef.data(), dF.data());
+  for (size_t i = 0; i < dF.size(); ++i) dF[i] -= F[i];
+  const std::vector<double> mChange = VSHMMSpectralFullMagnitudes(*s->full_layout, dF.data());
+  const std::vector<int>   &damped  = s->feedback.modes();
+  std::vector<double>       change(damped.size());
+  for (size_t i = 0; i < damped.size(); ++i) change[i] = mChange[damped[i]];
   s->feedback.advance(t, change);
   PetscCall(PetscLogEventEnd(VSHMMSPECTRAL_Truncation, sp, 0, 0, 0));
   const PetscReal share = norm > 0 ? std::hypot(s->truncation.norm(), s->feedback.norm()) / norm : 0;
