@@ -93,7 +93,7 @@ PETSC_EXTERN const char *const TSVSHMMSeparationChecks[];
 .  adapt_growth_rate - the growth rate of an error the last probe measured (per unit time; 0: none grows): each later macro step's share of the tolerance is shrunk by e^(rate (t_final - t))
 .  global_estimate  - with -ts_vshmm_adapt_global_estimate, the error at the last sampled time estimated from the carried comparison (a second solution with every error term doubled), in the TS's weighted norm (1 = the tolerance); -1 without it
 .  global_estimate_max - the largest global_estimate of the run (since TSVSHMMResetStatistics()); -1 without it
--  single_rate_evaluations - split RHS evaluations a single-rate TSRK of the same tableau would take over the same macro steps at each one's micro step (every split at every stage); rhs_evaluations plus adapt_evaluations above it means the savings did not pay for themselves
+-  single_rate_evaluations - split RHS evaluations a single-rate TSRK of the same tableau would take over the same macro steps (every split at every stage) at each one's micro step, or with -ts_vshmm_adapt at the largest step the accuracy control's bounds allow (stable, resolving the fastest oscillation over the span, at least the micro step); rhs_evaluations plus adapt_evaluations above it means the savings did not pay for themselves
 
    Level: intermediate
 

@@ -480,8 +480,9 @@ static PetscErrorCode TSStep_VSHMM(TS ts)
     PetscCall(TSVSHMMWarn_Private(ts, "TSVSHMM: split '%s' (scale %d) produced Inf or NaN at t = %.17g, evaluated for level %d; the solve stops with TS_DIVERGED_STEP_REJECTED at t = %g\n", name, scale, (double)t_fault, level, (double)t0));
     PetscFunctionReturn(0);
   }
-  { /* what a single-rate TSRK of the same tableau takes over this macro step at its micro step */
-    const PetscReal h = vs->adapt ? vs->adapt_used.microStep : dt;
+  { /* what a single-rate TSRK of the same tableau takes over this macro step: at its micro step, or
+       with -ts_vshmm_adapt at the largest step the bounds allow (SingleRateStep()) */
+    const PetscReal h = vs->adapt ? PetscMax(vs->adapt_used.microStep, vs->adapt_single_rate_step) : dt;
     vs->single_rate_evaluations += (PetscInt64)std::ceil(DeltaT / h - 1e-9) * vs->tableau->stages * nsplits;
     if (vs->adapt) {
       PetscReal ratio = 1;
@@ -685,7 +686,7 @@ static PetscErrorCode TSView_VSHMM(TS ts, PetscViewer viewer)
   PetscCall(PetscViewerASCIIPrintf(viewer, "  work: %" PetscInt64_FMT " macro steps, %" PetscInt64_FMT " micro cycles, %" PetscInt64_FMT " Runge-Kutta steps, %" PetscInt64_FMT " split RHS evaluations\n", vs->macro_steps, vs->micro_cycles, steps, evals));
   if (vs->single_rate_evaluations > 0) {
     const PetscInt64 all = evals + (vs->adapt ? vs->adapt_evaluations : 0);
-    PetscCall(PetscViewerASCIIPrintf(viewer, "  single-rate TSRK %s steps at the micro step of each macro step would take %" PetscInt64_FMT " split RHS evaluations: this run's work%s is %.3g times that\n", vs->tableau->name.c_str(), vs->single_rate_evaluations, vs->adapt ? " with its estimates and rejected tries" : "",
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  single-rate TSRK %s steps at %s would take %" PetscInt64_FMT " split RHS evaluations: this run's work%s is %.3g times that\n", vs->tableau->name.c_str(), vs->adapt ? "the largest step the accuracy control's bounds allow (stable, resolving the fastest oscillation; at least the micro step) in each macro step" : "the micro step of each macro step", vs->single_rate_evaluations, vs->adapt ? " with its estimates and rejected tries" : "",
                                      (double)all / (double)vs->single_rate_evaluations));
   }
   if (vs->adapt) {

@@ -705,6 +705,21 @@ static bool RateFell(const TS_VSHMM *vs)
   return false;
 }
 
+/* The largest step of a single-rate TSRK of the same tableau within the run's bounds: stable for
+   the whole field, at least kMinCycles per macro step, and resolving the fastest oscillation over
+   the whole span (no savings slow it): what the run's work is set against
+   (TSVSHMMAdaptCheckCost_Private()). */
+static PetscReal SingleRateStep(TS ts, PetscReal DeltaT)
+{
+  TS_VSHMM *vs = (TS_VSHMM *)ts->data;
+  PetscReal h  = StableMicroStep(vs);
+
+  if (!std::isfinite(h) || h > DeltaT / kMinCycles) h = DeltaT / kMinCycles;
+  vshmm::AdaptParameters single = vs->adapt_params;
+  single.ratios.assign(single.ratios.size(), 1.0);
+  return AccurateMicroStep(ts, single, h);
+}
+
 /* The bounds of the choice: user-set parameters, stability, enough cycles per macro step. */
 static vshmm::AdaptBounds Bounds(TS ts, PetscReal DeltaT)
 {
@@ -2808,9 +2823,13 @@ static PetscErrorCode RecheckSeparation(TS ts)
 }
 
 /* At a solve's last macro step (-ts_vshmm_adapt): the run's work, its estimates and rejected tries
-   included, against what a single-rate TSRK of the same tableau takes at the micro step of each
-   accepted macro step (vs->single_rate_evaluations). Single-rate steps at the micro step are stable
-   for every level and have no averaging error, so a run that cost more saved nothing: the savings
+   included, against what a single-rate TSRK of the same tableau takes over each accepted macro step
+   at the largest step the run's bounds allow it (SingleRateStep(): stable, resolving the fastest
+   oscillation over the span; at least the micro step) (vs->single_rate_evaluations). Before
+   2026-11-28 at the micro step itself, which adapt can drive far below that (a non-normal fast level
+   at 1e-3: 8 times below its stability limit, so the run was said to cost 1.8 times single-rate
+   steps where a plain RK4 at its stable step took 12 times less). Those single-rate steps are
+   stable for every level and have no averaging error, so a run that cost more saved nothing: the savings
    the tolerance allowed were too small to pay for their comparisons (a faster level with a band of
    rates whose slowest one is a few tens of times the slow level's: separated, yet time ratios about
    1.6 at 1e-1). Said once per run, not where the separation check, a beat or the accuracy control
@@ -2823,10 +2842,11 @@ PetscErrorCode TSVSHMMAdaptCheckCost_Private(TS ts)
   if (vs->cost_warned || vs->no_separation || vs->adapt_single_rate_from >= 0 || vs->beat_warned) PetscFunctionReturn(0); /* said already, with the single-rate type */
   const PetscInt64 work   = TSVSHMMWork_Private(vs) - vs->run_start_work;
   const PetscInt64 single = vs->single_rate_evaluations - vs->run_start_single_rate;
-  PetscCall(PetscInfo(ts, "Adapt: this run to t = %g took %" PetscInt64_FMT " split RHS evaluations (estimates included); single-rate TSRK %s steps at its micro steps %" PetscInt64_FMT "\n", (double)ts->ptime, work, vs->tableau->name.c_str(), single));
+  PetscCall(
+    PetscInfo(ts, "Adapt: this run to t = %g took %" PetscInt64_FMT " split RHS evaluations (estimates included); single-rate TSRK %s steps at the largest steps its bounds allow %" PetscInt64_FMT "\n", (double)ts->ptime, work, vs->tableau->name.c_str(), single));
   if (work <= single) PetscFunctionReturn(0);
   vs->cost_warned = PETSC_TRUE;
-  PetscCall(TSVSHMMWarn_Private(ts, "TSVSHMM warning (-ts_vshmm_adapt): this run to t = %g took %" PetscInt64_FMT " split RHS evaluations, its error estimates and rejected tries included: %.3g times what single-rate TSRK %s steps at its micro steps take over the same span (%" PetscInt64_FMT "), which are stable for every level and have no averaging error. The savings the tolerance allowed (time ratios at most %.3g in product) did not pay for their comparisons: for a run like this one (its tolerance, sampling interval and length: a longer run spreads the first macro steps' calibrations) a single-rate TS type (-ts_type rk, with its own step control) is the better tool.\n",
+  PetscCall(TSVSHMMWarn_Private(ts, "TSVSHMM warning (-ts_vshmm_adapt): this run to t = %g took %" PetscInt64_FMT " split RHS evaluations, its error estimates and rejected tries included: %.3g times what single-rate TSRK %s steps take over the same span (%" PetscInt64_FMT ") at the largest step its bounds allow (stable for every level, resolving the fastest oscillation, at least its micro step), which have no averaging error. The savings the tolerance allowed (time ratios at most %.3g in product) did not pay for their comparisons: for a run like this one (its tolerance, sampling interval and length: a longer run spreads the first macro steps' calibrations) a single-rate TS type (-ts_type rk, with its own step control) is the better tool.\n",
                                 (double)ts->ptime, work, (double)work / (double)single, vs->tableau->name.c_str(), single, (double)vs->run_largest_ratio));
   PetscFunctionReturn(0);
 }
@@ -3247,7 +3267,7 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
       const char *why = noise        ? "finer parameters do not lower the estimate"
                         : floor      ? "finer micro steps do not lower the estimate, and the savings factors are set or none are left"
                         : pastFloor  ? "finer micro steps did not lower the estimate of an earlier step (a floor), and none are tried below it"
-                        : !refinable ? "no finer parameters allowed (user-set parameters or stability bounds)"
+                        : !refinable ? "the error model puts the error in parameters that cannot be refined (user-set parameters or stability bounds)"
                                      : "too many tries";
       PetscCall(PetscInfo(ts, "Adapt: macro step [%g, %g] accepted with estimate %g above its share %g: %s\n", (double)t0, (double)t1, (double)E, (double)budget, why));
       if (!vs->floor_warned && E > kWarn * budget) {
@@ -3293,9 +3313,10 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
       vs->lag_next_valid = PETSC_FALSE;
     }
     vs->adapt_since_calibration++;
-    vs->savings_used = vshmm::savingsFromTimeRatios(p.ratios); /* what this step used (for view and getters) */
-    vs->adapt_used   = p;
-    vs->beat_slowed.resize(p.ratios.size() + 1, 1.0); /* how far the savings have slowed each level's oscillations (a beat found later lost its phase: TSVSHMMAdaptBeats_Private()) */
+    vs->savings_used           = vshmm::savingsFromTimeRatios(p.ratios); /* what this step used (for view and getters) */
+    vs->adapt_used             = p;
+    vs->adapt_single_rate_step = PetscMax(p.microStep, SingleRateStep(ts, DeltaT)); /* a single-rate run's step: at least the micro step */
+    vs->beat_slowed.resize(p.ratios.size() + 1, 1.0);                               /* how far the savings have slowed each level's oscillations (a beat found later lost its phase: TSVSHMMAdaptBeats_Private()) */
     PetscReal slowed = 1;
     for (size_t L = 1; L <= p.ratios.size(); ++L) {
       slowed *= p.ratios[L - 1];

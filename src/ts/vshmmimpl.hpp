@@ -111,19 +111,20 @@ struct TS_VSHMM {
   PetscReal              spectra_time       = PETSC_MIN_REAL; // when they were estimated
 
   // Accuracy control (-ts_vshmm_adapt)
-  vshmm::AdaptParameters adapt_params;                        // micro step and time ratios for the next macro step
-  vshmm::AdaptParameters adapt_used;                          // those of the last accepted macro step
-  PetscReal              adapt_last_ratio   = PETSC_MAX_REAL; // the last accepted step's estimate over its share
-  PetscReal              adapt_prev_ratio   = PETSC_MAX_REAL; // the one before it
-  PetscInt               adapt_uncompared   = 0;              // accepted steps in a row whose comparison was left out
-  PetscBool              adapt_off_manifold = PETSC_FALSE;    // the last try ended with a decaying fast variable off its slow manifold (its comparison is made)
-  PetscReal              adapt_try_speed    = 0;              // the field's norm at the end of the present try (FollowRatesAtTryEnd(); 0: not measured)
-  PetscReal              adapt_end_speed    = 0;              // and at the end of the last accepted step (a steady step's end must not jump from it: SteadyStep())
-  PetscBool              rest_track         = PETSC_FALSE;    // -ts_vshmm_adapt: a try keeps its last micro step's stages (SpuriousRest())
-  std::vector<Vec>       rest_stages;                         // they, swapped with K after each of its micro steps (no copy)
-  PetscReal              rest_h     = 0;                      // and its micro step
-  PetscBool              rest_found = PETSC_FALSE;            // a try came to a spurious rest: the stable steps are estimated again at the next macro step
-  std::vector<PetscReal> adapt_end_rates;                     // per level: its radius at the last try's end where a decaying level's fell there (the spectra are estimated again at the next step) (bounds the savings of the step's tries; 0: none)
+  vshmm::AdaptParameters adapt_params;                            // micro step and time ratios for the next macro step
+  vshmm::AdaptParameters adapt_used;                              // those of the last accepted macro step
+  PetscReal              adapt_single_rate_step = 0;              // and the step of a single-rate TSRK within its bounds (single_rate_evaluations)
+  PetscReal              adapt_last_ratio       = PETSC_MAX_REAL; // the last accepted step's estimate over its share
+  PetscReal              adapt_prev_ratio       = PETSC_MAX_REAL; // the one before it
+  PetscInt               adapt_uncompared       = 0;              // accepted steps in a row whose comparison was left out
+  PetscBool              adapt_off_manifold     = PETSC_FALSE;    // the last try ended with a decaying fast variable off its slow manifold (its comparison is made)
+  PetscReal              adapt_try_speed        = 0;              // the field's norm at the end of the present try (FollowRatesAtTryEnd(); 0: not measured)
+  PetscReal              adapt_end_speed        = 0;              // and at the end of the last accepted step (a steady step's end must not jump from it: SteadyStep())
+  PetscBool              rest_track             = PETSC_FALSE;    // -ts_vshmm_adapt: a try keeps its last micro step's stages (SpuriousRest())
+  std::vector<Vec>       rest_stages;                             // they, swapped with K after each of its micro steps (no copy)
+  PetscReal              rest_h     = 0;                          // and its micro step
+  PetscBool              rest_found = PETSC_FALSE;                // a try came to a spurious rest: the stable steps are estimated again at the next macro step
+  std::vector<PetscReal> adapt_end_rates;                         // per level: its radius at the last try's end where a decaying level's fell there (the spectra are estimated again at the next step) (bounds the savings of the step's tries; 0: none)
   vshmm::ErrorModel      adapt_model;
   PetscBool              adapt_ready = PETSC_FALSE; // initial parameters chosen
   std::vector<PetscBool> adapt_no_savings;          // per time ratio: no savings for the rest of the solve (they were negligible)
