@@ -529,6 +529,20 @@ TEST(Detect, Buffers)
   EXPECT_EQ(addBuffers(h, {1}).clusters[0], (std::vector<int>{61, 62, 63, 64, 65, 66, 67}));
 }
 
+TEST(Detect, WidenClusters)
+{
+  // the truncation check's widening: buffers that reach another cluster do not overlap it
+  ClusterSet cs = ClusterSet::parse("0:3,9:11+20", 64);
+  EXPECT_EQ(widenClusters(cs, {0, 0}).format(), cs.format());
+  EXPECT_EQ(widenClusters(cs, {2, 1}).format(), "K0 = {0..5}, K1 = {8..12,19..21}");
+  // 4..8 reached by both: 4, 5 nearer K0, 6 a tie (3 from 3 and from 9: the lower cluster), 7, 8 nearer K1
+  EXPECT_EQ(widenClusters(cs, {6, 6}).format(), "K0 = {0..6}, K1 = {7..26}");
+  EXPECT_EQ(widenClusters(cs, {0, 12}).format(), "K0 = {0..3}, K1 = {4..32}");             // K0's own stay its own
+  EXPECT_EQ(widenClusters(ClusterSet::parse("30:32", 64), {5}).format(), "K0 = {25..32}"); // clipped at N/2
+  EXPECT_THROW(widenClusters(cs, {1}), std::invalid_argument);
+  EXPECT_THROW(widenClusters(cs, {1, -1}), std::invalid_argument);
+}
+
 // ---------------------------------------------------------------------------------------------
 
 TEST(Fields, Forms)

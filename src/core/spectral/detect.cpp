@@ -1,6 +1,8 @@
 // Cluster detection: soft thresholding, merging, buffers.
 #include "detect.hpp"
 
+#include <climits>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -276,6 +278,30 @@ ClusterSet addBuffers(const ClusterSet &clusters, const std::vector<int> &buffer
   } catch (const std::invalid_argument &e) {
     throw std::invalid_argument(std::string("after adding the buffers: ") + e.what());
   }
+  return out;
+}
+
+ClusterSet widenClusters(const ClusterSet &clusters, const std::vector<int> &buffers)
+{
+  if (buffers.size() != clusters.size()) throw std::invalid_argument("widenClusters: one buffer per cluster");
+  const int        kmax = maxWavenumber(clusters.N);
+  std::vector<int> owner(kmax + 1, -1), dist(kmax + 1, INT_MAX);
+  for (size_t j = 0; j < clusters.size(); ++j)
+    for (int k : clusters.clusters[j]) owner[k] = (int)j, dist[k] = 0;
+  for (size_t j = 0; j < clusters.size(); ++j) {
+    if (buffers[j] < 0) throw std::invalid_argument("buffer widths must be nonnegative");
+    for (int k : clusters.clusters[j])
+      for (int q = std::max(0, k - buffers[j]); q <= std::min(kmax, k + buffers[j]); ++q) {
+        const int d = std::abs(q - k);
+        if (d < dist[q] || (d == dist[q] && owner[q] > (int)j)) owner[q] = (int)j, dist[q] = d;
+      }
+  }
+  ClusterSet out;
+  out.N = clusters.N;
+  out.clusters.assign(clusters.size(), {});
+  for (int k = 0; k <= kmax; ++k)
+    if (owner[k] >= 0) out.clusters[owner[k]].push_back(k);
+  out.validate();
   return out;
 }
 

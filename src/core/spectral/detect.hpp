@@ -108,5 +108,10 @@ double shareAdded(const ClusterSet &before, const ClusterSet &now, const std::ve
 // value for all clusters or one per cluster. Throws if two clusters then overlap.
 ClusterSet addBuffers(const ClusterSet &clusters, const std::vector<int> &buffers);
 
+// The same widening (buffers[j] around every member of cluster j, one value per cluster), but
+// the clusters never overlap: a wavenumber of one cluster stays its own, and one that the buffers
+// of several clusters reach goes to the cluster nearest to it (the lower index on a tie).
+ClusterSet widenClusters(const ClusterSet &clusters, const std::vector<int> &buffers);
+
 } // namespace spectral
 } // namespace vshmm
