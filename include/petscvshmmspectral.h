@@ -63,7 +63,9 @@ PETSC_EXTERN PetscClassId VSHMMSPECTRAL_CLASSID;
 .  detection_evaluations - operator evaluations of the cluster detection (its direct simulation and the auto rule's F(u0)), each on every mode
 .  detection_time   - wall time of the cluster detection, seconds
 .  truncation_share - the truncation check's largest model of the share of ||u|| that the clusters leave out (sparse mode; 0 before a solve or with -spectral_truncation_check none)
--  truncation_time  - where it was largest
+.  truncation_time  - where it was largest
+.  widenings        - clusters widened by `VSHMMSpectralWidenClusters()` (-spectral_truncation_check widen), counted over the object's life
+-  widening_evaluations - field evaluations of the runs stopped for those widenings (work spent, not in field_evaluations)
 
    Level: intermediate
 
@@ -82,6 +84,8 @@ typedef struct {
   PetscLogDouble detection_time;
   PetscReal      truncation_share;
   PetscReal      truncation_time;
+  PetscInt       widenings;
+  PetscInt64     widening_evaluations;
 } VSHMMSpectralStatistics;
 
 PETSC_EXTERN PetscErrorCode VSHMMSpectralInitializePackage(void);
@@ -119,6 +123,11 @@ PETSC_EXTERN PetscErrorCode VSHMMSpectralSetGrowthBound(VSHMMSpectral, PetscReal
 $  VSHMMSPECTRAL_TRUNCATION_NONE - no check
 $  VSHMMSPECTRAL_TRUNCATION_WARN - a warning on the standard error, once per solve (the default)
 $  VSHMMSPECTRAL_TRUNCATION_ERROR - the solve stops with PETSC_ERR_NOT_CONVERGED
+$  VSHMMSPECTRAL_TRUNCATION_WIDEN - the check records the buffers that would hold the left-out
+$    wavenumbers, for a program that stops its solve (`VSHMMSpectralGetTruncationWidening()`),
+$    widens the clusters (`VSHMMSpectralWidenClusters()`) and runs again from its initial state;
+$    after six widenings, where advection's detuning sets the model, or at the end of a solve
+$    whose widening was not applied, it warns
 
    Level: intermediate
 
@@ -127,10 +136,13 @@ E*/
 typedef enum {
   VSHMMSPECTRAL_TRUNCATION_NONE,
   VSHMMSPECTRAL_TRUNCATION_WARN,
-  VSHMMSPECTRAL_TRUNCATION_ERROR
+  VSHMMSPECTRAL_TRUNCATION_ERROR,
+  VSHMMSPECTRAL_TRUNCATION_WIDEN
 } VSHMMSpectralTruncationCheck;
 PETSC_EXTERN const char *const VSHMMSpectralTruncationChecks[];
 PETSC_EXTERN PetscErrorCode    VSHMMSpectralSetTruncationCheck(VSHMMSpectral, VSHMMSpectralTruncationCheck);
+PETSC_EXTERN PetscErrorCode    VSHMMSpectralGetTruncationWidening(VSHMMSpectral, PetscBool *, PetscReal *);
+PETSC_EXTERN PetscErrorCode    VSHMMSpectralWidenClusters(VSHMMSpectral, PetscBool *);
 PETSC_EXTERN PetscErrorCode    VSHMMSpectralSetClusterTolerance(VSHMMSpectral, PetscReal);
 PETSC_EXTERN PetscErrorCode    VSHMMSpectralSetClusterThreshold(VSHMMSpectral, PetscReal);
 PETSC_EXTERN PetscErrorCode    VSHMMSpectralGrowthMonitor(TS, PetscInt, PetscReal, Vec, void *);

@@ -9,7 +9,10 @@
                                     counted from the start of the solve (any number of times;
                                     without it: the TS's final time)
      -grid_solution_file PREFIX     write PREFIX_<t>.txt (<t> by C's %g): N lines "x_j u(x_j)", %.17g
-     -compare_grid_solution PREFIX  print "compare t <t> relative_l2_error <e> max_error <e>" against PREFIX_<t>.txt
+     -compare_grid_solution PREFIX  print "compare t <t> relative_l2_error <e> max_error <e> weighted_error <w>" against
+                                    PREFIX_<t>.txt; w = RMS over the grid of |u - u_ref| / (atol + rtol |u_ref|)
+                                    with the TS's tolerances (-ts_atol, -ts_rtol): 1 = the tolerance met in the
+                                    measure TSVSHMM's accuracy control applies to u on the grid
      -compare_tolerance TOL         and stop with an error if a relative L2 error exceeds TOL
      -spectrum_file FILE            a TS monitor writing "t k |c_k|" blocks every -spectrum_interval
      -no_timing                     leave the wall times out
@@ -21,6 +24,12 @@
                                     (no -ts_dt): do not estimate it again as the solution grows
                                     (StableStepMonitor(); by default it is, for nonlinear scenes)
    With -log_view the work is in two stages, "Spectral set-up" and "Solve".
+   Detected clusters (no -spectral_clusters) are widened where the truncation check asks for it
+   (-spectral_truncation_check widen, the default here; WidenPostStep()): the solve stops, the
+   example prints "truncation check at t = ...: the clusters are widened ..." and the clusters, and
+   runs again from the initial state (the output lines of the stopped run stay; the last run's
+   rhs_evaluations count the stopped runs too). TSVSHMM with -ts_vshmm_adapt on one cluster runs
+   the explicit sparse method instead (OneClusterFallback()), and says so.
 */
 #include <petscvshmm.h>
 #include <petscvshmmspectral.h>
@@ -48,6 +57,8 @@ typedef struct {
   TSRKType  recheck_rk;
   PetscReal recheck_w, recheck_dt, recheck_dt0;
   PetscInt  rechecks;
+  PetscBool restart;    /* the truncation check asked for wider clusters: run again (WidenPostStep()) */
+  PetscReal atol, rtol; /* the TS's tolerances, for the compare line's weighted error */
 } SpectralRun;
 
 /* -output_times: any number of values. PETSc's array reader stops silently at the capacity it is
@@ -135,7 +146,7 @@ static PetscErrorCode WriteGridSolution(SpectralRun *run, Vec U, PetscReal t, ch
 static PetscErrorCode CompareGridSolution(SpectralRun *run, Vec U, PetscReal t)
 {
   char       name[PETSC_MAX_PATH_LEN], line[256];
-  double     e2 = 0, r2 = 0, emax = 0, rel;
+  double     e2 = 0, r2 = 0, w2 = 0, emax = 0, rel;
   PetscReal *ref;
   PetscInt   j;
 
@@ -146,13 +157,15 @@ static PetscErrorCode CompareGridSolution(SpectralRun *run, Vec U, PetscReal t)
   PetscCall(VSHMMSpectralReadGridValues(run->sp, name, ref));
   for (j = 0; j < run->N; j++) {
     const double d = run->u[j] - ref[j];
+    const double w = d / (run->atol + run->rtol * fabs(ref[j]));
     e2 += d * d;
     r2 += ref[j] * ref[j];
+    w2 += w * w;
     if (!(fabs(d) <= emax)) emax = fabs(d); /* keeps a NaN */
   }
   PetscCall(PetscFree(ref));
   rel = sqrt(e2 / (r2 > 0 ? r2 : 1.0));
-  snprintf(line, sizeof(line), "compare t %g relative_l2_error %.3e max_error %.3e", (double)t, rel, emax);
+  snprintf(line, sizeof(line), "compare t %g relative_l2_error %.3e max_error %.3e weighted_error %.3e", (double)t, rel, emax, sqrt(w2 / run->N));
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%s\n", line));
   PetscCheck(run->compare_tol <= 0 || rel <= run->compare_tol, /* false for NaN */ PETSC_COMM_WORLD, PETSC_ERR_NOT_CONVERGED, "The relative L2 error %.3e against %s exceeds -compare_tolerance %g", rel, name, (double)run->compare_tol);
   PetscFunctionReturn(0);
@@ -168,8 +181,8 @@ static PetscErrorCode PrintWork(SpectralRun *run, PetscReal t, double wall, cons
   PetscFunctionBeginUser;
   PetscCall(VSHMMSpectralGetStatistics(run->sp, &st));
   /* C's %g (PetscPrintf would print 1 as "1.") */
-  len = snprintf(line, sizeof(line), "output t %g rhs_evaluations %lld split_evaluations %lld inverse_ffts %lld forward_ffts %lld direct_modes %lld", (double)t, (long long)st.field_evaluations, (long long)st.split_calls, (long long)st.inverse_ffts,
-                 (long long)st.forward_ffts, (long long)st.direct_modes);
+  len = snprintf(line, sizeof(line), "output t %g rhs_evaluations %lld split_evaluations %lld inverse_ffts %lld forward_ffts %lld direct_modes %lld", (double)t, (long long)(st.field_evaluations + st.widening_evaluations), (long long)st.split_calls,
+                 (long long)st.inverse_ffts, (long long)st.forward_ffts, (long long)st.direct_modes);
   if (run->timing && len > 0 && len < (int)sizeof(line)) len += snprintf(line + len, sizeof(line) - len, " wall_time %.4e", wall);
   if (file && len > 0 && len < (int)sizeof(line)) len += snprintf(line + len, sizeof(line) - len, " file %s", file);
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%s\n", line));
@@ -233,6 +246,8 @@ static PetscErrorCode SolveToOutputTimes(SpectralRun *run, TS ts, Vec U)
     PetscCall(TSSetMaxTime(ts, ti));
     PetscCall(TSSetTimeStep(ts, run->recheck ? run->recheck_dt : dt0)); /* the step, lowered by StableStepMonitor() */
     PetscCall(TSSolve(ts, U));
+    PetscCall(VSHMMSpectralGetTruncationWidening(run->sp, &run->restart, NULL));
+    if (run->restart) break; /* RunSpectralExample() widens the clusters and runs again */
     PetscCall(TSGetSolveTime(ts, &t));
     PetscCall(TSGetConvergedReason(ts, &reason));
     PetscCheck(reason >= 0, PETSC_COMM_WORLD, PETSC_ERR_NOT_CONVERGED, "The TS diverged (%s) at t = %g before the output time %g", TSConvergedReasons[reason], (double)t, (double)ti);
@@ -253,11 +268,24 @@ static PetscErrorCode SolveToOutputTimes(SpectralRun *run, TS ts, Vec U)
 
 /* TSVSHMM without -ts_dt: the sampling interval DeltaT is the smallest spacing of the output
    times (the final time without them), not the stable step of an explicit method. */
+/* The smallest spacing of the output times (the span to the final time without them). */
+static PetscErrorCode OutputSpacing(SpectralRun *run, TS ts, PetscReal *dt)
+{
+  PetscReal t0;
+  PetscInt  i;
+
+  PetscFunctionBeginUser;
+  PetscCall(TSGetTime(ts, &t0));
+  PetscCall(TSGetMaxTime(ts, dt));
+  *dt -= t0;
+  for (i = 0; i < run->ntimes; i++) *dt = PetscMin(*dt, run->times[i] - (i ? run->times[i - 1] : t0));
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode DefaultSamplingInterval(SpectralRun *run, TS ts)
 {
   PetscBool   isvshmm, set;
-  PetscReal   t0, dt;
-  PetscInt    i;
+  PetscReal   dt;
   const char *prefix;
 
   PetscFunctionBeginUser;
@@ -265,10 +293,7 @@ static PetscErrorCode DefaultSamplingInterval(SpectralRun *run, TS ts)
   PetscCall(TSGetOptionsPrefix(ts, &prefix));
   PetscCall(PetscOptionsHasName(NULL, prefix, "-ts_dt", &set));
   if (!isvshmm || set) PetscFunctionReturn(0);
-  PetscCall(TSGetTime(ts, &t0));
-  PetscCall(TSGetMaxTime(ts, &dt));
-  dt -= t0;
-  for (i = 0; i < run->ntimes; i++) dt = PetscMin(dt, run->times[i] - (i ? run->times[i - 1] : t0));
+  PetscCall(OutputSpacing(run, ts, &dt));
   if (dt > 0) PetscCall(TSSetTimeStep(ts, dt));
   PetscFunctionReturn(0);
 }
@@ -300,7 +325,7 @@ static PetscErrorCode SetGridObservables(SpectralRun *run, TS ts)
     PetscCall(VSHMMSpectralGetSizes(run->sp, NULL, NULL, &nclusters));
     run->nclusters = nclusters;
     PetscCheck(nclusters != 0, PETSC_COMM_WORLD, PETSC_ERR_ARG_INCOMP, "-ts_type vshmm needs the scene's time scales as clusters, but the scene is in mode dns (every wavenumber, no clusters): use -spectral_mode sparse (with -spectral_clusters, or the detection) or another TS type");
-    PetscCheck(nclusters != 1, PETSC_COMM_WORLD, PETSC_ERR_ARG_INCOMP, "-ts_type vshmm needs at least two clusters (time scales), but the scene has one%s: there is nothing to separate. Use -ts_type rk (the explicit sparse method, or -spectral_mode dns) or give -spectral_clusters",
+    PetscCheck(nclusters != 1, PETSC_COMM_WORLD, PETSC_ERR_ARG_INCOMP, "-ts_type vshmm needs at least two clusters (time scales), but the scene has one%s: there is nothing to separate. Use -ts_type rk (the explicit sparse method, or -spectral_mode dns), -ts_vshmm_adapt (which then runs the explicit sparse method) or give -spectral_clusters",
                nclusters == 1 && run->detected ? " (the detection found one band of wavenumbers)" : "");
     PetscCall(TSVSHMMGetAdapt(ts, &adapt));
   }
@@ -471,6 +496,8 @@ static PetscErrorCode SetDefaultSteps(SpectralRun *run, TS ts)
   if (iseuler) rk = TSRK1FE;
   PetscCall(VSHMMSpectralGetStableTimeStep(run->sp, rk, &h));
   if (h >= PETSC_INFINITY) PetscFunctionReturn(0); /* no eigenvalue limits it (PETSC_INFINITY, a finite number): keep the TS's step */
+  PetscCall(OutputSpacing(run, ts, &DeltaT));      /* at least 10 steps between two outputs: the stable step of a few slow modes (a sparse run on narrow clusters) need not resolve their rates */
+  if (DeltaT > 0) h = PetscMin(h, DeltaT / 10);
   PetscCall(TSSetTimeStep(ts, h));
   run->recheck    = PETSC_TRUE;
   run->recheck_rk = rk;
@@ -537,6 +564,84 @@ static PetscErrorCode SetStableStepRecheck(SpectralRun *run, TS ts, Vec U)
   PetscFunctionReturn(0);
 }
 
+/* -spectral_truncation_check widen (the examples' default where the clusters are detected): ends
+   the solve where the truncation check asks for wider clusters; RunSpectralExample() widens them
+   (VSHMMSpectralWidenClusters()) and runs the scene again from its initial state. */
+static PetscErrorCode WidenPostStep(TS ts)
+{
+  SpectralRun *run;
+  PetscBool    pending;
+
+  PetscFunctionBeginUser;
+  PetscCall(TSGetApplicationContext(ts, &run));
+  PetscCall(VSHMMSpectralGetTruncationWidening(run->sp, &pending, NULL));
+  if (pending) PetscCall(TSSetConvergedReason(ts, TS_CONVERGED_USER));
+  PetscFunctionReturn(0);
+}
+
+/* TSVSHMM with -ts_vshmm_adapt on one cluster (a detection that found one band): nothing to
+   separate, so the tolerance is met with no savings at all, the explicit sparse method (TSRK 3 at
+   the operator's stable step), and the example says so; without -ts_vshmm_adapt (parameters the
+   user chose for several scales) SetGridObservables() stops with the advice. */
+static PetscErrorCode OneClusterFallback(SpectralRun *run, TS ts)
+{
+  PetscBool isvshmm, adapt = PETSC_FALSE;
+  PetscInt  nclusters;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectTypeCompare((PetscObject)ts, TSVSHMM, &isvshmm));
+  if (!isvshmm) PetscFunctionReturn(0);
+  PetscCall(TSVSHMMGetAdapt(ts, &adapt));
+  PetscCall(VSHMMSpectralGetSizes(run->sp, NULL, NULL, &nclusters));
+  if (!adapt || nclusters != 1) PetscFunctionReturn(0);
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "one cluster%s: no time scales to separate, so -ts_vshmm_adapt takes no savings: the explicit sparse method (TSRK 3 at the operator's stable step) instead of TSVSHMM\n", run->detected ? " (the detection found one band of wavenumbers)" : ""));
+  PetscCall(TSSetType(ts, TSRK));
+  PetscCall(TSRKSetType(ts, TSRK3));
+  PetscFunctionReturn(0);
+}
+
+/* The state and the TS on the object's layout, from the initial data, with the example's
+   defaults and the options. */
+static PetscErrorCode CreateRun(SpectralRun *run, PetscReal tfinal, TS *ts, Vec *U)
+{
+  PetscFunctionBeginUser;
+  PetscCall(VSHMMSpectralGetSizes(run->sp, &run->N, NULL, NULL));
+  PetscCall(VSHMMSpectralGetModes(run->sp, &run->nmodes, &run->modes));
+  PetscCall(PetscMalloc2(run->N, &run->u, run->nmodes, &run->mags));
+  PetscCall(VSHMMSpectralCreateVec(run->sp, U));
+  PetscCall(VSHMMSpectralSetInitialCondition(run->sp, *U));
+
+  PetscCall(TSCreate(PETSC_COMM_WORLD, ts));
+  PetscCall(TSSetSolution(*ts, *U));
+  PetscCall(VSHMMSpectralSetUpTS(run->sp, *ts));
+  PetscCall(TSSetApplicationContext(*ts, run));
+  PetscCall(TSSetPostStep(*ts, WidenPostStep));
+  PetscCall(TSSetType(*ts, TSRK));
+  PetscCall(TSRKSetType(*ts, TSRK3));
+  PetscCall(TSSetTimeStep(*ts, tfinal / 100)); /* replaced below unless -ts_dt is given */
+  PetscCall(TSSetMaxTime(*ts, tfinal));
+  PetscCall(TSSetMaxSteps(*ts, PETSC_MAX_INT));
+  PetscCall(TSSetExactFinalTime(*ts, TS_EXACTFINALTIME_MATCHSTEP));
+  PetscCall(TSSetFromOptions(*ts));
+  PetscCall(TSGetTolerances(*ts, &run->atol, NULL, &run->rtol, NULL));
+  PetscCall(OneClusterFallback(run, *ts));
+  PetscCall(DefaultSamplingInterval(run, *ts)); /* TSVSHMM without -ts_dt: the output times' spacing */
+  PetscCall(SetDefaultSteps(run, *ts));
+  PetscCall(SetGridObservables(run, *ts));
+  PetscCall(StableMicroStep(run, *ts));
+  PetscCall(SetStableStepRecheck(run, *ts, *U));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode DestroyRun(SpectralRun *run, TS *ts, Vec *U)
+{
+  PetscFunctionBeginUser;
+  PetscCall(TSDestroy(ts));
+  PetscCall(VecDestroy(U));
+  PetscCall(PetscFree2(run->u, run->mags));
+  PetscFunctionReturn(0);
+}
+
 /* Runs the scene `scene` ("diffusion" or "advection") with default final time tfinal. */
 static PetscErrorCode RunSpectralExample(const char *scene, PetscReal tfinal)
 {
@@ -544,6 +649,7 @@ static PetscErrorCode RunSpectralExample(const char *scene, PetscReal tfinal)
   TS            ts;
   Vec           U;
   PetscLogStage setup_stage, solve_stage;
+  PetscBool     clusters;
 
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(&run, sizeof(run)));
@@ -557,6 +663,10 @@ static PetscErrorCode RunSpectralExample(const char *scene, PetscReal tfinal)
   PetscCall(PetscLogStagePush(setup_stage));
   PetscCall(VSHMMSpectralCreate(PETSC_COMM_WORLD, &run.sp));
   PetscCall(VSHMMSpectralSetDefaultScene(run.sp, scene));
+  /* detected clusters are widened where the truncation check asks for it, and the run restarts
+     (WidenPostStep()); explicit ones are the user's (-spectral_truncation_check overrides both) */
+  PetscCall(PetscOptionsHasName(NULL, NULL, "-spectral_clusters", &clusters));
+  if (!clusters) PetscCall(VSHMMSpectralSetTruncationCheck(run.sp, VSHMMSPECTRAL_TRUNCATION_WIDEN));
   { /* the detection's tolerance is the time stepping's (-spectral_cluster_tolerance overrides), and
        so is its threshold: the modes it leaves out cost the sparse method (and VSHMM on its
        clusters) an error of about 10 times the threshold (measured: 1e-4 gives 1e-3 to 5e-3 on
@@ -579,39 +689,32 @@ static PetscErrorCode RunSpectralExample(const char *scene, PetscReal tfinal)
     PetscCall(VSHMMSpectralGetStatistics(run.sp, &st));
     run.detected = st.detection_evaluations > 0 ? PETSC_TRUE : PETSC_FALSE;
   }
-  PetscCall(VSHMMSpectralGetSizes(run.sp, &run.N, NULL, NULL));
-  PetscCall(VSHMMSpectralGetModes(run.sp, &run.nmodes, &run.modes));
-  PetscCall(PetscMalloc2(run.N, &run.u, run.nmodes, &run.mags));
-  PetscCall(VSHMMSpectralCreateVec(run.sp, &U));
-  PetscCall(VSHMMSpectralSetInitialCondition(run.sp, U));
-
-  PetscCall(TSCreate(PETSC_COMM_WORLD, &ts));
-  PetscCall(TSSetSolution(ts, U));
-  PetscCall(VSHMMSpectralSetUpTS(run.sp, ts));
-  PetscCall(TSSetType(ts, TSRK));
-  PetscCall(TSRKSetType(ts, TSRK3));
-  PetscCall(TSSetTimeStep(ts, tfinal / 100)); /* replaced below unless -ts_dt is given */
-  PetscCall(TSSetMaxTime(ts, tfinal));
-  PetscCall(TSSetMaxSteps(ts, PETSC_MAX_INT));
-  PetscCall(TSSetExactFinalTime(ts, TS_EXACTFINALTIME_MATCHSTEP));
-  PetscCall(TSSetFromOptions(ts));
-  PetscCall(DefaultSamplingInterval(&run, ts)); /* TSVSHMM without -ts_dt: the output times' spacing */
-  PetscCall(SetDefaultSteps(&run, ts));
-  PetscCall(SetGridObservables(&run, ts));
-  PetscCall(StableMicroStep(&run, ts));
-  PetscCall(SetStableStepRecheck(&run, ts, U));
+  PetscCall(CreateRun(&run, tfinal, &ts, &U));
   PetscCall(PrintStepper(ts));
   PetscCall(PetscLogStagePop());
 
   PetscCall(PetscLogStagePush(solve_stage));
-  PetscCall(SolveToOutputTimes(&run, ts, U));
+  for (;;) {
+    PetscBool               widened;
+    PetscReal               tw;
+    VSHMMSpectralStatistics st;
+
+    PetscCall(SolveToOutputTimes(&run, ts, U));
+    if (!run.restart) break;
+    PetscCall(VSHMMSpectralGetTruncationWidening(run.sp, &run.restart, &tw));
+    PetscCall(DestroyRun(&run, &ts, &U));
+    PetscCall(VSHMMSpectralWidenClusters(run.sp, &widened));
+    PetscCall(VSHMMSpectralGetStatistics(run.sp, &st));
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "truncation check at t = %g: the clusters are widened (widening %d) and the run starts again from its initial state (rhs_evaluations of the stopped runs %lld, counted in the output lines)\n", (double)tw,
+                          (int)st.widenings, (long long)st.widening_evaluations));
+    PetscCall(VSHMMSpectralView(run.sp, PETSC_VIEWER_STDOUT_WORLD));
+    PetscCall(CreateRun(&run, tfinal, &ts, &U));
+  }
   if (run.recheck && run.recheck_dt < run.recheck_dt0)
     PetscCall(PetscPrintf(PETSC_COMM_WORLD, "stable step rechecks %d (about 41 evaluations each, not in rhs_evaluations): the time step was lowered from %g to %g\n", (int)run.rechecks, (double)run.recheck_dt0, (double)run.recheck_dt));
   PetscCall(PetscLogStagePop());
 
-  PetscCall(TSDestroy(&ts));
-  PetscCall(VecDestroy(&U));
-  PetscCall(PetscFree2(run.u, run.mags));
+  PetscCall(DestroyRun(&run, &ts, &U));
   PetscCall(PetscFree(run.times));
   PetscCall(VSHMMSpectralDestroy(&run.sp));
   PetscFunctionReturn(0);

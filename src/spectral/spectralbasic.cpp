@@ -17,7 +17,7 @@ const char *const VSHMMSpectralDetects[]          = {"none", "initial", "dns", "
 const char *const VSHMMSpectralProjections[]      = {"auto", "fft", "direct", "VSHMMSpectralProjection", "VSHMMSPECTRAL_PROJECTION_", nullptr};
 const char *const VSHMMSpectralEvaluations[]      = {"fft", "matrix", "VSHMMSpectralEvaluation", "VSHMMSPECTRAL_EVALUATION_", nullptr};
 const char *const VSHMMSpectralPlanners[]         = {"estimate", "measure", "patient", "VSHMMSpectralPlanner", "VSHMMSPECTRAL_PLANNER_", nullptr};
-const char *const VSHMMSpectralTruncationChecks[] = {"none", "warn", "error", "VSHMMSpectralTruncationCheck", "VSHMMSPECTRAL_TRUNCATION_", nullptr};
+const char *const VSHMMSpectralTruncationChecks[] = {"none", "warn", "error", "widen", "VSHMMSpectralTruncationCheck", "VSHMMSPECTRAL_TRUNCATION_", nullptr};
 const char *const VSHMMSpectralNormalizations[]   = {"unitary", "series", "dft", "relative", "Normalization", "", nullptr};
 
 static PetscBool VSHMMSpectralPackageInitialized = PETSC_FALSE;

@@ -178,6 +178,15 @@ struct VSHMMSpectral_Data {
   spc::TruncationModel                   truncation;                                                        /* the left-out wavenumbers */
   spc::TruncationModel                   feedback;                                                          /* what they change in the retained ones */
   PetscBool                              truncation_started = PETSC_FALSE, truncation_warned = PETSC_FALSE; /* its share and time: stats */
+  PetscReal                              truncation_warned_share = 0;                                       /* the share of the run's last warning (it warns again at kWarnAgain times it) */
+  /* -spectral_truncation_check widen: the buffers per cluster the check asks for (pending), and
+     the clusters of the widenings applied (used by the set-up instead of the detection's) */
+  std::vector<char> truncation_detuned; /* per left-out wavenumber of `truncation`: its rate is mostly advection's detuning (not widened) */
+  std::vector<int>  widen_buffers;
+  PetscReal         widen_time = 0;
+  spc::ClusterSet   widened;
+  PetscInt          widenings            = 0;
+  PetscInt64        widening_evaluations = 0;
 };
 
 typedef struct _VSHMMSpectralOps *VSHMMSpectralOps;
@@ -226,6 +235,9 @@ PETSC_INTERN PetscErrorCode VSHMMSpectralSampleField_Private(VSHMMSpectral, cons
 PETSC_INTERN PetscErrorCode VSHMMSpectralReadGridFile_Private(MPI_Comm, const char[], std::vector<double> &);
 /* The fields D = sum of diffusion coefficients, A = - sum of velocities, on the grid. */
 PETSC_INTERN PetscErrorCode VSHMMSpectralBuildCoefficients_Private(VSHMMSpectral, std::vector<double> &, std::vector<double> &);
+/* The time-scale separation of consecutive clusters from the linear terms D, A (the slowest rate of
+   cluster j+1 over the fastest of cluster j; empty without linear rates). */
+PETSC_INTERN std::vector<PetscReal> VSHMMSpectralClusterSeparations_Private(const std::vector<std::vector<PetscInt>> &, const std::vector<double> &, const std::vector<double> &);
 /* The terms burgers, reaction and source of the scene on the grid (empty fields for absent terms). */
 PETSC_INTERN PetscErrorCode VSHMMSpectralBuildExtraTerms_Private(VSHMMSpectral, spc::ExtraTerms &);
 /* spectralstable.cpp: the Ritz values of op's Jacobian at the coefficients c0 (Arnoldi), and the

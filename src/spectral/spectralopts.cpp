@@ -267,7 +267,7 @@ static PetscErrorCode CheckOptions(VSHMMSpectral sp)
 .  -spectral_projection <auto,fft,direct> - how a split gets its cluster's coefficients
 .  -spectral_fftw_planner <estimate,measure,patient> - FFTW planning (default estimate)
 .  -spectral_growth_bound <factor> - stop a solve whose solution grows beyond factor times what the scene's terms allow (default 10; 0: no check)
--  -spectral_truncation_check <none,warn,error> - what a sparse run does when the dynamics drive the wavenumbers its clusters leave out beyond -spectral_cluster_tolerance of ||u|| (default warn; `VSHMMSpectralTruncationMonitor()`)
+-  -spectral_truncation_check <none,warn,error,widen> - what a sparse run does when the dynamics drive the wavenumbers its clusters leave out beyond -spectral_cluster_tolerance of ||u|| (default warn; widen: asks a program that restarts for wider clusters, `VSHMMSpectralWidenClusters()`; `VSHMMSpectralTruncationMonitor()`)
 
    Notes:
    Naming a field's form starts the field from that form's defaults: every parameter left out is
@@ -330,7 +330,7 @@ PetscErrorCode VSHMMSpectralSetFromOptions(VSHMMSpectral sp)
   PetscCall(OptionsReal(PetscOptionsObject, sp, "-spectral_growth_bound", "stop a solve whose solution norm exceeds this factor times the bound of the scene's terms (0: no check)", &s->growth_factor));
   PetscCheck(std::isfinite(s->growth_factor) && (s->growth_factor == 0 || s->growth_factor >= 1), PetscObjectComm((PetscObject)sp), PETSC_ERR_ARG_OUTOFRANGE, "-%sspectral_growth_bound must be 0 (no check) or a finite factor >= 1, got %g", VSHMMSpectralPrefix(sp),
              (double)s->growth_factor);
-  PetscCall(OptionsEnum(PetscOptionsObject, sp, "-spectral_truncation_check", "sparse runs: what a check that the left-out wavenumbers stay below -spectral_cluster_tolerance of ||u|| does when they do not", VSHMMSpectralTruncationChecks, &s->truncation_check, &set));
+  PetscCall(OptionsEnum(PetscOptionsObject, sp, "-spectral_truncation_check", "sparse runs: what a check that the left-out wavenumbers stay below -spectral_cluster_tolerance of ||u|| does when they do not (widen: wider clusters for a program that restarts)", VSHMMSpectralTruncationChecks, &s->truncation_check, &set));
   PetscCall(PetscObjectProcessOptionsHandlers((PetscObject)sp, PetscOptionsObject));
   PetscOptionsEnd();
   PetscCall(CheckOptions(sp));

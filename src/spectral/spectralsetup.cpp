@@ -169,7 +169,7 @@ static std::vector<double> BandRates(const spc::ClusterSet &bands, const std::ve
    wavenumber k > 0 of cluster j+1, mean|d| k^2 + mean|a| k (a mode of variable coefficients decays
    or turns at about the mean rate), over the rate of the fastest of cluster j, max|d| k^2 +
    max|a| k (its spectral radius bound). Empty where a cluster has no such rate (no linear terms). */
-static std::vector<PetscReal> ClusterSeparations(const std::vector<std::vector<PetscInt>> &clusters, const std::vector<double> &D, const std::vector<double> &A)
+std::vector<PetscReal> VSHMMSpectralClusterSeparations_Private(const std::vector<std::vector<PetscInt>> &clusters, const std::vector<double> &D, const std::vector<double> &A)
 {
   double md = 0, ma = 0, ad = 0, aa = 0;
   for (double d : D) md = std::max(md, std::fabs(d)), ad += std::fabs(d) / D.size();
@@ -584,6 +584,10 @@ static PetscErrorCode FindClusters(VSHMMSpectral sp, const std::vector<double> &
   std::vector<int>    buffers(s->buffers.begin(), s->buffers.end());
 
   PetscFunctionBegin;
+  if (!s->widened.clusters.empty()) { /* VSHMMSpectralWidenClusters(): the clusters found before, widened; the detection's figures stay */
+    s->clusters = s->widened;
+    PetscFunctionReturn(0);
+  }
   s->detection = VSHMMSpectralDetection();
   PetscCheck(!(explicit_clusters && s->detect != VSHMMSPECTRAL_DETECT_NONE), comm, PETSC_ERR_ARG_INCOMP, "Give either -%sspectral_clusters (explicit) or -%sspectral_cluster_detect %s, not both", pre, pre, VSHMMSpectralDetects[s->detect]);
   const VSHMMSpectralDetect given = s->detect;
@@ -733,7 +737,7 @@ PetscErrorCode VSHMMSpectralSetUp(VSHMMSpectral sp)
     s->cluster_modes.push_back(m);
   }
   s->modes.assign(s->layout->modes().begin(), s->layout->modes().end());
-  s->separations = s->mode == VSHMMSPECTRAL_MODE_SPARSE ? ClusterSeparations(s->cluster_modes, D, A) : std::vector<PetscReal>();
+  s->separations = s->mode == VSHMMSPECTRAL_MODE_SPARSE ? VSHMMSpectralClusterSeparations_Private(s->cluster_modes, D, A) : std::vector<PetscReal>();
   s->out.assign(s->layout->size(), 0.0);
   PetscCall(CalibrateProjection(sp));
   s->cache_valid                 = PETSC_FALSE;
@@ -741,10 +745,14 @@ PetscErrorCode VSHMMSpectralSetUp(VSHMMSpectral sp)
   s->stats.detection_steps       = s->detection.steps;
   s->stats.detection_evaluations = s->detection.evaluations;
   s->stats.detection_time        = s->detection.wall;
+  s->stats.widenings             = s->widenings;
+  s->stats.widening_evaluations  = s->widening_evaluations;
   s->weights                     = spc::parsevalWeights(*s->layout); /* spectralstable.cpp */
   s->ritz_done                   = PETSC_FALSE;
   s->growth_started              = PETSC_FALSE;
   s->truncation_started          = PETSC_FALSE;
+  PetscCall(VecScatterDestroy(&s->gather)); /* for the layout before (VSHMMSpectralWidenClusters()) */
+  PetscCall(VecDestroy(&s->Useq));
   s->full_op.reset(); /* the truncation check's operator on every wavenumber, made at its first look */
   s->full_layout.reset();
   sp->setupcalled = PETSC_TRUE;

@@ -31,6 +31,9 @@ static constexpr PetscReal kGrowingMode     = 0.1;  /* Re lambda > this |lambda|
 static constexpr PetscInt  kGrowthInterval  = 8;    /* the growth check looks at every 8th step */
 static constexpr PetscReal kTruncationLooks = 64;   /* the truncation check looks after each 1/64 of a solve's span */
 static constexpr PetscInt  kTruncationEvery = 1024; /* and at every 1024th step */
+static constexpr PetscInt  kMaxWidenings    = 6;    /* -spectral_truncation_check widen: then it warns */
+static constexpr PetscReal kWarnAgain       = 4;    /* a run warns again where the share grew this much since its last warning */
+static constexpr PetscReal kSeparated       = 10;   /* clusters this far apart in time scale are separated (TSVSHMM's measure): a widening keeps them so */
 
 PetscErrorCode VSHMMSpectralRitzValues_Private(MPI_Comm comm, spc::SpectralOperator &op, const std::vector<double> &c0, std::vector<std::complex<double>> &ritz, PetscInt *evaluations)
 {
@@ -400,7 +403,7 @@ PetscErrorCode VSHMMSpectralGrowthMonitor(TS ts, PetscInt step, PetscReal t, Vec
   if (!(norm <= allowed)) {
     PetscReal dt = 0;
     PetscCall(VSHMMSpectralGetStableTimeStep(sp, TSRK3, &dt));
-    SETERRQ(PetscObjectComm((PetscObject)sp), PETSC_ERR_NOT_CONVERGED, "The solution blew up at t = %g: its L2 norm (RMS over the grid, Parseval) %g exceeds %g, -%sspectral_growth_bound %g times the bound %g that the scene's terms allow (initial norm %g). The time step is probably unstable: the operator's stable step is %g for TSRK3 (VSHMMSpectralGetStableTimeStep()); lower -ts_dt, or for TSVSHMM -ts_vshmm_micro_dt or the savings factors. -%sspectral_growth_bound 0 switches the check off", (double)t, (double)norm, (double)allowed, VSHMMSpectralPrefix(sp),
+    SETERRQ(PetscObjectComm((PetscObject)sp), PETSC_ERR_NOT_CONVERGED, "The solution blew up at t = %g: its L2 norm (RMS over the grid, Parseval) %g %s %g, -%sspectral_growth_bound %g times the bound %g that the scene's terms allow (initial norm %g). The time step is probably unstable: the operator's stable step is %g for TSRK3 (VSHMMSpectralGetStableTimeStep()); lower -ts_dt, or for TSVSHMM -ts_vshmm_micro_dt or the savings factors. -%sspectral_growth_bound 0 switches the check off", (double)t, (double)norm, std::isfinite(norm) ? "exceeds" : "(Inf or NaN) is not below", (double)allowed, VSHMMSpectralPrefix(sp),
             (double)s->growth_factor, (double)s->growth.bound(), (double)s->growth.initialNorm(), (double)dt, VSHMMSpectralPrefix(sp));
   }
   PetscFunctionReturn(0);
@@ -440,21 +443,128 @@ PetscErrorCode VSHMMSpectralSetGrowthBound(VSHMMSpectral sp, PetscReal factor)
 
    Input Parameters:
 +  sp - the object
--  check - `VSHMMSPECTRAL_TRUNCATION_NONE`, `VSHMMSPECTRAL_TRUNCATION_WARN` (default) or `VSHMMSPECTRAL_TRUNCATION_ERROR`
+-  check - `VSHMMSPECTRAL_TRUNCATION_NONE`, `VSHMMSPECTRAL_TRUNCATION_WARN` (default), `VSHMMSPECTRAL_TRUNCATION_ERROR` or `VSHMMSPECTRAL_TRUNCATION_WIDEN`
 
    Options Database Key:
-.  -spectral_truncation_check <none,warn,error> - the same
+.  -spectral_truncation_check <none,warn,error,widen> - the same
+
+   Notes:
+   With `VSHMMSPECTRAL_TRUNCATION_WIDEN` the check records, instead of a warning, the buffers
+   (`-spectral_cluster_buffers`) that would hold the wavenumbers it names. The program sees it with
+   `VSHMMSpectralGetTruncationWidening()` (e.g. in a post-step function that ends the solve with
+   `TSSetConvergedReason()`), calls `VSHMMSpectralWidenClusters()`, creates its state and TS again
+   and runs from its initial state: the examples do (docs/spectral.md, "Widening the clusters and
+   running again"). After six widenings, or where the model of the wavenumbers named rests on
+   advection's detuning (which reads up to several times above the truth), the check warns as with
+   `VSHMMSPECTRAL_TRUNCATION_WARN`, and so it does at the end of a solve whose widening was not
+   applied.
 
    Level: intermediate
 
-.seealso: `VSHMMSpectralTruncationMonitor()`, `VSHMMSpectralSetClusterTolerance()`, `VSHMMSpectralGetStatistics()`
+.seealso: `VSHMMSpectralTruncationMonitor()`, `VSHMMSpectralSetClusterTolerance()`, `VSHMMSpectralGetStatistics()`, `VSHMMSpectralWidenClusters()`
 @*/
 PetscErrorCode VSHMMSpectralSetTruncationCheck(VSHMMSpectral sp, VSHMMSpectralTruncationCheck check)
 {
   PetscFunctionBegin;
   VSHMMValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
-  PetscCheck(check >= VSHMMSPECTRAL_TRUNCATION_NONE && check <= VSHMMSPECTRAL_TRUNCATION_ERROR, PetscObjectComm((PetscObject)sp), PETSC_ERR_ARG_OUTOFRANGE, "Unknown truncation check %d (-%sspectral_truncation_check): none (0), warn (1) or error (2)", (int)check, VSHMMSpectralPrefix(sp));
+  PetscCheck(check >= VSHMMSPECTRAL_TRUNCATION_NONE && check <= VSHMMSPECTRAL_TRUNCATION_WIDEN, PetscObjectComm((PetscObject)sp), PETSC_ERR_ARG_OUTOFRANGE, "Unknown truncation check %d (-%sspectral_truncation_check): none (0), warn (1), error (2) or widen (3)", (int)check, VSHMMSpectralPrefix(sp));
   sp->data->truncation_check = check;
+  PetscFunctionReturn(0);
+}
+
+/* The clusters widened by `buffers` (one per cluster), without overlaps (spc::widenClusters()). */
+static PetscErrorCode WidenedClusters(VSHMMSpectral sp, const std::vector<int> &buffers, spc::ClusterSet *widened)
+{
+  VSHMMSpectral_Data *s = sp->data;
+  spc::ClusterSet     current;
+
+  PetscFunctionBegin;
+  current.N = (int)s->N;
+  for (const auto &m : s->cluster_modes) current.clusters.emplace_back(m.begin(), m.end());
+  try {
+    *widened = spc::widenClusters(current, buffers);
+  } catch (const std::exception &e) {
+    SETERRQ(PetscObjectComm((PetscObject)sp), PETSC_ERR_LIB, "widening the clusters: %s", e.what());
+  }
+  PetscFunctionReturn(0);
+}
+
+/*@
+   VSHMMSpectralGetTruncationWidening - Tells whether the truncation check (with
+   `VSHMMSPECTRAL_TRUNCATION_WIDEN`) asks for wider clusters
+
+   Not collective
+
+   Input Parameter:
+.  sp - the object
+
+   Output Parameters:
++  pending - `PETSC_TRUE` where a widening was asked for and `VSHMMSpectralWidenClusters()` has not applied it yet
+-  t - the time of the check that asked for it (pass NULL if not wanted)
+
+   Notes:
+   A program that restarts calls this in a post-step function (`TSSetPostStep()`) and ends the
+   solve with `TSSetConvergedReason(ts, TS_CONVERGED_USER)` where it is true, and after each
+   `TSSolve()`; the same on every rank.
+
+   Level: intermediate
+
+.seealso: `VSHMMSpectralSetTruncationCheck()`, `VSHMMSpectralWidenClusters()`
+@*/
+PetscErrorCode VSHMMSpectralGetTruncationWidening(VSHMMSpectral sp, PetscBool *pending, PetscReal *t)
+{
+  PetscFunctionBegin;
+  VSHMMValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
+  PetscValidBoolPointer(pending, 2);
+  *pending = sp->data->widen_buffers.empty() ? PETSC_FALSE : PETSC_TRUE;
+  if (t) *t = sp->data->widen_time;
+  PetscFunctionReturn(0);
+}
+
+/*@
+   VSHMMSpectralWidenClusters - Widens the clusters as the truncation check asked for
+   (`VSHMMSPECTRAL_TRUNCATION_WIDEN`) and sets the object up again on them
+
+   Collective
+
+   Input Parameter:
+.  sp - the object
+
+   Output Parameter:
+.  widened - `PETSC_TRUE` where the clusters were widened (a widening was pending)
+
+   Notes:
+   Each cluster gains the buffer the check named for it, as `-spectral_cluster_buffers` adds one:
+   the distance of the left-out wavenumbers it modelled largest to their nearest cluster, at least
+   half the width of the band of retained wavenumbers nearest to each; a wavenumber that two
+   clusters' buffers reach goes to the nearer (`spc::widenClusters()`). The number of clusters and
+   the detection's figures stay (no detection again). The state's size
+   changes: the program destroys its Vec and TS, creates them again (`VSHMMSpectralCreateVec()`,
+   `VSHMMSpectralSetInitialCondition()`, `VSHMMSpectralSetUpTS()`) and runs from the initial state.
+   The field evaluations of the stopped run are added to the statistics' `widening_evaluations`.
+
+   Level: intermediate
+
+.seealso: `VSHMMSpectralGetTruncationWidening()`, `VSHMMSpectralSetTruncationCheck()`, `VSHMMSpectralGetStatistics()`
+@*/
+PetscErrorCode VSHMMSpectralWidenClusters(VSHMMSpectral sp, PetscBool *widened)
+{
+  VSHMMSpectral_Data *s;
+
+  PetscFunctionBegin;
+  VSHMMValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
+  PetscValidBoolPointer(widened, 2);
+  s        = sp->data;
+  *widened = PETSC_FALSE;
+  if (s->widen_buffers.empty()) PetscFunctionReturn(0);
+  PetscCall(WidenedClusters(sp, s->widen_buffers, &s->widened));
+  s->widening_evaluations += s->stats.field_evaluations;
+  s->widenings++;
+  s->widen_buffers.clear();
+  PetscCall(PetscInfo(sp, "truncation check: clusters widened (%d of at most %d widenings): %s\n", (int)s->widenings, (int)kMaxWidenings, s->widened.format().c_str()));
+  sp->setupcalled = PETSC_FALSE;
+  PetscCall(VSHMMSpectralSetUp(sp));
+  *widened = PETSC_TRUE;
   PetscFunctionReturn(0);
 }
 
@@ -492,12 +602,14 @@ static PetscErrorCode StartTruncationModel(VSHMMSpectral sp, PetscReal t)
   std::vector<int>          modes;
   std::vector<double>       rates, weights, a0;
   const std::vector<int>   &kept = s->layout->modes(); /* sorted within each cluster */
+  s->truncation_detuned.clear();
   for (int k = 0; k <= spc::maxWavenumber(N); ++k) {
     if (s->layout->indexOf(k) >= 0) continue;
     int dist = N;
     for (int q : kept) dist = std::min(dist, std::abs(k - q));
     modes.push_back(k);
     rates.push_back(meanD * k * k - linear + std::abs(meanA) * dist);
+    s->truncation_detuned.push_back(std::abs(meanA) * dist > std::abs(meanD * k * k - linear));
     weights.push_back(spc::isRealOnly(N, k) ? 1.0 : 2.0);
     a0.push_back(m0[k]);
   }
@@ -511,37 +623,58 @@ static PetscErrorCode StartTruncationModel(VSHMMSpectral sp, PetscReal t)
     rates.push_back(meanD * k * k - linear);
     weights.push_back(spc::isRealOnly(N, k) ? 1.0 : 2.0);
   }
-  s->feedback               = spc::TruncationModel(modes, rates, weights, t, {});
-  s->truncation_started     = PETSC_TRUE;
-  s->truncation_warned      = PETSC_FALSE;
-  s->stats.truncation_share = 0;
-  s->stats.truncation_time  = t;
+  s->feedback                = spc::TruncationModel(modes, rates, weights, t, {});
+  s->truncation_started      = PETSC_TRUE;
+  s->truncation_warned       = PETSC_FALSE;
+  s->truncation_warned_share = 0;
+  s->stats.truncation_share  = 0;
+  s->stats.truncation_time   = t;
   PetscFunctionReturn(0);
 }
 
-/* The truncation check's message: the share, the wavenumbers that hold most of it, and the buffers
-   of -spectral_cluster_buffers that would retain them (each named wavenumber's distance to its
-   nearest cluster). */
-static PetscErrorCode TruncationMessage(VSHMMSpectral sp, PetscReal t, PetscReal share, PetscReal norm, std::string &text)
+/* The buffers of -spectral_cluster_buffers that would retain the wavenumbers `named` (each one's
+   distance to its nearest cluster); with `grow`, at least half the width of the band of
+   consecutive retained wavenumbers nearest to each (a widening that only reaches the modes named
+   lags a cascade, e.g. a steepening Burgers front, by one ring of wavenumbers per restart). */
+static std::vector<int> TruncationBuffers(const VSHMMSpectral_Data *s, const std::vector<int> &named, bool grow)
 {
-  VSHMMSpectral_Data *s      = sp->data;
-  const char         *pre    = VSHMMSpectralPrefix(sp);
-  const auto          named  = s->truncation.largest(0.25 * s->cluster_tol * norm);
-  const int           nclust = (int)s->cluster_modes.size();
-  std::vector<int>    buffers(nclust, 0);
-  char                buf[1024];
+  const int        nclust = (int)s->cluster_modes.size();
+  std::vector<int> buffers(nclust, 0);
 
-  PetscFunctionBegin;
   for (int k : named) {
-    int best = 0, dist = INT_MAX;
+    int best = 0, dist = INT_MAX, near = 0;
     for (int j = 0; j < nclust; ++j)
       for (PetscInt q : s->cluster_modes[j])
         if (std::abs(k - (int)q) < dist) {
           dist = std::abs(k - (int)q);
           best = j;
+          near = (int)q;
         }
+    if (grow && dist < INT_MAX) {
+      const std::vector<PetscInt> &m  = s->cluster_modes[best]; /* sorted within a cluster */
+      const auto                   i  = std::lower_bound(m.begin(), m.end(), (PetscInt)near) - m.begin();
+      size_t                       lo = (size_t)i, hi = (size_t)i;
+      while (lo > 0 && m[lo - 1] == m[lo] - 1) --lo;
+      while (hi + 1 < m.size() && m[hi + 1] == m[hi] + 1) ++hi;
+      dist = std::max(dist, (int)(hi - lo + 2) / 2);
+    }
     buffers[best] = std::max(buffers[best], dist);
   }
+  return buffers;
+}
+
+/* The truncation check's message: the share, the wavenumbers that hold most of it, and the buffers
+   of -spectral_cluster_buffers that would retain them. */
+static PetscErrorCode TruncationMessage(VSHMMSpectral sp, PetscReal t, PetscReal share, PetscReal norm, const std::string &note, std::string &text)
+{
+  VSHMMSpectral_Data    *s       = sp->data;
+  const char            *pre     = VSHMMSpectralPrefix(sp);
+  const auto             named   = s->truncation.largest(0.25 * s->cluster_tol * norm);
+  const std::vector<int> buffers = TruncationBuffers(s, named, false);
+  const int              nclust  = (int)buffers.size();
+  char                   buf[1280];
+
+  PetscFunctionBegin;
   std::string list;
   for (int j = 0; j < nclust; ++j) list += (j ? "," : "") + std::to_string(buffers[j]);
   PetscCall(PetscSNPrintf(buf, sizeof(buf),
@@ -550,7 +683,7 @@ static PetscErrorCode TruncationMessage(VSHMMSpectral sp, PetscReal t, PetscReal
                           "(-%sspectral_cluster_buffers %s, or -%sspectral_clusters), or let the detection look longer (-%sspectral_cluster_detect_times: its direct simulation sees the fast time scales, not what the slow dynamics create later). "
                           "(-%sspectral_truncation_check %s, none silences it.)",
                           (double)t, (double)share, pre, (double)s->cluster_tol, spc::formatModes(named).c_str(), pre, list.c_str(), pre, pre, pre, s->truncation_check == VSHMMSPECTRAL_TRUNCATION_ERROR ? "warn makes this a warning" : "error makes this an error"));
-  text = buf;
+  text = buf + note;
   PetscFunctionReturn(0);
 }
 
@@ -588,7 +721,7 @@ static PetscErrorCode TruncationMessage(VSHMMSpectral sp, PetscReal t, PetscReal
    check").
 
    Options Database Key:
-.  -spectral_truncation_check <warn,error,none> - what a failed check does (default warn)
+.  -spectral_truncation_check <warn,error,widen,none> - what a failed check does (default warn; widen: `VSHMMSpectralSetTruncationCheck()`)
 
    Level: developer
 
@@ -653,10 +786,54 @@ PetscErrorCode VSHMMSpectralTruncationMonitor(TS ts, PetscInt step, PetscReal t,
     s->stats.truncation_share = share;
     s->stats.truncation_time  = t;
   }
-  if (!start && s->cluster_tol > 0 && share > s->cluster_tol && !s->truncation_warned) { /* the initial data's own truncation counts where it lasts */
+  const bool  widen = s->truncation_check == VSHMMSPECTRAL_TRUNCATION_WIDEN;
+  std::string note;
+  if (widen && !s->widen_buffers.empty()) { /* asked for and not applied: said at the end of a later solve */
+    const bool at_end = t >= tmax - 1e-12 * PetscMax(1.0, PetscAbsReal(tmax));
+    if (!(at_end && t > s->widen_time)) PetscFunctionReturn(0);
+    char buf[256];
+    PetscCall(PetscSNPrintf(buf, sizeof(buf), " (-%sspectral_truncation_check widen: the widening it asked for at t = %g was not applied by VSHMMSpectralWidenClusters().)", VSHMMSpectralPrefix(sp), (double)s->widen_time));
+    note = buf;
+  } else if (widen && s->widenings >= kMaxWidenings) {
+    char buf[256];
+    PetscCall(PetscSNPrintf(buf, sizeof(buf), " (-%sspectral_truncation_check widen: the clusters were widened %d times already.)", VSHMMSpectralPrefix(sp), (int)s->widenings));
+    note = buf;
+  }
+  if (!start && s->cluster_tol > 0 && share > s->cluster_tol && (!s->truncation_warned || share > kWarnAgain * s->truncation_warned_share)) { /* the initial data's own truncation counts where it lasts */
+    std::vector<int> named = s->truncation.largest(0.25 * s->cluster_tol * norm);
+    if (named.empty()) named = s->truncation.largest(0.25 * s->truncation.norm()); /* the share is their feedback: the modes that drive it */
+    bool detuned = false;                                                          /* a rate set by advection's detuning: the model reads up to several times above the truth there; 0.8-1.5 times it elsewhere */
+    for (int k : named) detuned = detuned || s->truncation_detuned[std::lower_bound(left.begin(), left.end(), k) - left.begin()];
+    if (widen && note.empty() && detuned)
+      note = " (-" + std::string(VSHMMSpectralPrefix(sp)) + "spectral_truncation_check widen: not widened, as the model of the wavenumbers named rests on advection's detuning, where it reads up to several times above the truth.)";
+    std::vector<int> buffers;
+    if (widen && note.empty()) { /* clusters separated before stay so: wider ones of no savings would take about the work of a direct simulation */
+      spc::ClusterSet     candidate;
+      std::vector<double> D, A;
+      buffers = TruncationBuffers(s, named, true);
+      PetscCall(WidenedClusters(sp, buffers, &candidate));
+      PetscCall(VSHMMSpectralBuildCoefficients_Private(sp, D, A));
+      std::vector<std::vector<PetscInt>> modes;
+      for (const auto &c : candidate.clusters) modes.emplace_back(c.begin(), c.end());
+      const std::vector<PetscReal> after = VSHMMSpectralClusterSeparations_Private(modes, D, A);
+      for (size_t j = 0; j < after.size() && j < s->separations.size() && note.empty(); ++j)
+        if (s->separations[j] >= kSeparated && after[j] < kSeparated) {
+          char buf[512];
+          PetscCall(PetscSNPrintf(buf, sizeof(buf), " (-%sspectral_truncation_check widen: not widened, as the clusters that hold them would be %.3g apart in time scale, clusters %d and %d (%.3g now), not separated: VSHMM would take no savings on them, and a direct simulation, -%sspectral_mode dns, is the tool at this tolerance.)", VSHMMSpectralPrefix(sp), (double)after[j], (int)j, (int)j + 1,
+                                  (double)s->separations[j], VSHMMSpectralPrefix(sp)));
+          note = buf;
+        }
+    }
+    if (widen && note.empty()) { /* the buffers that hold the named wavenumbers, for VSHMMSpectralWidenClusters() */
+      s->widen_buffers = buffers;
+      s->widen_time    = t;
+      PetscCall(PetscInfo(sp, "truncation check at t = %g: %g of ||u|| modelled beyond -spectral_cluster_tolerance %g: a widening of the clusters is asked for (VSHMMSpectralGetTruncationWidening())\n", (double)t, (double)share, (double)s->cluster_tol));
+      PetscFunctionReturn(0);
+    }
     std::string text;
-    PetscCall(TruncationMessage(sp, t, share, norm, text));
-    s->truncation_warned = PETSC_TRUE;
+    PetscCall(TruncationMessage(sp, t, share, norm, note, text));
+    s->truncation_warned       = PETSC_TRUE;
+    s->truncation_warned_share = share;
     PetscCheck(s->truncation_check != VSHMMSPECTRAL_TRUNCATION_ERROR, PetscObjectComm((PetscObject)sp), PETSC_ERR_NOT_CONVERGED, "%s", text.c_str());
     PetscCall(PetscFPrintf(PetscObjectComm((PetscObject)sp), PETSC_STDERR, "VSHMMSpectral warning: %s\n", text.c_str()));
   }

@@ -53,7 +53,9 @@ static std::string DescribeScene(const VSHMMSpectral_Data *s)
   m << "  u0 = " << s->u0.describe() << "\n";
   if (s->mode == VSHMMSPECTRAL_MODE_DNS) m << "mode dns: every wavenumber, " << s->layout->size() << " coefficients\n";
   else {
-    m << "mode sparse: " << s->layout->modeCount() << " wavenumbers (" << s->layout->size() << " coefficients) in " << s->layout->clusterCount() << " clusters, one RHS split each (slowest first)\n";
+    m << "mode sparse: " << s->layout->modeCount() << " wavenumbers (" << s->layout->size() << " coefficients) in " << s->layout->clusterCount() << " clusters, one RHS split each (slowest first)";
+    if (s->widenings) m << "; widened " << s->widenings << (s->widenings > 1 ? " times" : " time") << " as the truncation check asked (-spectral_truncation_check widen)";
+    m << "\n";
     for (int j = 0; j < s->layout->clusterCount(); ++j) {
       std::vector<int> modes(s->cluster_modes[j].begin(), s->cluster_modes[j].end());
       m << "  K" << j << " = {" << spc::formatModes(modes) << "}: " << modes.size() << " wavenumbers, coefficients " << s->layout->clusterOffsetBegin(j) << ".." << s->layout->clusterOffsetEnd(j) - 1 << "\n";

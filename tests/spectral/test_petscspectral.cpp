@@ -509,6 +509,65 @@ TEST(VSHMMSpectralTruncation, ModelOfAForcedLeftOutMode)
   EXPECT_EQ(st.truncation_share, 0);
   Scene s("-spectral_grid_points 32");
   PetscPushErrorHandler(PetscReturnErrorHandler, nullptr);
-  EXPECT_EQ(VSHMMSpectralSetTruncationCheck(s.sp, (VSHMMSpectralTruncationCheck)3), PETSC_ERR_ARG_OUTOFRANGE);
+  EXPECT_EQ(VSHMMSpectralSetTruncationCheck(s.sp, (VSHMMSpectralTruncationCheck)4), PETSC_ERR_ARG_OUTOFRANGE);
   PetscPopErrorHandler();
+}
+
+// -spectral_truncation_check widen on the same run: the check asks for the buffer that holds
+// wavenumber 3 (and, as the cluster {0, 1} is a band of 2, at least 1: 2), a program that does not
+// restart is warned at the end of the solve, VSHMMSpectralWidenClusters() widens {0, 1} to
+// {0..3} and sets up again: the state's size, the statistics' widening, no pending request
+TEST(VSHMMSpectralTruncation, WidenTheClusters)
+{
+  Scene s("-spectral_grid_points 32 -spectral_mode sparse -spectral_clusters 0:1 -spectral_diffusion_coefficient fourier -spectral_diffusion_coefficient_offset 1 "
+          "-spectral_diffusion_coefficient_wavenumbers 2 -spectral_diffusion_coefficient_cos 0.5 -spectral_u0 fourier -spectral_u0_wavenumbers 1 -spectral_u0_cos 1 -spectral_truncation_check widen");
+  EXPECT_EQ(s.error(), "");
+  PetscBool pending = PETSC_TRUE, widened = PETSC_TRUE;
+  PetscReal tw = -1;
+  PetscInt  n  = 0;
+  EXPECT_EQ(VSHMMSpectralWidenClusters(s.sp, &widened), 0); // nothing asked for
+  EXPECT_FALSE(widened);
+  Vec     U;
+  TS      ts;
+  TSAdapt adapt;
+  EXPECT_EQ(VSHMMSpectralCreateVec(s.sp, &U), 0);
+  EXPECT_EQ(VecGetSize(U, &n), 0);
+  EXPECT_EQ(n, 3);
+  EXPECT_EQ(VSHMMSpectralSetInitialCondition(s.sp, U), 0);
+  EXPECT_EQ(TSCreate(PETSC_COMM_WORLD, &ts), 0);
+  EXPECT_EQ(TSSetSolution(ts, U), 0);
+  EXPECT_EQ(VSHMMSpectralSetUpTS(s.sp, ts), 0);
+  EXPECT_EQ(TSSetType(ts, TSRK), 0);
+  EXPECT_EQ(TSGetAdapt(ts, &adapt), 0);
+  EXPECT_EQ(TSAdaptSetType(adapt, TSADAPTNONE), 0);
+  EXPECT_EQ(TSSetTimeStep(ts, 1e-3), 0);
+  EXPECT_EQ(TSSetExactFinalTime(ts, TS_EXACTFINALTIME_MATCHSTEP), 0);
+  EXPECT_EQ(TSSetMaxTime(ts, 0.5), 0);
+  testing::internal::CaptureStderr();
+  EXPECT_EQ(TSSolve(ts, U), 0);
+  const std::string said = testing::internal::GetCapturedStderr();
+  EXPECT_NE(said.find("truncation check at t = 0.5: "), std::string::npos) << said;
+  EXPECT_NE(said.find("widening it asked for at t = 0.016 was not applied by VSHMMSpectralWidenClusters()"), std::string::npos) << said;
+  EXPECT_EQ(VSHMMSpectralGetTruncationWidening(s.sp, &pending, &tw), 0);
+  EXPECT_TRUE(pending);
+  EXPECT_LT(tw, 0.05); // the first look above the default tolerance 1e-2 (not applied: the warning at the solve's end, stderr)
+  TSDestroy(&ts);
+  VecDestroy(&U);
+  EXPECT_EQ(VSHMMSpectralWidenClusters(s.sp, &widened), 0);
+  EXPECT_TRUE(widened);
+  EXPECT_EQ(VSHMMSpectralGetTruncationWidening(s.sp, &pending, nullptr), 0);
+  EXPECT_FALSE(pending);
+  PetscInt        nm;
+  const PetscInt *modes;
+  EXPECT_EQ(VSHMMSpectralGetModes(s.sp, &nm, &modes), 0);
+  EXPECT_EQ(std::vector<PetscInt>(modes, modes + nm), (std::vector<PetscInt>{0, 1, 2, 3}));
+  EXPECT_EQ(VSHMMSpectralCreateVec(s.sp, &U), 0);
+  EXPECT_EQ(VecGetSize(U, &n), 0);
+  EXPECT_EQ(n, 7);
+  VecDestroy(&U);
+  VSHMMSpectralStatistics st;
+  EXPECT_EQ(VSHMMSpectralGetStatistics(s.sp, &st), 0);
+  EXPECT_EQ(st.widenings, 1);
+  EXPECT_GT(st.widening_evaluations, 1000); // the stopped runs' 600 RK steps
+  EXPECT_EQ(st.field_evaluations, 0);
 }
