@@ -266,8 +266,6 @@ static PetscErrorCode SolveToOutputTimes(SpectralRun *run, TS ts, Vec U)
   PetscFunctionReturn(0);
 }
 
-/* TSVSHMM without -ts_dt: the sampling interval DeltaT is the smallest spacing of the output
-   times (the final time without them), not the stable step of an explicit method. */
 /* The smallest spacing of the output times (the span to the final time without them). */
 static PetscErrorCode OutputSpacing(SpectralRun *run, TS ts, PetscReal *dt)
 {
@@ -282,6 +280,8 @@ static PetscErrorCode OutputSpacing(SpectralRun *run, TS ts, PetscReal *dt)
   PetscFunctionReturn(0);
 }
 
+/* TSVSHMM without -ts_dt: the sampling interval DeltaT is the smallest spacing of the output
+   times (the final time without them), not the stable step of an explicit method. */
 static PetscErrorCode DefaultSamplingInterval(SpectralRun *run, TS ts)
 {
   PetscBool   isvshmm, set;
