@@ -28,6 +28,7 @@
 #include <functional>
 #include <string>
 
+static constexpr PetscReal kOwnOscillation      = 2; /* a faster level's limiting oscillation at most this times the slower level's radius is the slower levels' own (SustainedMode()) */
 static constexpr PetscInt  kArnoldiSteps        = 16;
 static constexpr PetscInt  kRadiusIterations    = 2;    /* power steps of TSVSHMMLevelRadius_Private() per call */
 static constexpr PetscReal kAmplitudeSpanChange = 0.05; /* an additive level's own amplitude rate counts where it changes the amplitude by this much over the run */
@@ -1197,14 +1198,25 @@ PetscErrorCode TSVSHMMLevelOwnRates_Private(TS ts)
   PetscFunctionReturn(0);
 }
 
-/* Whether level `level` has a sustained oscillation among its limiting modes: one whose amplitude
-   decays by less than e^kSustainedDecay over a macro step (a damped spiral's transient is a layer,
-   which the comparisons see). */
+/* Whether lambda, a limiting mode of level `level`'s field G_level = f_0 + ... + f_level, is a
+   sustained oscillation of that level: its amplitude decays by less than e^kSustainedDecay over a
+   macro step (a damped spiral's transient is a layer, which the comparisons see), and it turns faster
+   than kOwnOscillation times the slower level's spectral radius. A slower one is the slower levels'
+   own dynamics, which G_level holds too (a slow oscillator at 0.85 under a fast relaxation at 1e3
+   was taken for level 1's oscillation before 2026-11-28: a forcing 5.8e5 times the slow dynamics
+   was said, and -ts_vshmm_adapt took no savings for a swing of 1e4 tolerances that was not there). */
+static bool SustainedMode(const TS_VSHMM *vs, PetscInt level, const std::complex<double> &lambda, PetscReal DeltaT)
+{
+  if (!vshmm::oscillates(lambda) || !(std::fabs(lambda.real()) * DeltaT < kSustainedDecay)) return false;
+  return level == 0 || (PetscInt)vs->level_radius.size() < level || !(std::abs(lambda) <= kOwnOscillation * vs->level_radius[level - 1]);
+}
+
+/* Whether level `level` has a sustained oscillation among its limiting modes (SustainedMode()). */
 static bool SustainedOscillation(const TS_VSHMM *vs, PetscInt level, PetscReal DeltaT)
 {
   if ((PetscInt)vs->level_limiting.size() <= level) return false;
   for (const std::complex<double> &lambda : vs->level_limiting[level])
-    if (vshmm::oscillates(lambda) && std::fabs(lambda.real()) * DeltaT < kSustainedDecay) return true;
+    if (SustainedMode(vs, level, lambda, DeltaT)) return true;
   return false;
 }
 
@@ -1215,7 +1227,7 @@ static PetscReal SustainedFrequency(const TS_VSHMM *vs, PetscInt level, PetscRea
   PetscReal omega = 0;
   if ((PetscInt)vs->level_limiting.size() <= level) return 0;
   for (const std::complex<double> &lambda : vs->level_limiting[level])
-    if (vshmm::oscillates(lambda) && std::fabs(lambda.real()) * DeltaT < kSustainedDecay) omega = PetscMax(omega, std::abs(lambda));
+    if (SustainedMode(vs, level, lambda, DeltaT)) omega = PetscMax(omega, std::abs(lambda));
   return omega;
 }
 

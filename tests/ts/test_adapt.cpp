@@ -2149,6 +2149,42 @@ TEST(VSHMMAdapt, TheWorkIsSetAgainstSingleRateStepsAtTheLargestStepTheBoundsAllo
   EXPECT_NE(said.find("did not pay for their comparisons"), std::string::npos) << said;
 }
 
+// A slow oscillator under a fast relaxation (an outside probe's, 2026-11-28): x' = y, y' = -x -
+// 0.1 y + 0.5 z (slow: x, y), z' = -(z - sin x) / 1e-3 (fast: z, which only decays). Level 1's field
+// G_1 = f_0 + f_1 holds the slow oscillation (frequency 0.85), which was taken for level 1's own:
+// savings set were said to make a forcing 5.8e5 times the slow dynamics drift the answer by 1.5e9 of
+// its size (it was 7e-4 off), and -ts_vshmm_adapt took no savings for a swing of 1e4 tolerances. An
+// oscillation of a faster level's field at most twice the slower level's spectral radius is the
+// slower level's own (SustainedMode()).
+void SlowOscillatorSlow(const void *, PetscReal, const PetscScalar *x, PetscScalar *f)
+{
+  f[0] = x[1];
+  f[1] = -x[0] - 0.1 * x[1] + 0.5 * x[2];
+  f[2] = 0;
+}
+void SlowOscillatorFast(const void *, PetscReal, const PetscScalar *x, PetscScalar *f)
+{
+  f[0] = f[1] = 0;
+  f[2]        = -(x[2] - PetscSinReal(PetscRealPart(x[0]))) / 1e-3;
+}
+
+TEST(VSHMMSeparation, ASlowOscillationInAFasterLevelsFieldIsTheSlowLevels)
+{
+  const std::vector<double> x0  = {1.0, 0.0, 0.0};
+  const double              ref = ConvergedReference({SlowOscillatorSlow, SlowOscillatorFast}, nullptr, x0, 1, 1e-5, 5e-6, 1e-9);
+  SplitProblem              p;
+  AdaptRun                  run;
+  std::string               said;
+  p.terms      = {SlowOscillatorSlow, SlowOscillatorFast};
+  p.components = {{0, 1}, {2}};
+  ASSERT_EQ(SolveObservingX0Saying("-ts_vshmm_savings_factors 10 -ts_vshmm_micro_dt 1e-4", p, x0, 0.1, 1, &run, &said), 0);
+  EXPECT_EQ(said.find("forces level 0"), std::string::npos) << said;
+  EXPECT_LE(std::abs(run.x[0] - ref), 2e-3) << "x(1) = " << run.x[0] << ", reference " << ref;
+  ASSERT_EQ(SolveObservingX0Saying("-ts_vshmm_adapt -ts_rtol 1e-3 -ts_atol 1e-3", p, x0, 0.1, 1, &run, &said), 0);
+  EXPECT_EQ(said.find("oscillation"), std::string::npos) << said;
+  EXPECT_LE(std::abs(run.x[0] - ref), 2e-3 * (1 + std::abs(ref))) << "x(1) = " << run.x[0] << ", reference " << ref;
+}
+
 // A decaying pair of levels less than 2 apart, among separated ones, takes no savings. The
 // dissipative example at eps = 3e-2 (xi observed, tol 3e-3, to t = 2): levels 1/2 are 1.31 apart
 // (0/1: 667). Their start ratio r_2 = 1 cannot be coarsened by a calibration (r - 1 = 0 times 4),
