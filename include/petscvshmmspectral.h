@@ -113,6 +113,7 @@ PETSC_EXTERN PetscErrorCode VSHMMSpectralSetUpTS(VSHMMSpectral, TS);
 PETSC_EXTERN PetscErrorCode VSHMMSpectralEstimateTimeStep(VSHMMSpectral, PetscReal *);
 PETSC_EXTERN PetscErrorCode VSHMMSpectralGetStableTimeStep(VSHMMSpectral, TSRKType, PetscReal *);
 PETSC_EXTERN PetscErrorCode VSHMMSpectralGetStableTimeStepAt(VSHMMSpectral, Vec, TSRKType, PetscReal *);
+PETSC_EXTERN PetscErrorCode VSHMMSpectralGetDNSStableTimeStep(VSHMMSpectral, TSRKType, PetscReal *);
 PETSC_EXTERN PetscErrorCode VSHMMSpectralGetSpectralRadius(VSHMMSpectral, PetscReal *, PetscReal *);
 PETSC_EXTERN PetscErrorCode VSHMMSpectralSetGrowthBound(VSHMMSpectral, PetscReal);
 
@@ -126,6 +127,8 @@ $  VSHMMSPECTRAL_TRUNCATION_ERROR - the solve stops with PETSC_ERR_NOT_CONVERGED
 $  VSHMMSPECTRAL_TRUNCATION_WIDEN - the check records the buffers that would hold the left-out
 $    wavenumbers, for a program that stops its solve (`VSHMMSpectralGetTruncationWidening()`),
 $    widens the clusters (`VSHMMSpectralWidenClusters()`) and runs again from its initial state;
+$    where the widened clusters would not be separated it asks for every wavenumber (a direct
+$    simulation) if the figure passes the tolerance in the TS's measure, and warns otherwise;
 $    after six widenings, where advection's detuning sets the model, or at the end of a solve
 $    whose widening was not applied, it warns
 

@@ -59,6 +59,8 @@ typedef struct {
   PetscInt  rechecks;
   PetscBool restart;    /* the truncation check asked for wider clusters: run again (WidenPostStep()) */
   PetscReal atol, rtol; /* the TS's tolerances, for the compare line's weighted error */
+  PetscReal t_start;    /* the TS's initial time */
+  PetscBool fallback;   /* OneClusterFallback() replaced TSVSHMM */
 } SpectralRun;
 
 /* -output_times: any number of values. PETSc's array reader stops silently at the capacity it is
@@ -215,6 +217,7 @@ static PetscErrorCode SolveToOutputTimes(SpectralRun *run, TS ts, Vec U)
   PetscFunctionBeginUser;
   PetscCall(TSGetTime(ts, &t0));
   PetscCall(TSGetTimeStep(ts, &dt0));
+  run->t_start = t0;
   if (!run->ntimes) {
     PetscCall(TSGetMaxTime(ts, &tf));
     PetscCall(PetscFree(run->times));
@@ -266,7 +269,9 @@ static PetscErrorCode SolveToOutputTimes(SpectralRun *run, TS ts, Vec U)
   PetscFunctionReturn(0);
 }
 
-/* The smallest spacing of the output times (the span to the final time without them). */
+/* The smallest spacing of the output times (the span to the TS's final time without them: with
+   them the program's default final time is not the run's; outputs at 2, 5, 10 took a sampling
+   interval of 1, the diffusion program's default final time, before 2026-11-28). */
 static PetscErrorCode OutputSpacing(SpectralRun *run, TS ts, PetscReal *dt)
 {
   PetscReal t0;
@@ -276,6 +281,7 @@ static PetscErrorCode OutputSpacing(SpectralRun *run, TS ts, PetscReal *dt)
   PetscCall(TSGetTime(ts, &t0));
   PetscCall(TSGetMaxTime(ts, dt));
   *dt -= t0;
+  if (run->ntimes) *dt = PETSC_MAX_REAL;
   for (i = 0; i < run->ntimes; i++) *dt = PetscMin(*dt, run->times[i] - (i ? run->times[i - 1] : t0));
   PetscFunctionReturn(0);
 }
@@ -564,6 +570,38 @@ static PetscErrorCode SetStableStepRecheck(SpectralRun *run, TS ts, Vec U)
   PetscFunctionReturn(0);
 }
 
+/* A sparse run that cost more than a direct simulation would: the DNS of the scene, TSRK 3 at the
+   stable step of the operator on every wavenumber (VSHMMSpectralGetDNSStableTimeStep(); at most a
+   tenth of the output spacing, as SetDefaultSteps() takes it), its evaluations counted to each
+   output time, against this run's with its stopped runs and its detection (each on the same
+   N-point transforms). Said on the standard output where the DNS is cheaper, for TSVSHMM (and the
+   explicit sparse method that replaces it on one cluster), not for a TS type and step the user chose. */
+static PetscErrorCode CompareWithDNS(SpectralRun *run, TS ts)
+{
+  VSHMMSpectralStatistics st;
+  PetscInt                nclusters, i;
+  PetscReal               h, spacing, t;
+  long long               dns = 0, work, all;
+  PetscBool               isvshmm;
+
+  PetscFunctionBeginUser;
+  PetscCall(VSHMMSpectralGetSizes(run->sp, NULL, NULL, &nclusters));
+  PetscCall(PetscObjectTypeCompare((PetscObject)ts, TSVSHMM, &isvshmm));
+  if (!nclusters || !(isvshmm || run->fallback)) PetscFunctionReturn(0); /* a DNS itself, or the user's method */
+  PetscCall(VSHMMSpectralGetDNSStableTimeStep(run->sp, TSRK3, &h));
+  PetscCall(OutputSpacing(run, ts, &spacing));
+  if (spacing > 0) h = PetscMin(h, spacing / 10);
+  if (!(h > 0) || h >= PETSC_INFINITY) PetscFunctionReturn(0);
+  for (i = 0, t = run->t_start; i < run->ntimes; t = run->times[i], i++) dns += 3 * (long long)ceil((run->times[i] - t) / h - 1e-9);
+  PetscCall(VSHMMSpectralGetStatistics(run->sp, &st));
+  work = (long long)(st.field_evaluations + st.widening_evaluations);
+  all  = work + (long long)st.detection_evaluations;
+  if (all <= dns) PetscFunctionReturn(0);
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "note: this sparse run took %lld evaluations (%lld with the cluster detection's); a direct simulation of the scene (-spectral_mode dns, TSRK 3 at its stable step %g) would take about %lld, each on the same %d-point transforms: at this tolerance the DNS is the cheaper tool\n", work, all, (double)h, dns,
+                        (int)run->N));
+  PetscFunctionReturn(0);
+}
+
 /* -spectral_truncation_check widen (the examples' default where the clusters are detected): ends
    the solve where the truncation check asks for wider clusters; RunSpectralExample() widens them
    (VSHMMSpectralWidenClusters()) and runs the scene again from its initial state. */
@@ -579,24 +617,31 @@ static PetscErrorCode WidenPostStep(TS ts)
   PetscFunctionReturn(0);
 }
 
-/* TSVSHMM with -ts_vshmm_adapt on one cluster (a detection that found one band): nothing to
-   separate, so the tolerance is met with no savings at all, the explicit sparse method (TSRK 3 at
-   the operator's stable step), and the example says so; without -ts_vshmm_adapt (parameters the
-   user chose for several scales) SetGridObservables() stops with the advice. */
+/* TSVSHMM with -ts_vshmm_adapt on one cluster (a detection that found one band), or on the one
+   cluster of every wavenumber that the truncation check asked for: nothing to separate, so the
+   explicit sparse method (TSRK 3 at the operator's stable step), and the example says so; without
+   -ts_vshmm_adapt on detected clusters (parameters the user chose for several scales)
+   SetGridObservables() stops with the advice. */
 static PetscErrorCode OneClusterFallback(SpectralRun *run, TS ts)
 {
-  PetscBool isvshmm, adapt = PETSC_FALSE;
-  PetscInt  nclusters;
+  PetscBool               isvshmm, adapt = PETSC_FALSE;
+  PetscInt                nclusters;
+  VSHMMSpectralStatistics st;
 
   PetscFunctionBeginUser;
   PetscCall(PetscObjectTypeCompare((PetscObject)ts, TSVSHMM, &isvshmm));
   if (!isvshmm) PetscFunctionReturn(0);
   PetscCall(TSVSHMMGetAdapt(ts, &adapt));
   PetscCall(VSHMMSpectralGetSizes(run->sp, NULL, NULL, &nclusters));
-  if (!adapt || nclusters != 1) PetscFunctionReturn(0);
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "one cluster%s: no time scales to separate, so -ts_vshmm_adapt takes no savings: the explicit sparse method (TSRK 3 at the operator's stable step) instead of TSVSHMM\n", run->detected ? " (the detection found one band of wavenumbers)" : ""));
+  PetscCall(VSHMMSpectralGetStatistics(run->sp, &st));
+  if (!(adapt || st.widenings) || nclusters != 1) PetscFunctionReturn(0); /* one cluster from a widening: with savings set too */
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "one cluster%s: no time scales to separate, so no savings: the explicit sparse method (TSRK 3 at the operator's stable step) instead of TSVSHMM\n",
+                        st.widenings    ? " (the truncation check widened the clusters into one)"
+                        : run->detected ? " (the detection found one band of wavenumbers)"
+                                        : ""));
   PetscCall(TSSetType(ts, TSRK));
   PetscCall(TSRKSetType(ts, TSRK3));
+  run->fallback = PETSC_TRUE;
   PetscFunctionReturn(0);
 }
 
@@ -700,7 +745,10 @@ static PetscErrorCode RunSpectralExample(const char *scene, PetscReal tfinal)
     VSHMMSpectralStatistics st;
 
     PetscCall(SolveToOutputTimes(&run, ts, U));
-    if (!run.restart) break;
+    if (!run.restart) {
+      PetscCall(CompareWithDNS(&run, ts));
+      break;
+    }
     PetscCall(VSHMMSpectralGetTruncationWidening(run.sp, &run.restart, &tw));
     PetscCall(DestroyRun(&run, &ts, &U));
     PetscCall(VSHMMSpectralWidenClusters(run.sp, &widened));
@@ -709,6 +757,7 @@ static PetscErrorCode RunSpectralExample(const char *scene, PetscReal tfinal)
                           (int)st.widenings, (long long)st.widening_evaluations));
     PetscCall(VSHMMSpectralView(run.sp, PETSC_VIEWER_STDOUT_WORLD));
     PetscCall(CreateRun(&run, tfinal, &ts, &U));
+    PetscCall(PrintStepper(ts));
   }
   if (run.recheck && run.recheck_dt < run.recheck_dt0)
     PetscCall(PetscPrintf(PETSC_COMM_WORLD, "stable step rechecks %d (about 41 evaluations each, not in rhs_evaluations): the time step was lowered from %g to %g\n", (int)run.rechecks, (double)run.recheck_dt0, (double)run.recheck_dt));

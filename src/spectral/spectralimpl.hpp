@@ -163,10 +163,12 @@ struct VSHMMSpectral_Data {
   VSHMMSpectralStatistics stats = {};
 
   /* stable steps and the growth check (spectralstable.cpp) */
-  PetscBool                         ritz_done = PETSC_FALSE; /* ritz holds the estimate of this set-up */
-  std::vector<std::complex<double>> ritz;                    /* Ritz values of the operator's Jacobian at u0 */
-  PetscReal                         radius_bound = 0;        /* max|D| kmax^2 + max|A| kmax */
-  std::vector<double>               weights;                 /* Parseval weights of the layout's reals */
+  PetscBool                         ritz_done = PETSC_FALSE;     /* ritz holds the estimate of this set-up */
+  std::vector<std::complex<double>> ritz;                        /* Ritz values of the operator's Jacobian at u0 */
+  PetscBool                         dns_ritz_done = PETSC_FALSE; /* dns_ritz holds those of the operator on every wavenumber */
+  std::vector<std::complex<double>> dns_ritz;
+  PetscReal                         radius_bound = 0; /* max|D| kmax^2 + max|A| kmax */
+  std::vector<double>               weights;          /* Parseval weights of the layout's reals */
   PetscBool                         growth_started = PETSC_FALSE, growth_needs_max = PETSC_FALSE;
   spc::GrowthBound                  growth;
   PetscReal                         growth_max = 0; /* max|u| on the grid at the last check */
@@ -184,6 +186,8 @@ struct VSHMMSpectral_Data {
   std::vector<char> truncation_detuned; /* per left-out wavenumber of `truncation`: its rate is mostly advection's detuning (not widened) */
   std::vector<int>  widen_buffers;
   PetscReal         widen_time = 0;
+  PetscInt          widen_step = 0;           /* the step of the request: a program that restarts stops the solve after the next step */
+  PetscBool         widen_all  = PETSC_FALSE; /* the request is every wavenumber (a direct simulation) */
   spc::ClusterSet   widened;
   PetscInt          widenings            = 0;
   PetscInt64        widening_evaluations = 0;

@@ -749,6 +749,7 @@ PetscErrorCode VSHMMSpectralSetUp(VSHMMSpectral sp)
   s->stats.widening_evaluations  = s->widening_evaluations;
   s->weights                     = spc::parsevalWeights(*s->layout); /* spectralstable.cpp */
   s->ritz_done                   = PETSC_FALSE;
+  s->dns_ritz_done               = PETSC_FALSE;
   s->growth_started              = PETSC_FALSE;
   s->truncation_started          = PETSC_FALSE;
   PetscCall(VecScatterDestroy(&s->gather)); /* for the layout before (VSHMMSpectralWidenClusters()) */

@@ -454,10 +454,12 @@ PetscErrorCode VSHMMSpectralSetGrowthBound(VSHMMSpectral sp, PetscReal factor)
    `VSHMMSpectralGetTruncationWidening()` (e.g. in a post-step function that ends the solve with
    `TSSetConvergedReason()`), calls `VSHMMSpectralWidenClusters()`, creates its state and TS again
    and runs from its initial state: the examples do (docs/spectral.md, "Widening the clusters and
-   running again"). After six widenings, or where the model of the wavenumbers named rests on
-   advection's detuning (which reads up to several times above the truth), the check warns as with
-   `VSHMMSPECTRAL_TRUNCATION_WARN`, and so it does at the end of a solve whose widening was not
-   applied.
+   running again"). Where the widened clusters would not be separated (a time-scale ratio below
+   10) it asks for every wavenumber (a direct simulation) if its figure passes the tolerance in the
+   TS's own measure (atol + rtol ||u||), and warns otherwise. After six widenings, or where the
+   model of the wavenumbers named rests on advection's detuning (which reads up to several times
+   above the truth), the check warns as with `VSHMMSPECTRAL_TRUNCATION_WARN`, and so it does at
+   the end of a solve that ran on for more than a step after a request not applied.
 
    Level: intermediate
 
@@ -538,7 +540,8 @@ PetscErrorCode VSHMMSpectralGetTruncationWidening(VSHMMSpectral sp, PetscBool *p
    the distance of the left-out wavenumbers it modelled largest to their nearest cluster, at least
    half the width of the band of retained wavenumbers nearest to each; a wavenumber that two
    clusters' buffers reach goes to the nearer (`spc::widenClusters()`). The number of clusters and
-   the detection's figures stay (no detection again). The state's size
+   the detection's figures stay (no detection again), but where the check asked for every
+   wavenumber: then one cluster of all of them (a direct simulation). The state's size
    changes: the program destroys its Vec and TS, creates them again (`VSHMMSpectralCreateVec()`,
    `VSHMMSpectralSetInitialCondition()`, `VSHMMSpectralSetUpTS()`) and runs from the initial state.
    The field evaluations of the stopped run are added to the statistics' `widening_evaluations`.
@@ -557,7 +560,12 @@ PetscErrorCode VSHMMSpectralWidenClusters(VSHMMSpectral sp, PetscBool *widened)
   s        = sp->data;
   *widened = PETSC_FALSE;
   if (s->widen_buffers.empty()) PetscFunctionReturn(0);
-  PetscCall(WidenedClusters(sp, s->widen_buffers, &s->widened));
+  if (s->widen_all) { /* every wavenumber in one cluster: a direct simulation (the examples' explicit sparse method on one cluster) */
+    s->widened.N = (int)s->N;
+    s->widened.clusters.assign(1, {});
+    for (int k = 0; k <= spc::maxWavenumber((int)s->N); ++k) s->widened.clusters[0].push_back(k);
+    s->widen_all = PETSC_FALSE;
+  } else PetscCall(WidenedClusters(sp, s->widen_buffers, &s->widened));
   s->widening_evaluations += s->stats.field_evaluations;
   s->widenings++;
   s->widen_buffers.clear();
@@ -565,6 +573,80 @@ PetscErrorCode VSHMMSpectralWidenClusters(VSHMMSpectral sp, PetscBool *widened)
   sp->setupcalled = PETSC_FALSE;
   PetscCall(VSHMMSpectralSetUp(sp));
   *widened = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+/* The operator on every wavenumber (Layout::full()), made once per set-up: the truncation check's
+   and the DNS's stable step. */
+static PetscErrorCode FullOperator(VSHMMSpectral sp)
+{
+  VSHMMSpectral_Data *s = sp->data;
+  std::vector<double> D, A;
+  spc::ExtraTerms     extra;
+
+  PetscFunctionBegin;
+  if (s->full_op) PetscFunctionReturn(0);
+  PetscCall(VSHMMSpectralBuildCoefficients_Private(sp, D, A));
+  PetscCall(VSHMMSpectralBuildExtraTerms_Private(sp, extra));
+  s->full_layout = std::make_unique<spc::Layout>(spc::Layout::full((int)s->N));
+  try {
+    s->full_op = std::make_unique<spc::SpectralOperator>(*s->full_layout, D, A, extra, spc::Planner::Estimate);
+  } catch (const std::exception &e) {
+    SETERRQ(PetscObjectComm((PetscObject)sp), PETSC_ERR_LIB, "Spectral operator on every wavenumber: %s", e.what());
+  }
+  PetscFunctionReturn(0);
+}
+
+/*@C
+   VSHMMSpectralGetDNSStableTimeStep - The stable step of an explicit Runge-Kutta method for the
+   scene's operator on every wavenumber (what a direct simulation, mode dns, steps by), in either mode
+
+   Collective (sets the object up if needed)
+
+   Input Parameters:
++  sp - the object
+-  type - a TSRK type (TSRK3, TSRK4, ...)
+
+   Output Parameter:
+.  dt - the step (PETSC_INFINITY if no eigenvalue limits it)
+
+   Notes:
+   As `VSHMMSpectralGetStableTimeStep()` (forty Arnoldi steps at the initial state, 0.9 of the
+   estimated limit), on the operator of every wavenumber: in mode dns the same value; in sparse
+   mode about 41 evaluations on every mode, once per set-up. The examples set a sparse run's work
+   against the DNS's at this step (docs/spectral.md, "Output contract").
+
+   Level: intermediate
+
+.seealso: `VSHMMSpectralGetStableTimeStep()`
+@*/
+PetscErrorCode VSHMMSpectralGetDNSStableTimeStep(VSHMMSpectral sp, TSRKType type, PetscReal *dt)
+{
+  VSHMMSpectral_Data *s;
+
+  PetscFunctionBegin;
+  VSHMMValidHeaderSpecific(sp, VSHMMSPECTRAL_CLASSID, 1);
+  VSHMMValidPointer(type, 2);
+  VSHMMValidPointer(dt, 3);
+  PetscCall(VSHMMSpectralSetUp(sp));
+  s = sp->data;
+  if (s->mode != VSHMMSPECTRAL_MODE_SPARSE) {
+    PetscCall(VSHMMSpectralGetStableTimeStep(sp, type, dt));
+    PetscFunctionReturn(0);
+  }
+  if (!s->dns_ritz_done) {
+    std::vector<double> u0, c0;
+    PetscCall(FullOperator(sp));
+    PetscCall(PetscLogEventBegin(VSHMMSPECTRAL_Eigen, sp, 0, 0, 0));
+    PetscCall(VSHMMSpectralSampleField_Private(sp, "u0", s->u0, u0));
+    c0.resize(s->full_layout->size());
+    s->full_op->analyze(u0.data(), c0.data());
+    PetscCall(VSHMMSpectralRitzValues_Private(PetscObjectComm((PetscObject)sp), *s->full_op, c0, s->dns_ritz, nullptr));
+    s->dns_ritz_done = PETSC_TRUE;
+    PetscCall(PetscLogEventEnd(VSHMMSPECTRAL_Eigen, sp, 0, 0, 0));
+  }
+  PetscCall(VSHMMSpectralStableStepOf_Private(PetscObjectComm((PetscObject)sp), s->dns_ritz, type, dt));
+  PetscCall(PetscInfo(sp, "stable step of TSRK %s on every wavenumber: %g\n", type, (double)*dt));
   PetscFunctionReturn(0);
 }
 
@@ -581,14 +663,7 @@ static PetscErrorCode StartTruncationModel(VSHMMSpectral sp, PetscReal t)
   PetscCall(VSHMMSpectralBuildCoefficients_Private(sp, D, A));
   PetscCall(VSHMMSpectralBuildExtraTerms_Private(sp, extra));
   const int N = (int)s->N;
-  if (!s->full_op) {
-    s->full_layout = std::make_unique<spc::Layout>(spc::Layout::full(N));
-    try {
-      s->full_op = std::make_unique<spc::SpectralOperator>(*s->full_layout, D, A, extra, spc::Planner::Estimate);
-    } catch (const std::exception &e) {
-      SETERRQ(PetscObjectComm((PetscObject)sp), PETSC_ERR_LIB, "Spectral operator (truncation check): %s", e.what());
-    }
-  }
+  PetscCall(FullOperator(sp));
   double meanD = 0, linear = 0, meanA = 0;
   for (double d : D) meanD += d / N;
   for (double a : A) meanA += a / N;
@@ -790,7 +865,7 @@ PetscErrorCode VSHMMSpectralTruncationMonitor(TS ts, PetscInt step, PetscReal t,
   std::string note;
   if (widen && !s->widen_buffers.empty()) { /* asked for and not applied: said at the end of a later solve */
     const bool at_end = t >= tmax - 1e-12 * PetscMax(1.0, PetscAbsReal(tmax));
-    if (!(at_end && t > s->widen_time)) PetscFunctionReturn(0);
+    if (!(at_end && t > s->widen_time && step > s->widen_step + 1)) PetscFunctionReturn(0); /* a post-step that stops the solve ends it one step after the request */
     char buf[256];
     PetscCall(PetscSNPrintf(buf, sizeof(buf), " (-%sspectral_truncation_check widen: the widening it asked for at t = %g was not applied by VSHMMSpectralWidenClusters().)", VSHMMSpectralPrefix(sp), (double)s->widen_time));
     note = buf;
@@ -816,17 +891,28 @@ PetscErrorCode VSHMMSpectralTruncationMonitor(TS ts, PetscInt step, PetscReal t,
       std::vector<std::vector<PetscInt>> modes;
       for (const auto &c : candidate.clusters) modes.emplace_back(c.begin(), c.end());
       const std::vector<PetscReal> after = VSHMMSpectralClusterSeparations_Private(modes, D, A);
+      bool                         lost  = false;
       for (size_t j = 0; j < after.size() && j < s->separations.size() && note.empty(); ++j)
         if (s->separations[j] >= kSeparated && after[j] < kSeparated) {
+          lost = true;
           char buf[512];
           PetscCall(PetscSNPrintf(buf, sizeof(buf), " (-%sspectral_truncation_check widen: not widened, as the clusters that hold them would be %.3g apart in time scale, clusters %d and %d (%.3g now), not separated: VSHMM would take no savings on them, and a direct simulation, -%sspectral_mode dns, is the tool at this tolerance.)", VSHMMSpectralPrefix(sp), (double)after[j], (int)j, (int)j + 1,
                                   (double)s->separations[j], VSHMMSpectralPrefix(sp)));
           note = buf;
         }
+      PetscReal atol, rtol;
+      PetscCall(TSGetTolerances(ts, &atol, NULL, &rtol, NULL));
+      bool unseparated = false; /* clusters already too close for savings: their widening costs about the DNS's work too */
+      for (PetscReal S : s->separations) unseparated = unseparated || S < kSeparated;
+      if ((lost || unseparated) && share * norm > atol + rtol * norm) { /* beyond the tolerance in the TS's own measure too (atol + rtol |u|): no savings are left, so every wavenumber, a direct simulation, rather than a wrong answer */
+        note.clear();
+        s->widen_all = PETSC_TRUE;
+      }
     }
     if (widen && note.empty()) { /* the buffers that hold the named wavenumbers, for VSHMMSpectralWidenClusters() */
       s->widen_buffers = buffers;
       s->widen_time    = t;
+      s->widen_step    = step;
       PetscCall(PetscInfo(sp, "truncation check at t = %g: %g of ||u|| modelled beyond -spectral_cluster_tolerance %g: a widening of the clusters is asked for (VSHMMSpectralGetTruncationWidening())\n", (double)t, (double)share, (double)s->cluster_tol));
       PetscFunctionReturn(0);
     }

@@ -38,7 +38,7 @@ static std::string DescribeDetection(const VSHMMSpectral_Data *s)
 static std::string DescribeScene(const VSHMMSpectral_Data *s)
 {
   std::ostringstream m;
-  if (s->mode == VSHMMSPECTRAL_MODE_SPARSE && s->detection.support > 0) m << DescribeDetection(s); /* the clusters were detected */
+  if (s->mode == VSHMMSPECTRAL_MODE_SPARSE && s->detection.support > 0 && !s->widenings) m << DescribeDetection(s); /* the clusters were detected (once: a widening does not detect again) */
   m << "scene: N = " << s->N << " grid points on [0, 2 pi), wavenumbers 0.." << spc::maxWavenumber((int)s->N) << "\n";
   for (const std::string &t : s->terms) {
     if (t == "diffusion") m << "  term diffusion: u_t += (d u_x)_x, d = " << s->diff.describe() << "\n";
