@@ -1201,14 +1201,17 @@ PetscErrorCode TSVSHMMLevelOwnRates_Private(TS ts)
 /* Whether lambda, a limiting mode of level `level`'s field G_level = f_0 + ... + f_level, is a
    sustained oscillation of that level: its amplitude decays by less than e^kSustainedDecay over a
    macro step (a damped spiral's transient is a layer, which the comparisons see), and it turns faster
-   than kOwnOscillation times the slower level's spectral radius. A slower one is the slower levels'
-   own dynamics, which G_level holds too (a slow oscillator at 0.85 under a fast relaxation at 1e3
+   than kOwnOscillation times the slower level's spectral radius or not kOwnOscillation times slower
+   than the slowest mode of the level's own components (level_slowest). One slower on both counts
+   is the slower levels' own dynamics, which G_level holds too (a slow oscillator at 0.85 under a fast relaxation at 1e3
    was taken for level 1's oscillation before 2026-11-28: a forcing 5.8e5 times the slow dynamics
    was said, and -ts_vshmm_adapt took no savings for a swing of 1e4 tolerances that was not there). */
 static bool SustainedMode(const TS_VSHMM *vs, PetscInt level, const std::complex<double> &lambda, PetscReal DeltaT)
 {
   if (!vshmm::oscillates(lambda) || !(std::fabs(lambda.real()) * DeltaT < kSustainedDecay)) return false;
-  return level == 0 || (PetscInt)vs->level_radius.size() < level || !(std::abs(lambda) <= kOwnOscillation * vs->level_radius[level - 1]);
+  if (level == 0 || (PetscInt)vs->level_radius.size() < level || !(std::abs(lambda) <= kOwnOscillation * vs->level_radius[level - 1])) return true;
+  /* and slower than every mode of the level's own components (where estimated): not theirs */
+  return !((PetscInt)vs->level_slowest.size() > level && vs->level_slowest[level] > 0 && std::abs(lambda) < vs->level_slowest[level] / kOwnOscillation);
 }
 
 /* Whether level `level` has a sustained oscillation among its limiting modes (SustainedMode()). */
