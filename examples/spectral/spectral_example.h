@@ -279,9 +279,10 @@ static PetscErrorCode OutputSpacing(SpectralRun *run, TS ts, PetscReal *dt)
 
   PetscFunctionBeginUser;
   PetscCall(TSGetTime(ts, &t0));
-  PetscCall(TSGetMaxTime(ts, dt));
-  *dt -= t0;
-  if (run->ntimes) *dt = PETSC_MAX_REAL;
+  if (!run->ntimes) {
+    PetscCall(TSGetMaxTime(ts, dt));
+    *dt -= t0;
+  } else *dt = PETSC_MAX_REAL;
   for (i = 0; i < run->ntimes; i++) *dt = PetscMin(*dt, run->times[i] - (i ? run->times[i - 1] : t0));
   PetscFunctionReturn(0);
 }

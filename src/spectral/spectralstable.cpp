@@ -71,11 +71,24 @@ PetscErrorCode VSHMMSpectralRitzValues_Private(MPI_Comm comm, spc::SpectralOpera
   PetscFunctionReturn(0);
 }
 
+/* The Ritz values of the Jacobian of the operator op (the object's layout or the full one) at the
+   initial state. */
+static PetscErrorCode RitzAtInitialState(VSHMMSpectral sp, spc::SpectralOperator &op, std::vector<std::complex<double>> &ritz)
+{
+  std::vector<double> u0, c0(op.layout().size());
+
+  PetscFunctionBegin;
+  PetscCall(VSHMMSpectralSampleField_Private(sp, "u0", sp->data->u0, u0));
+  op.analyze(u0.data(), c0.data());
+  PetscCall(VSHMMSpectralRitzValues_Private(PetscObjectComm((PetscObject)sp), op, c0, ritz, nullptr));
+  PetscFunctionReturn(0);
+}
+
 /* The Ritz values of the Jacobian of F at the initial state (cached until the next set-up). */
 static PetscErrorCode OperatorRitzValues(VSHMMSpectral sp)
 {
   VSHMMSpectral_Data *s = sp->data;
-  std::vector<double> D, A, u0, c0;
+  std::vector<double> D, A;
 
   PetscFunctionBegin;
   PetscCall(VSHMMSpectralSetUp(sp));
@@ -83,10 +96,7 @@ static PetscErrorCode OperatorRitzValues(VSHMMSpectral sp)
   PetscCall(PetscLogEventBegin(VSHMMSPECTRAL_Eigen, sp, 0, 0, 0));
   PetscCall(VSHMMSpectralBuildCoefficients_Private(sp, D, A));
   s->radius_bound = spc::spectralRadiusBound(D, A, s->layout->modes().back());
-  PetscCall(VSHMMSpectralSampleField_Private(sp, "u0", s->u0, u0));
-  c0.resize(s->layout->size());
-  s->op->analyze(u0.data(), c0.data());
-  PetscCall(VSHMMSpectralRitzValues_Private(PetscObjectComm((PetscObject)sp), *s->op, c0, s->ritz, nullptr));
+  PetscCall(RitzAtInitialState(sp, *s->op, s->ritz));
   s->cache_valid = PETSC_FALSE; /* the operator's buffers were used */
   s->ritz_done   = PETSC_TRUE;
   PetscCall(PetscLogEventEnd(VSHMMSPECTRAL_Eigen, sp, 0, 0, 0));
@@ -576,18 +586,14 @@ PetscErrorCode VSHMMSpectralWidenClusters(VSHMMSpectral sp, PetscBool *widened)
   PetscFunctionReturn(0);
 }
 
-/* The operator on every wavenumber (Layout::full()), made once per set-up: the truncation check's
-   and the DNS's stable step. */
-static PetscErrorCode FullOperator(VSHMMSpectral sp)
+/* The operator on every wavenumber (Layout::full()) of the scene's fields D, A, extra, made once
+   per set-up: the truncation check's and the DNS's stable step. */
+static PetscErrorCode FullOperator(VSHMMSpectral sp, const std::vector<double> &D, const std::vector<double> &A, const spc::ExtraTerms &extra)
 {
   VSHMMSpectral_Data *s = sp->data;
-  std::vector<double> D, A;
-  spc::ExtraTerms     extra;
 
   PetscFunctionBegin;
   if (s->full_op) PetscFunctionReturn(0);
-  PetscCall(VSHMMSpectralBuildCoefficients_Private(sp, D, A));
-  PetscCall(VSHMMSpectralBuildExtraTerms_Private(sp, extra));
   s->full_layout = std::make_unique<spc::Layout>(spc::Layout::full((int)s->N));
   try {
     s->full_op = std::make_unique<spc::SpectralOperator>(*s->full_layout, D, A, extra, spc::Planner::Estimate);
@@ -635,13 +641,15 @@ PetscErrorCode VSHMMSpectralGetDNSStableTimeStep(VSHMMSpectral sp, TSRKType type
     PetscFunctionReturn(0);
   }
   if (!s->dns_ritz_done) {
-    std::vector<double> u0, c0;
-    PetscCall(FullOperator(sp));
+    if (!s->full_op) {
+      std::vector<double> D, A;
+      spc::ExtraTerms     extra;
+      PetscCall(VSHMMSpectralBuildCoefficients_Private(sp, D, A));
+      PetscCall(VSHMMSpectralBuildExtraTerms_Private(sp, extra));
+      PetscCall(FullOperator(sp, D, A, extra));
+    }
     PetscCall(PetscLogEventBegin(VSHMMSPECTRAL_Eigen, sp, 0, 0, 0));
-    PetscCall(VSHMMSpectralSampleField_Private(sp, "u0", s->u0, u0));
-    c0.resize(s->full_layout->size());
-    s->full_op->analyze(u0.data(), c0.data());
-    PetscCall(VSHMMSpectralRitzValues_Private(PetscObjectComm((PetscObject)sp), *s->full_op, c0, s->dns_ritz, nullptr));
+    PetscCall(RitzAtInitialState(sp, *s->full_op, s->dns_ritz));
     s->dns_ritz_done = PETSC_TRUE;
     PetscCall(PetscLogEventEnd(VSHMMSPECTRAL_Eigen, sp, 0, 0, 0));
   }
@@ -663,7 +671,7 @@ static PetscErrorCode StartTruncationModel(VSHMMSpectral sp, PetscReal t)
   PetscCall(VSHMMSpectralBuildCoefficients_Private(sp, D, A));
   PetscCall(VSHMMSpectralBuildExtraTerms_Private(sp, extra));
   const int N = (int)s->N;
-  PetscCall(FullOperator(sp));
+  PetscCall(FullOperator(sp, D, A, extra));
   double meanD = 0, linear = 0, meanA = 0;
   for (double d : D) meanD += d / N;
   for (double a : A) meanA += a / N;

@@ -450,20 +450,22 @@ namespace {
 // a_3' = -9 a_3 + 0.375 A (mean(d) 3^2), and its feedback on wavenumber 1 (F of c_3 = a_3, the
 // function 2 a_3 cos 3x, on wavenumber 1: 0.75 a_3) e_1' = -e_1 + 0.75 a_3. Returns the statistics after TSSolve to T
 // and TSSolve's error code.
-PetscErrorCode TruncationRun(VSHMMSpectralTruncationCheck check, PetscReal T, VSHMMSpectralStatistics *stats)
+const char *const kTruncationScene = "-spectral_grid_points 32 -spectral_mode sparse -spectral_clusters 0:1 -spectral_diffusion_coefficient fourier -spectral_diffusion_coefficient_offset 1 "
+                                     "-spectral_diffusion_coefficient_wavenumbers 2 -spectral_diffusion_coefficient_cos 0.5 -spectral_u0 fourier -spectral_u0_wavenumbers 1 -spectral_u0_cos 1";
+
+// Runs sp's scene with RK (fixed step 1e-3) from u0 to T; *size (if given) the state's size.
+// Returns TSSolve's error code.
+PetscErrorCode SolveSparse(VSHMMSpectral sp, PetscReal T, PetscInt *size = nullptr)
 {
-  Scene s("-spectral_grid_points 32 -spectral_mode sparse -spectral_clusters 0:1 -spectral_diffusion_coefficient fourier -spectral_diffusion_coefficient_offset 1 "
-          "-spectral_diffusion_coefficient_wavenumbers 2 -spectral_diffusion_coefficient_cos 0.5 -spectral_u0 fourier -spectral_u0_wavenumbers 1 -spectral_u0_cos 1");
-  EXPECT_EQ(s.error(), "");
   Vec     U;
   TS      ts;
   TSAdapt adapt;
-  EXPECT_EQ(VSHMMSpectralSetTruncationCheck(s.sp, check), 0);
-  EXPECT_EQ(VSHMMSpectralCreateVec(s.sp, &U), 0);
-  EXPECT_EQ(VSHMMSpectralSetInitialCondition(s.sp, U), 0);
+  EXPECT_EQ(VSHMMSpectralCreateVec(sp, &U), 0);
+  if (size) EXPECT_EQ(VecGetSize(U, size), 0);
+  EXPECT_EQ(VSHMMSpectralSetInitialCondition(sp, U), 0);
   EXPECT_EQ(TSCreate(PETSC_COMM_WORLD, &ts), 0);
   EXPECT_EQ(TSSetSolution(ts, U), 0);
-  EXPECT_EQ(VSHMMSpectralSetUpTS(s.sp, ts), 0);
+  EXPECT_EQ(VSHMMSpectralSetUpTS(sp, ts), 0);
   EXPECT_EQ(TSSetType(ts, TSRK), 0);
   EXPECT_EQ(TSGetAdapt(ts, &adapt), 0);
   EXPECT_EQ(TSAdaptSetType(adapt, TSADAPTNONE), 0);
@@ -473,9 +475,18 @@ PetscErrorCode TruncationRun(VSHMMSpectralTruncationCheck check, PetscReal T, VS
   PetscPushErrorHandler(PetscReturnErrorHandler, nullptr);
   PetscErrorCode ierr = TSSolve(ts, U);
   PetscPopErrorHandler();
-  EXPECT_EQ(VSHMMSpectralGetStatistics(s.sp, stats), 0);
   TSDestroy(&ts);
   VecDestroy(&U);
+  return ierr;
+}
+
+PetscErrorCode TruncationRun(VSHMMSpectralTruncationCheck check, PetscReal T, VSHMMSpectralStatistics *stats)
+{
+  Scene s(kTruncationScene);
+  EXPECT_EQ(s.error(), "");
+  EXPECT_EQ(VSHMMSpectralSetTruncationCheck(s.sp, check), 0);
+  PetscErrorCode ierr = SolveSparse(s.sp, T);
+  EXPECT_EQ(VSHMMSpectralGetStatistics(s.sp, stats), 0);
   return ierr;
 }
 } // namespace
@@ -519,40 +530,23 @@ TEST(VSHMMSpectralTruncation, ModelOfAForcedLeftOutMode)
 // {0..3} and sets up again: the state's size, the statistics' widening, no pending request
 TEST(VSHMMSpectralTruncation, WidenTheClusters)
 {
-  Scene s("-spectral_grid_points 32 -spectral_mode sparse -spectral_clusters 0:1 -spectral_diffusion_coefficient fourier -spectral_diffusion_coefficient_offset 1 "
-          "-spectral_diffusion_coefficient_wavenumbers 2 -spectral_diffusion_coefficient_cos 0.5 -spectral_u0 fourier -spectral_u0_wavenumbers 1 -spectral_u0_cos 1 -spectral_truncation_check widen");
+  Scene s(std::string(kTruncationScene) + " -spectral_truncation_check widen");
   EXPECT_EQ(s.error(), "");
   PetscBool pending = PETSC_TRUE, widened = PETSC_TRUE;
   PetscReal tw = -1;
   PetscInt  n  = 0;
+  Vec       U;
   EXPECT_EQ(VSHMMSpectralWidenClusters(s.sp, &widened), 0); // nothing asked for
   EXPECT_FALSE(widened);
-  Vec     U;
-  TS      ts;
-  TSAdapt adapt;
-  EXPECT_EQ(VSHMMSpectralCreateVec(s.sp, &U), 0);
-  EXPECT_EQ(VecGetSize(U, &n), 0);
-  EXPECT_EQ(n, 3);
-  EXPECT_EQ(VSHMMSpectralSetInitialCondition(s.sp, U), 0);
-  EXPECT_EQ(TSCreate(PETSC_COMM_WORLD, &ts), 0);
-  EXPECT_EQ(TSSetSolution(ts, U), 0);
-  EXPECT_EQ(VSHMMSpectralSetUpTS(s.sp, ts), 0);
-  EXPECT_EQ(TSSetType(ts, TSRK), 0);
-  EXPECT_EQ(TSGetAdapt(ts, &adapt), 0);
-  EXPECT_EQ(TSAdaptSetType(adapt, TSADAPTNONE), 0);
-  EXPECT_EQ(TSSetTimeStep(ts, 1e-3), 0);
-  EXPECT_EQ(TSSetExactFinalTime(ts, TS_EXACTFINALTIME_MATCHSTEP), 0);
-  EXPECT_EQ(TSSetMaxTime(ts, 0.5), 0);
   testing::internal::CaptureStderr();
-  EXPECT_EQ(TSSolve(ts, U), 0);
+  EXPECT_EQ(SolveSparse(s.sp, 0.5, &n), 0);
   const std::string said = testing::internal::GetCapturedStderr();
+  EXPECT_EQ(n, 3);
   EXPECT_NE(said.find("truncation check at t = 0.5: "), std::string::npos) << said;
   EXPECT_NE(said.find("widening it asked for at t = 0.016 was not applied by VSHMMSpectralWidenClusters()"), std::string::npos) << said;
   EXPECT_EQ(VSHMMSpectralGetTruncationWidening(s.sp, &pending, &tw), 0);
   EXPECT_TRUE(pending);
   EXPECT_LT(tw, 0.05); // the first look above the default tolerance 1e-2 (not applied: the warning at the solve's end, stderr)
-  TSDestroy(&ts);
-  VecDestroy(&U);
   EXPECT_EQ(VSHMMSpectralWidenClusters(s.sp, &widened), 0);
   EXPECT_TRUE(widened);
   EXPECT_EQ(VSHMMSpectralGetTruncationWidening(s.sp, &pending, nullptr), 0);
