@@ -184,10 +184,20 @@ double slowestAmplitudeRate(const std::vector<std::complex<double>> &modes, doub
   return std::isfinite(slowest) ? slowest : 0.0;
 }
 
-bool ambiguousAmplitudeRate(const std::vector<std::complex<double>> &modes)
+AmplitudeRateNoise amplitudeRateNoise(double blockNorm, double largest, double stateNorm)
+{
+  AmplitudeRateNoise noise;
+  if (!(largest > 0) || !std::isfinite(blockNorm) || !std::isfinite(stateNorm)) return noise;
+  const double eps = std::numeric_limits<double>::epsilon(), scale = std::max(1.0, blockNorm / largest) * stateNorm / (1 + stateNorm);
+  noise.forward = std::max(noise.forward, std::sqrt(eps) * scale);
+  noise.central = std::max(noise.central, std::pow(eps, 2.0 / 3.0) * scale);
+  return noise;
+}
+
+bool ambiguousAmplitudeRate(const std::vector<std::complex<double>> &modes, const AmplitudeRateNoise &noise)
 {
   bool ambiguous = false;
-  forEachCountedMode(modes, [&](double size, double re, bool osc, double) { ambiguous = ambiguous || (osc && re > kAmplitudeRateCentralNoise * size && re <= kAmplitudeRateNoise * size); });
+  forEachCountedMode(modes, [&](double size, double re, bool osc, double) { ambiguous = ambiguous || (osc && re > noise.central * size && re <= noise.forward * size); });
   return ambiguous;
 }
 

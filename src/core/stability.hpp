@@ -76,10 +76,23 @@ double slowestAmplitudeRate(const std::vector<std::complex<double>> &modes, doub
 // The fastest growth rate Re lambda among the modes that grow (Re lambda > noise |lambda|, |lambda|
 // above 1e-8 of the largest); 0 where none grows.
 double fastestGrowthRate(const std::vector<std::complex<double>> &modes, double noise = 1e-6);
+// The noise levels of Ritz values from forward and central differences (fractions of |lambda|
+// below which a real part is noise; differences at sqrt(eps) (1 + ||X||) and cbrt(eps) (1 + ||X||)).
+// The rounding of X + delta V makes an error of about eps ||X|| ||J|| / delta in J V: relative to
+// the eigenvalues, the fixed levels above where the block's entries are of their size (a rotation),
+// but a block whose entries are far larger than its eigenvalues has more (a position-velocity
+// block [[0, 1], [-w^2, 0]] has entries w^2, w times its eigenvalues +-iw: a stiff bond at w = 1195
+// read amplitude rates of 1.6e-6 of w by forward differences, above kAmplitudeRateNoise, where its
+// block is exactly conservative). blockNorm: the largest entry of the Hessenberg matrix; largest:
+// the largest |lambda|; stateNorm: ||X||.
+struct AmplitudeRateNoise {
+  double forward = kAmplitudeRateNoise, central = kAmplitudeRateCentralNoise;
+};
+AmplitudeRateNoise amplitudeRateNoise(double blockNorm, double largest, double stateNorm);
 // Whether an oscillation's amplitude rate lies between the two noise levels (|Re| / |lambda| in
-// (kAmplitudeRateCentralNoise, kAmplitudeRateNoise]): forward differences cannot tell a slow
-// damping from their truncation error there, and central differences can.
-bool ambiguousAmplitudeRate(const std::vector<std::complex<double>> &modes);
+// (central, forward]): forward differences cannot tell a slow damping from their truncation error
+// and rounding there, and central differences can.
+bool ambiguousAmplitudeRate(const std::vector<std::complex<double>> &modes, const AmplitudeRateNoise &noise = AmplitudeRateNoise());
 
 // The amplitude error of one step of size h on the mode y' = lambda y: |log |R(h lambda)| - h Re lambda|
 // (what the step takes from, or adds to, the mode's amplitude beyond the exact flow, relative).

@@ -725,7 +725,7 @@ static PetscErrorCode TSView_VSHMM(TS ts, PetscViewer viewer)
     else if (vs->growth_probes > 0)
       PetscCall(PetscViewerASCIIPrintf(viewer, "    the slow dynamics do not grow an error (a growing mode of the slowest level's Jacobian, probed %" PetscInt64_FMT " time%s: the last probe found none)\n", vs->growth_probes, vs->growth_probes == 1 ? "" : "s"));
     if (vs->observables && vs->slow_count > 0)
-      PetscCall(PetscViewerASCIIPrintf(viewer, "    with the observables, the %" PetscInt_FMT " slow component%s (written by the slowest splits only, -ts_vshmm_adapt_slow_components): %" PetscInt64_FMT " of the differences led by %s\n", vs->slow_count, vs->slow_count == 1 ? "" : "s", vs->slow_led, vs->slow_count == 1 ? "it" : "them"));
+      PetscCall(PetscViewerASCIIPrintf(viewer, "    with the observables, the %" PetscInt_FMT " slow component%s (written by the slowest splits only%s, -ts_vshmm_adapt_slow_components): %" PetscInt64_FMT " of the differences led by %s\n", vs->slow_count, vs->slow_count == 1 ? "" : "s", vs->slow_by_values > 0 ? ", seen from the fields' values" : "", vs->slow_led, vs->slow_count == 1 ? "it" : "them"));
     else if (vs->observables && !vs->adapt_slow_components) PetscCall(PetscViewerASCIIPrintf(viewer, "    the observables only (-ts_vshmm_adapt_slow_components false)\n"));
     if (vs->lag_mask)
       PetscCall(PetscViewerASCIIPrintf(viewer, "    a macro step's first comparison starts from the last one's end state on the %" PetscInt_FMT " component%s only faster levels write (%s; the lag of decaying faster levels): %" PetscInt64_FMT " so far\n", vs->lag_count, vs->lag_count == 1 ? "" : "s", vs->lag_by_values ? "seen from the fields' values" : "their index sets", vs->lag_inherited));

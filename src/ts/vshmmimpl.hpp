@@ -182,10 +182,12 @@ struct TS_VSHMM {
   PetscReal              growth_streak           = 0;                  // that motion at the start of the present streak of steps whose motion grew (GrowthProbeAccepted())
   PetscInt               growth_streak_steps     = 0;                  // and the streak's steps
   Vec                    slow_mask               = nullptr;            // 1 on the slow components (written by the slowest level's splits only) where they are controlled with the observables
-  Vec                    lag_mask                = nullptr;            // 1 on the components only faster levels' splits write (none where a slowest split is additive): where a comparison's end state is carried into the next one's start
-  PetscBool              lag_by_values           = PETSC_FALSE;        // lag_mask from the fields' values (additive splits): a component the slowest field is seen to write leaves it
-  PetscInt               lag_count               = 0;                  // the components on lag_mask (global)
-  PetscInt64             lag_inherited           = 0;                  // comparisons that started from the last one's end state on them (-ts_view)
+  Vec                    slow_seen = nullptr, faster_seen = nullptr;   // additive splits: |G_0| and the faster levels' own |f| summed over the states looked at (SlowComponentsFromValues())
+  PetscInt               slow_by_values = 0;                           // the states looked at so far (0: slow_mask from the index sets)
+  Vec                    lag_mask       = nullptr;                     // 1 on the components only faster levels' splits write (none where a slowest split is additive): where a comparison's end state is carried into the next one's start
+  PetscBool              lag_by_values  = PETSC_FALSE;                 // lag_mask from the fields' values (additive splits): a component the slowest field is seen to write leaves it
+  PetscInt               lag_count      = 0;                           // the components on lag_mask (global)
+  PetscInt64             lag_inherited  = 0;                           // comparisons that started from the last one's end state on them (-ts_view)
   Vec                    lag_carried = nullptr, lag_next = nullptr;    // the last accepted step's comparison end state less the solution's there, on lag_mask; the candidate from the latest comparison
   PetscBool              lag_valid = PETSC_FALSE, lag_next_valid = PETSC_FALSE;
   vshmm::AdaptParameters lag_p, lag_q, lag_next_p, lag_next_q; // the step's and its comparison's parameters that made them
@@ -305,6 +307,7 @@ PETSC_INTERN PetscErrorCode TSVSHMMObservables_Private(TS, PetscReal, Vec, Petsc
 PETSC_INTERN PetscErrorCode TSVSHMMAdaptSetUp_Private(TS);
 PETSC_INTERN PetscErrorCode TSVSHMMAdaptReset_Private(TS);
 PETSC_INTERN PetscReal      TSVSHMMAmplitudeSpan_Private(TS);
+PETSC_INTERN PetscReal      TSVSHMMToleranceLevel_Private(TS); /* one number for the tolerance (its vectors' level where TSSetTolerances() gave them) */
 PETSC_INTERN PetscErrorCode TSVSHMMAdaptUnaveraged_Private(TS);
 PETSC_INTERN PetscErrorCode TSVSHMMLevelBeats_Private(TS);                                                                   /* the faster levels' beats (vs->beat_omega, vs->beat_level, vs->beat_phase) */
 PETSC_INTERN PetscBool      TSVSHMMBeatApproaching_Private(TS, PetscReal);                                                   /* -ts_vshmm_adapt: a difference of fast frequencies falling towards a beat before the time */

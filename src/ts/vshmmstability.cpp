@@ -98,7 +98,12 @@ static PetscErrorCode LevelArnoldi(TS ts, PetscInt level, PetscReal t, Vec X, Ve
   PetscCall(VecNormalize(V[0], &beta));
 
   PetscCall(VecNorm(X, NORM_2, &xnorm));
-  const PetscReal delta = std::sqrt(PETSC_MACHINE_EPSILON) * (1.0 + xnorm);
+  /* forward differences at sqrt(eps) (1 + ||X||), central ones at cbrt(eps) (1 + ||X||): their
+     truncation error is second order, and the rounding of X + delta V, which a field that varies
+     fast about a point far from 0 turns into an error of (eps ||X|| / delta) |J|, is 400 times
+     smaller (a stiff bond r' = p, p' = -w^2 (r - 1) at r = 1.0009, w = 1108, read an amplitude rate
+     of 7.7e-4 at sqrt(eps), 7e-7 of w and above the central noise: "not separated") */
+  const PetscReal delta = (central ? std::cbrt(PETSC_MACHINE_EPSILON) : std::sqrt(PETSC_MACHINE_EPSILON)) * (1.0 + xnorm);
   if (!central) PetscCall(Field(X, G0));
 
   H.assign((m + 1) * m, 0.0);
@@ -190,7 +195,7 @@ static PetscErrorCode Eigenvalues(PetscInt k, PetscInt lda, const PetscScalar *A
 
 /* Ritz values of the Jacobian of level l's field at (t, X) (with a mask: of its block on the
    masked components). */
-static PetscErrorCode LevelRitzValues(TS ts, PetscInt level, PetscReal t, Vec X, std::vector<std::complex<double>> &ritz, PetscBool *finite, Vec mask = nullptr, PetscBool central = PETSC_FALSE, PetscBool own = PETSC_FALSE)
+static PetscErrorCode LevelRitzValues(TS ts, PetscInt level, PetscReal t, Vec X, std::vector<std::complex<double>> &ritz, PetscBool *finite, Vec mask = nullptr, PetscBool central = PETSC_FALSE, PetscBool own = PETSC_FALSE, PetscReal *hmax = nullptr)
 {
   Vec                     *V;
   PetscInt                 m, k;
@@ -201,6 +206,11 @@ static PetscErrorCode LevelRitzValues(TS ts, PetscInt level, PetscReal t, Vec X,
   PetscCall(LevelArnoldi(ts, level, t, X, &V, &m, H, &k, NULL, mask, nullptr, central, own));
   PetscCall(VecDestroyVecs(m + 1, &V));
   *finite = k > 0 ? PETSC_TRUE : PETSC_FALSE;
+  if (hmax) { /* the largest entry of the Hessenberg matrix (vshmm::amplitudeRateNoise()) */
+    *hmax = 0;
+    for (PetscInt j = 0; j < k; ++j)
+      for (PetscInt i = 0; i < k; ++i) *hmax = PetscMax(*hmax, PetscAbsScalar(H[i + j * (m + 1)]));
+  }
   if (!k) PetscFunctionReturn(0);
 
   PetscCall(Eigenvalues(k, m + 1, H.data(), ritz, finite));
@@ -215,13 +225,19 @@ static PetscErrorCode LevelRitzValues(TS ts, PetscInt level, PetscReal t, Vec X,
    whose noise is the rounding's (5e-10 on a linear rotation). */
 static PetscErrorCode OwnBlockRitzValues(TS ts, PetscInt level, Vec mask, PetscBool own, std::vector<std::complex<double>> &ritz, PetscBool *finite, double *noise)
 {
+  PetscReal hmax, xnorm;
+  double    largest = 0;
+
   PetscFunctionBegin;
-  *noise = vshmm::kAmplitudeRateNoise;
-  PetscCall(LevelRitzValues(ts, level, ts->ptime, ts->vec_sol, ritz, finite, mask, PETSC_FALSE, own));
-  if (*finite && vshmm::ambiguousAmplitudeRate(ritz)) {
+  PetscCall(LevelRitzValues(ts, level, ts->ptime, ts->vec_sol, ritz, finite, mask, PETSC_FALSE, own, &hmax));
+  PetscCall(VecNorm(ts->vec_sol, NORM_2, &xnorm));
+  for (const std::complex<double> &lambda : ritz) largest = std::max(largest, std::abs(lambda));
+  const vshmm::AmplitudeRateNoise levels = vshmm::amplitudeRateNoise(hmax, largest, xnorm);
+  *noise                                 = levels.forward;
+  if (*finite && vshmm::ambiguousAmplitudeRate(ritz, levels)) {
     PetscCall(LevelRitzValues(ts, level, ts->ptime, ts->vec_sol, ritz, finite, mask, PETSC_TRUE, own));
-    *noise = vshmm::kAmplitudeRateCentralNoise;
-    PetscCall(PetscInfo(ts, "Own block of level %" PetscInt_FMT " at t = %g: amplitude rates between %g and %g of the frequency, estimated again by central differences\n", level, (double)ts->ptime, vshmm::kAmplitudeRateCentralNoise, vshmm::kAmplitudeRateNoise));
+    *noise = levels.central;
+    PetscCall(PetscInfo(ts, "Own block of level %" PetscInt_FMT " at t = %g: amplitude rates between %g and %g of the frequency, estimated again by central differences\n", level, (double)ts->ptime, levels.central, levels.forward));
   }
   PetscFunctionReturn(0);
 }
@@ -495,22 +511,49 @@ static PetscErrorCode FastestJacobianApply(TS ts, Vec X, Vec G, Vec V, Vec Xp, V
   return LevelJacobianApply(ts, (PetscInt)((TS_VSHMM *)ts->data)->level_end.size() - 1, X, G, V, Xp, W);
 }
 
-/* Level K's oscillation's part of the state X, P: its own components (mask; component splits) or
-   -J_K^2 X / rho_K^2 (additive splits: the oscillating modes at rate rho_K, the slower ones weighed
-   by their squared frequency over rho_K^2, the slow ones not at all). G: level K's field at X
-   (used without a mask); Xp, W work vectors. */
-static PetscErrorCode LevelOscillationPart(TS ts, PetscInt K, Vec mask, Vec G, Vec Xp, Vec W, Vec P)
+static constexpr PetscReal kOffCentre = 2; /* a level's own field at the centre its oscillation is taken about, this many times its field at the state: not its centre */
+
+/* Level K's oscillation's part of the state X, P: with additive splits -J_K G_K(X) / rho_K^2. With
+   G_K(X) = J_K (X - C) near the centre C the level oscillates about, that is -J_K^2 (X - C) /
+   rho_K^2: the oscillating modes at rate rho_K, the slower ones weighed by their squared frequency
+   over rho_K^2, the slow ones not at all. The displacement from the centre, not from 0: a stiff
+   bond r' = p, p' = -w^2 (r - 1) oscillates about r = 1, and -J_K^2 X / rho_K^2 (the form before
+   2026-11-28) took r for its amplitude, a thousand times the bond's, whose phases crossed r = 0
+   and read a frequency of 5.7e6 and a drive of 6e6: the micro step bounded 100 times below what
+   RK4 needs there (docs/accuracy.md section 39). With component splits (mask) the level's own
+   components themselves, every mode at its own weight (a quartet of rotations at 1000 to 2850: its
+   beats are probed at their relative amplitudes) and exact for a nonlinear cycle about 0 (van der
+   Pol's), unless the level's own field at that centre (X less them) is more than kOffCentre times
+   its field at X, or not finite there: then, on the own components, the displacement (the same bond with component
+   splits; one evaluation more, for oscillating levels only). G: level K's field at X; Xp a work
+   vector. */
+static PetscErrorCode LevelOscillationPart(TS ts, PetscInt K, Vec mask, Vec G, Vec Xp, Vec P)
 {
   TS_VSHMM *vs = (TS_VSHMM *)ts->data;
 
   PetscFunctionBegin;
-  if (mask) PetscCall(VecPointwiseMult(P, mask, ts->vec_sol));
-  else {
-    const PetscReal rho = vs->level_radius[K];
-    PetscCall(LevelJacobianApply(ts, K, ts->vec_sol, G, ts->vec_sol, Xp, W)); /* J X */
-    PetscCall(LevelJacobianApply(ts, K, ts->vec_sol, G, W, Xp, P));           /* J^2 X */
-    PetscCall(VecScale(P, -1.0 / (rho * rho)));
+  const PetscReal rho = vs->level_radius[K];
+  if (mask) {
+    /* the own components, an oscillation about 0 (a rotation, a limit cycle: their field vanishes
+       there), unless the field at that centre moves them faster than at X: then the displacement */
+    bool oscillates = false;
+    for (const std::complex<double> &lambda : (PetscInt)vs->level_limiting.size() > K ? vs->level_limiting[K] : std::vector<std::complex<double>>()) oscillates = oscillates || vshmm::oscillates(lambda);
+    PetscCall(VecPointwiseMult(P, mask, ts->vec_sol));
+    if (!oscillates) PetscFunctionReturn(0);
+    PetscReal g, gc;
+    PetscCall(VecWAXPY(Xp, -1.0, P, ts->vec_sol));
+    PetscCall(TSVSHMMEvaluateLevel_Private(vs, K, ts->ptime, Xp, P)); /* the field at X less its own components */
+    PetscCall(VecPointwiseMult(P, mask, P));
+    PetscCall(VecNorm(P, NORM_2, &gc));
+    PetscCall(VecPointwiseMult(P, mask, G));
+    PetscCall(VecNorm(P, NORM_2, &g));
+    PetscCall(VecPointwiseMult(P, mask, ts->vec_sol));
+    if (std::isfinite(gc) && gc <= kOffCentre * g) PetscFunctionReturn(0); /* (not finite there, with a 1 / r term: no centre either) */
+    PetscCall(PetscInfo(ts, "Level %" PetscInt_FMT " oscillates about a centre away from 0 (its own field there %g, at the state %g): its oscillation's part is the displacement -J G / rho^2\n", K, (double)gc, (double)g));
   }
+  PetscCall(LevelJacobianApply(ts, K, ts->vec_sol, G, G, Xp, P)); /* J G */
+  PetscCall(VecScale(P, -1.0 / (rho * rho)));
+  if (mask) PetscCall(VecPointwiseMult(P, mask, P));
   PetscFunctionReturn(0);
 }
 
@@ -898,10 +941,10 @@ static PetscErrorCode LevelBeats(TS ts, PetscInt K, Vec P, Vec mask)
    is rotated away by the fast field (the paper's oscillators: the medium split's y2^2 / eps pushes
    x1, which rotates at 1e6; with the slower fields' Jacobian their runs were 2-20x dearer).
 
-   The oscillation's part of the state, P, is the fastest level's own components (mask; component
-   splits) or -J_K^2 X / rho_K^2 (additive splits: the oscillating modes at rate rho_K, the slower
-   ones weighed by their squared frequency over rho_K^2, the slow ones not at all); a quarter turn
-   on it is Q = G_K(X) / rho_K on the own components or J_K P / rho_K. The drive is the derivative
+   The oscillation's part of the state, P, is its displacement from the centre it oscillates about,
+   -J_K G_K(X) / rho_K^2 (LevelOscillationPart(); on the fastest level's own components with
+   component splits); a quarter turn on it is Q = G_K(X) / rho_K on the own components or J_K P /
+   rho_K. The drive is the derivative
    of the slower levels' field G_{K-1} with respect to a relative change of the oscillation's
    amplitude (central differences), averaged over four phases of it (X - P + cos(theta) P +
    sin(theta) Q, theta a multiple of a quarter turn): only what the oscillation does to the slower
@@ -926,7 +969,7 @@ static PetscErrorCode FastestLevelDrive(TS ts, Vec mask, PetscReal n_all)
   PetscCall(VecDuplicate(ts->vec_sol, &Gm));
   PetscCall(VecDuplicate(ts->vec_sol, &D));
   PetscCall(TSVSHMMEvaluateLevel_Private(vs, K, ts->ptime, ts->vec_sol, G));
-  PetscCall(LevelOscillationPart(ts, K, mask, G, Xs, Q, P));
+  PetscCall(LevelOscillationPart(ts, K, mask, G, Xs, P));
   if (mask) PetscCall(VecPointwiseMult(Q, mask, G)); /* a quarter turn on: G_K(X) / rho_K on the own components, or J_K P / rho_K */
   else PetscCall(FastestJacobianApply(ts, ts->vec_sol, G, P, Xs, Q));
   PetscCall(VecScale(Q, 1.0 / rho));
@@ -1104,17 +1147,19 @@ PetscErrorCode TSVSHMMLevelOwnSlowest_Private(TS ts, PetscInt level, PetscReal *
        of it, the quarter turn G_K(X) / omega at the mean eigenvalue's frequency (a slow process
        inside the level is slow at every phase; the van der Pol oscillator's reads 8 at one phase
        and 1,500 at another) */
-    Vec       P, Q;
+    Vec       P, Q, Xp;
     PetscReal phase = *slowest;
     PetscCall(VecDuplicate(ts->vec_sol, &P));
     PetscCall(VecDuplicate(ts->vec_sol, &Q));
-    PetscCall(VecPointwiseMult(P, mask, ts->vec_sol));
+    PetscCall(VecDuplicate(ts->vec_sol, &Xp));
     PetscCall(TSVSHMMEvaluateLevel_Private(vs, level, ts->ptime, ts->vec_sol, Q));
+    PetscCall(LevelOscillationPart(ts, level, mask, Q, Xp, P));
     PetscCall(VecPointwiseMult(Q, mask, Q));
     PetscCall(VecScale(Q, 1.0 / vs->fastest_mean_mode.imag()));
     PetscCall(OwnSlowestOverPhases(ts, level, mask, P, Q, &phase));
     PetscCall(VecDestroy(&P));
     PetscCall(VecDestroy(&Q));
+    PetscCall(VecDestroy(&Xp));
     if (phase > *slowest)
       PetscCall(PetscInfo(ts, "Own components of level %" PetscInt_FMT " at t = %g: slowest rate %g at this phase of its nonlinear oscillation, %g at the slowest of four\n", level, (double)ts->ptime, (double)*slowest, (double)phase));
     *slowest = phase;
@@ -1356,7 +1401,7 @@ PetscErrorCode TSVSHMMFastQuantities_Private(TS ts, PetscReal t, Vec X, PetscRea
 {
   TS_VSHMM           *vs  = (TS_VSHMM *)ts->data;
   const PetscInt      K   = (PetscInt)vs->level_end.size() - 1;
-  const PetscReal     tol = PetscMax(ts->rtol, ts->atol);
+  const PetscReal     tol = TSVSHMMToleranceLevel_Private(ts);
   Vec                 G = nullptr, Xp = nullptr;
   std::vector<double> total, w; /* the quantities' derivatives along the whole field (empty: not yet), their weights */
   PetscReal           xmax, count = 0;
@@ -1711,21 +1756,18 @@ PetscErrorCode TSVSHMMLevelBeats_Private(TS ts)
     PetscCall(MayBeat(ts, L, &may));
     if (!may) continue;
     const StabilityCounting counting(vs);
-    Vec                     G = nullptr, Xp, W;
+    Vec                     G, Xp;
     PetscCall(VecDuplicate(ts->vec_sol, &Osc));
     PetscCall(VecDuplicate(ts->vec_sol, &Xp));
-    PetscCall(VecDuplicate(ts->vec_sol, &W));
     if (ComponentLevel(vs, L)) {
       PetscCall(VecDuplicate(ts->vec_sol, &mask));
       PetscCall(TSVSHMMWrittenComponents_Private(vs, vs->level_end[L - 1], vs->level_end[L], ts->ptime, mask));
-    } else {
-      PetscCall(VecDuplicate(ts->vec_sol, &G));
-      PetscCall(TSVSHMMEvaluateLevel_Private(vs, L, ts->ptime, ts->vec_sol, G));
     }
-    PetscCall(LevelOscillationPart(ts, L, mask, G, Xp, W, Osc));
+    PetscCall(VecDuplicate(ts->vec_sol, &G));
+    PetscCall(TSVSHMMEvaluateLevel_Private(vs, L, ts->ptime, ts->vec_sol, G));
+    PetscCall(LevelOscillationPart(ts, L, mask, G, Xp, Osc));
     PetscCall(VecDestroy(&G));
     PetscCall(VecDestroy(&Xp));
-    PetscCall(VecDestroy(&W));
     PetscCall(LevelBeats(ts, L, Osc, mask));
     PetscCall(VecDestroy(&Osc));
     PetscCall(VecDestroy(&mask));

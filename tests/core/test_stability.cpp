@@ -234,6 +234,34 @@ TEST(SlowestRate, AnOscillationsAmplitudeRateCounts)
   EXPECT_FALSE(vshmm::ambiguousAmplitudeRate({C(-1e-13, 1e-6), C(-1e3, 0), C(0, 1e3)})); // a zero mode left out
 }
 
+// The noise levels of the real parts scale with the block's entries over its eigenvalues: a
+// rotation's entries are its eigenvalues' size (the fixed levels), a position-velocity block
+// [[0, 1], [-w^2, 0]]'s are w times larger (a stiff bond at w = 1195, ||X|| = 1.5: forward
+// differences' rounding sqrt(eps) w ||X|| / (1 + ||X||) = 1.1e-5 of w, central ones' eps^(2/3) times
+// the same, 2.6e-8); its forward estimate of 1.6e-6 of w is noise, no longer a slow damping.
+TEST(SlowestRate, TheNoiseLevelsScaleWithTheBlocksEntries)
+{
+  using C                                = std::complex<double>;
+  const vshmm::AmplitudeRateNoise rotate = vshmm::amplitudeRateNoise(1e3, 1e3, 1.5);
+  EXPECT_EQ(rotate.forward, vshmm::kAmplitudeRateNoise);
+  EXPECT_EQ(rotate.central, vshmm::kAmplitudeRateCentralNoise);
+  const double                    w = 1195, eps = std::numeric_limits<double>::epsilon();
+  const vshmm::AmplitudeRateNoise bond = vshmm::amplitudeRateNoise(w * w, w, 1.5);
+  EXPECT_NEAR(bond.forward, std::sqrt(eps) * w * 0.6, 1e-12);
+  EXPECT_NEAR(bond.central, std::pow(eps, 2.0 / 3.0) * w * 0.6, 1e-15);
+  const std::vector<C> read = {C(1.6e-6 * w, w), C(1.6e-6 * w, -w)};
+  EXPECT_DOUBLE_EQ(vshmm::slowestRate(read), 1.6e-6 * w);                      /* with the fixed level it was a slow process, */
+  EXPECT_FALSE(vshmm::ambiguousAmplitudeRate(read));                           /* and not estimated again; */
+  EXPECT_DOUBLE_EQ(vshmm::slowestRate(read, bond.forward), std::abs(read[0])); /* now it is noise for forward differences, */
+  EXPECT_TRUE(vshmm::ambiguousAmplitudeRate(read, bond));                      /* estimated again by central ones, */
+  const std::vector<C> central = {C(2e-9 * w, w), C(2e-9 * w, -w)};            /* which read 2e-9 of w: noise, the bond's frequency */
+  EXPECT_DOUBLE_EQ(vshmm::slowestRate(central, bond.central), std::abs(central[0]));
+  const std::vector<C> damped = {C(-1e-6 * w, w), C(-1e-6 * w, -w)}; /* a true damping at 1e-6 of w: central differences still tell it */
+  EXPECT_DOUBLE_EQ(vshmm::slowestRate(damped, bond.central), 1e-6 * w);
+  const vshmm::AmplitudeRateNoise none = vshmm::amplitudeRateNoise(1.0, 0.0, 1.0); /* no eigenvalue: the fixed levels */
+  EXPECT_EQ(none.forward, vshmm::kAmplitudeRateNoise);
+}
+
 TEST(LargestAccurateStep, KeepsTheAmplitudeOverTheSpan)
 {
   vshmm::StabilityFunction   R(RK4());
