@@ -414,7 +414,7 @@ set_tests_properties(spectral_detect_auto_widened PROPERTIES FIXTURES_REQUIRED s
 # method instead and says so (before 2026-11-28 it stopped with the one-cluster error, exit 75)
 vshmm_example_test(NAME spectral_detect_auto_advection_tol1e-4 EXE advection
                    ARGS ${_sp_adv_auto} -spectral_grid_points 2048 -ts_rtol 1e-4 -ts_atol 1e-4 -output_times 0.001 -no_timing
-                   REGEX "one cluster \\(the detection found one band of wavenumbers\\): no time scales to separate, so no savings: the explicit sparse method [^\n]*\nts_type rk 3: time step 0.0001\noutput t 0.001 rhs_evaluations 30 "
+                   REGEX "one cluster \\(the detection kept one band of wavenumbers\\): no time scales to separate, so no savings: the explicit sparse method [^\n]*\nts_type rk 3: time step 0.0001\noutput t 0.001 rhs_evaluations 30 "
                    LABELS example spectral TIMEOUT 60)
 # an outside probe's scene (diffusion d = 0.1 + 0.1 exp(-((x - 2)/0.5)^2) + 0.08 exp(sin 30x), the
 # reaction (1 + 0.5 cos 2x)(-0.5 u - u^3), the source 0.5 sin x + 0.2 sin 25x, u0 a Gaussian of 1.5
@@ -791,4 +791,14 @@ _spectral_error_test(growth_bound_option "-spectral_growth_bound must be 0 \\(no
 # issue 9 (fuzzing): checked against N before anything is built; a ',' or '+' at an end refused
 _spectral_error_test(cluster_range_huge "cluster item '0:999999999' has wavenumber 999999999, outside 0..128" -spectral_grid_points 256 -spectral_mode sparse -spectral_clusters 0:999999999)
 _spectral_error_test(cluster_trailing_comma "-spectral_clusters 0:3,: .*empty cluster" -spectral_mode sparse -spectral_clusters 0:3,)
+# the examples' own checks (2026-11-28, an outside probe's): two output times that print alike by
+# %g (their files would overwrite each other), output times beyond a -ts_max_time given too, a
+# negative -ts_rtol named as such (it was reported as the detection's -spectral_cluster_tolerance),
+# a detection that sees no mode (u0 = 0: it advised lowering the threshold)
+_spectral_error_test(output_times_alike "-output_times: items 1 and 2 [(]1000.001 and 1000.004[)] print alike as 1000 with %g" -spectral_grid_points 64 -output_times 1000.001,1000.004)
+_spectral_error_test(output_times_max_time "-output_times goes to 0.4, beyond -ts_max_time 0.05" -spectral_grid_points 64 -output_times 0.2,0.4 -ts_max_time 0.05)
+_spectral_error_test(negative_rtol "-ts_rtol must be finite and nonnegative [(]the time stepping's tolerance, and the cluster detection's[)], got -1" -spectral_grid_points 64 -ts_rtol -1)
+_spectral_error_test(zero_u0_detection "The cluster detection sees no mode: every Fourier coefficient of its snapshots is 0" -spectral_grid_points 64 -spectral_mode sparse -spectral_u0 fourier -spectral_u0_offset 0 -output_times 0.01)
+# an explicit run with -ts_dt beyond the operator's stable step is warned before it blows up
+_spectral_error_test(dt_beyond_stable "Warning: -ts_dt 0.01 exceeds the stable step 0.0047[0-9]* of TSRK 3 for the scene's operator.*The solution blew up" -spectral_grid_points 64 -spectral_mode dns -ts_type rk -ts_rk_type 3 -ts_dt 0.01 -output_times 1)
 _spectral_error_test(cluster_trailing_plus "-spectral_clusters 0:3\\+: cluster item '0:3\\+' has an empty range" -spectral_mode sparse -spectral_clusters 0:3+)

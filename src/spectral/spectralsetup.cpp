@@ -620,6 +620,7 @@ static PetscErrorCode FindClusters(VSHMMSpectral sp, const std::vector<double> &
       for (const auto &m : mags)
         for (size_t k = 0; k < m.size(); ++k)
           if (m[k] * spc::normalizationFactor(s->norm, (int)s->N, m) > big) big = m[k] * spc::normalizationFactor(s->norm, (int)s->N, m), kbig = (int)k;
+      PetscCheck(big > 0, comm, PETSC_ERR_ARG_WRONG, "The cluster detection sees no mode: every Fourier coefficient of its snapshots is 0 (an initial state u0 = 0 that the scene's terms leave at 0): there are no time scales to find. Give the clusters (-%sspectral_clusters) or run the DNS (-%sspectral_mode dns)", pre, pre);
       SETERRQ(comm, PETSC_ERR_ARG_OUTOFRANGE, "Soft thresholding with -%sspectral_cluster_lambda %g leaves no mode: the largest %s-normalised coefficient is %g (k = %d); lower -%sspectral_cluster_lambda", pre, (double)VSHMMSpectralLambda(s), spc::normalizationName(s->norm), big, kbig, pre);
     }
     PetscCall(PetscTime(&w1));
