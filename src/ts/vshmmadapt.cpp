@@ -124,7 +124,8 @@ static constexpr PetscReal kGrowthSize      = 1e-4; /* a probe's perturbation at
 static constexpr PetscReal kGrowthPossible  = 0.1;  /* probes where the slowest level's Ritz values could grow an error by e^this over the run */
 static constexpr PetscReal kGrowthStretch   = 2; /* or where the solution's motion over a macro step grew, step after step (kGrowthStages steps at least: one step's doubling can be an initial layer's), to this many times its size at the streak's start (the dissipative example's passing growth: 1.6) */
 static constexpr PetscReal kFixedDamping    = 0.1;   /* fixed parameters: the fastest oscillation's amplitude lost to the micro step's damping over the run beyond which it is said (CheckMicroStepDamping()) */
-static constexpr PetscInt  kSlowValueStates = 3;     /* states whose fields' values show additive splits' slow components (SlowComponentsFromValues()) */
+static constexpr PetscInt  kSlowValueStates = 4;     /* states whose fields' values show additive splits' slow components (SlowComponentsFromValues()): the initial one, it nudged, the first two macro steps' starts */
+static constexpr PetscReal kNudge           = 1e-6;  /* the nudge along the whole field, relative to 1 + ||X|| */
 static constexpr PetscReal kObsStateSize    = 1e100; /* a state whose entries are below this cannot overflow an observable of degree 3: Inf or NaN from it is the observables function's */
 
 const char *const TSVSHMMSeparationChecks[] = {"off", "warn", "error", "TSVSHMMSeparationCheck", "TSVSHMM_SEPARATION_", nullptr};
@@ -132,10 +133,12 @@ const char *const TSVSHMMSeparationChecks[] = {"off", "warn", "error", "TSVSHMMS
 /* The tolerance's level, one number for the choices that need one (the first parameters, the micro
    step's accuracy bound, a probe's size, a swing counted in tolerances): the larger of -ts_rtol and
    -ts_atol, or where TSSetTolerances() gave vectors (which weigh the state, not the observables)
-   and no observables are given, the largest over the components of (atol_i + rtol_i |x_i|) / (1 +
-   |x_i|) at the present state (tol where atol = rtol = tol). With vectors alone and the scalars at
-   PETSc's defaults the runs chose their first parameters for 1e-4 where the vectors asked 1e-2
-   (1.8x the work). */
+   and no observables are given, the smallest over the components of max(rtol_i, atol_i / (1 +
+   |x_i|)) at the present state (tol where atol = rtol = tol; the relative tolerance where it is
+   the larger, so that a component at 0 with a large atol does not set it: a level of 10 was read
+   for vectors of 0.1 that gave atol 10 to a component starting at 0). With vectors alone and the
+   scalars at PETSc's defaults the runs chose their first parameters for 1e-4 where the vectors
+   asked 1e-2 (1.8x the work). */
 PetscReal TSVSHMMToleranceLevel_Private(TS ts)
 {
   TS_VSHMM *vs    = (TS_VSHMM *)ts->data;
@@ -148,16 +151,17 @@ PetscReal TSVSHMMToleranceLevel_Private(TS ts)
   if (VecGetLocalSize(ts->vec_sol, &n) || VecGetArrayRead(ts->vec_sol, &x)) return level;
   if (ts->vatol && VecGetArrayRead(ts->vatol, &va)) va = nullptr;
   if (ts->vrtol && VecGetArrayRead(ts->vrtol, &vr)) vr = nullptr;
+  local = PETSC_MAX_REAL;
   for (PetscInt i = 0; i < n; ++i) {
-    const PetscReal a = PetscAbsScalar(x[i]), w = (va ? PetscRealPart(va[i]) : ts->atol) + (vr ? PetscRealPart(vr[i]) : ts->rtol) * a;
-    if (std::isfinite(w)) local = PetscMax(local, w / (1 + a));
+    const PetscReal a = PetscAbsScalar(x[i]), r = PetscMax(vr ? PetscRealPart(vr[i]) : ts->rtol, (va ? PetscRealPart(va[i]) : ts->atol) / (1 + a));
+    if (std::isfinite(r) && r > 0) local = PetscMin(local, r);
   }
   if (va) (void)VecRestoreArrayRead(ts->vatol, &va);
   if (vr) (void)VecRestoreArrayRead(ts->vrtol, &vr);
   (void)VecRestoreArrayRead(ts->vec_sol, &x);
   PetscReal global = local;
-  if (MPI_Allreduce(&local, &global, 1, MPIU_REAL, MPIU_MAX, PetscObjectComm((PetscObject)ts)) != MPI_SUCCESS) return level;
-  return global > 0 ? global : level;
+  if (MPI_Allreduce(&local, &global, 1, MPIU_REAL, MPIU_MIN, PetscObjectComm((PetscObject)ts)) != MPI_SUCCESS) return level;
+  return global < PETSC_MAX_REAL ? global : level;
 }
 
 /* -ts_vshmm_adapt's tolerances beyond the scalars' signs: observables are weighed by the scalar
@@ -404,13 +408,32 @@ static PetscErrorCode SlowComponentsSetUp(TS ts)
   PetscCall(VecSet(vs->slow_seen, 0.0));
   PetscCall(VecSet(vs->faster_seen, 0.0));
   PetscCall(SlowComponentsFromValues(ts, ts->ptime, ts->vec_sol));
+  if (vs->slow_seen) { /* and a state nudged along the whole field: an exact 0 of the initial state (p = 0 makes a fast rotation's q' = w p vanish) hides a term there */
+    const TS_VSHMM::Counter counting = vs->counting;
+    Vec                     G, Xn;
+    PetscReal               gnorm, xnorm;
+    PetscCall(VecDuplicate(ts->vec_sol, &G));
+    PetscCall(VecDuplicate(ts->vec_sol, &Xn));
+    vs->counting = TS_VSHMM::COUNT_ADAPT;
+    PetscCall(TSVSHMMEvaluateLevel_Private(vs, (PetscInt)vs->level_end.size() - 1, ts->ptime, ts->vec_sol, G));
+    vs->counting = counting;
+    PetscCall(VecNorm(G, NORM_2, &gnorm));
+    PetscCall(VecNorm(ts->vec_sol, NORM_2, &xnorm));
+    if (gnorm > 0 && std::isfinite(gnorm)) {
+      PetscCall(VecWAXPY(Xn, kNudge * (1 + xnorm) / gnorm, G, ts->vec_sol));
+      PetscCall(SlowComponentsFromValues(ts, ts->ptime, Xn));
+    }
+    PetscCall(VecDestroy(&G));
+    PetscCall(VecDestroy(&Xn));
+  }
   PetscFunctionReturn(0);
 }
 
 /* The slow components from the fields' values: the slowest field seen nonzero at one of the states
    looked at, the faster levels' own splits zero at all of them. A state can hide a component
-   (x' = y is 0 where y = 0, as at a rest start): the states at the start and the first
-   kSlowValueStates - 1 macro steps' starts are looked at, then the mask stands. */
+   (x' = y is 0 where y = 0, as at a rest start): the initial state, it nudged along the whole
+   field (SlowComponentsSetUp()) and the first two macro steps' starts are looked at, then the mask
+   stands. */
 static PetscErrorCode SlowComponentsFromValues(TS ts, PetscReal t, Vec X)
 {
   TS_VSHMM *vs = (TS_VSHMM *)ts->data;
@@ -3506,8 +3529,8 @@ PetscErrorCode TSVSHMMAdaptStep_Private(TS ts, PetscReal t0, PetscReal DeltaT)
         for (double &r : next.ratios) r = 1.0;
         if (vs->adapt_single_rate_from < 0) { /* the first such step of the solve (the savings are gone for the rest): said once */
           vs->adapt_single_rate_from = t0;
-          PetscCall(TSVSHMMWarn_Private(ts, "TSVSHMM warning (-ts_vshmm_adapt): the tolerance (rtol %g, atol %g) is out of reach with savings: in the macro step [%g, %g] the error estimate stayed at %g times its share with finer savings factors and micro steps, and fell to %g without savings. The rest of the solve takes none (one Runge-Kutta step of the whole field per micro step, with VSHMM's error estimates on top). The scales are not separated enough for VSHMM at this tolerance (their ratio shows in the slow values); a single-rate TS type (-ts_type rk -ts_adapt_type basic) does the same work without the estimates, or loosen the tolerance. This warning is given once per solve.\n",
-                                        (double)ts->rtol, (double)ts->atol, (double)t0, (double)t1, (double)(floorEstimate / budget), (double)(E / budget)));
+          PetscCall(TSVSHMMWarn_Private(ts, "TSVSHMM warning (-ts_vshmm_adapt): the tolerance (rtol %g, atol %g%s) is out of reach with savings: in the macro step [%g, %g] the error estimate stayed at %g times its share with finer savings factors and micro steps, and fell to %g without savings. The rest of the solve takes none (one Runge-Kutta step of the whole field per micro step, with VSHMM's error estimates on top). The scales are not separated enough for VSHMM at this tolerance (their ratio shows in the slow values); a single-rate TS type (-ts_type rk -ts_adapt_type basic) does the same work without the estimates, or loosen the tolerance. This warning is given once per solve.\n",
+                                        (double)ts->rtol, (double)ts->atol, (ts->vatol || ts->vrtol) && !vs->observables ? "; the vectors of TSSetTolerances() on the components" : "", (double)t0, (double)t1, (double)(floorEstimate / budget), (double)(E / budget)));
         }
       }
     }
