@@ -2348,22 +2348,24 @@ TEST(VSHMMAdapt, AFastRotationsPhaseIsNoGrowth)
 {
   const std::vector<double> x0  = {0.0, 1.0, 0.0};
   const double              ref = ConvergedReference({DampedEnergySlow, UndampedDuffingFast}, nullptr, x0, 4, 1e-5, 5e-6, 1e-6);
-  SplitProblem              p;
-  AdaptRun                  run;
-  char                      path[] = "/tmp/vshmm_said_XXXXXX";
   PetscMPIInt               rank;
-  p.terms = {DampedEnergySlow, UndampedDuffingFast};
   ASSERT_EQ(MPI_Comm_rank(PETSC_COMM_WORLD, &rank), 0);
-  if (!rank) close(mkstemp(path));
-  ASSERT_EQ(MPI_Bcast(path, sizeof(path), MPI_CHAR, 0, PETSC_COMM_WORLD), 0);
-  const std::string options = std::string("-ts_vshmm_adapt -ts_rtol 1e-2 -ts_atol 1e-2 -ts_vshmm_warnings_viewer ascii:") + path;
-  ASSERT_EQ(SolveObserving(options.c_str(), p, x0, {"slow", "fast"}, 0.1, 4, &run, SplitKind::Additive, 2, DuffingObservables, &p), 0);
-  std::ifstream     in(path);
-  const std::string said((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  ASSERT_EQ(MPI_Barrier(PETSC_COMM_WORLD), 0);
-  if (!rank) std::remove(path);
-  EXPECT_EQ(said.find("grew the errors"), std::string::npos) << said;
-  EXPECT_LE(std::abs(run.x[0] - ref), 1e-2 * (1 + std::abs(ref))) << "x(4) = " << run.x[0] << ", reference " << ref;
+  for (const double tol : {1e-1, 1e-2}) { /* at 1e-1 measuring on x alone, the perturbation still on q, p too, read a growth e^(14.7 t) */
+    SplitProblem p;
+    AdaptRun     run;
+    char         path[] = "/tmp/vshmm_said_XXXXXX";
+    p.terms             = {DampedEnergySlow, UndampedDuffingFast};
+    if (!rank) close(mkstemp(path));
+    ASSERT_EQ(MPI_Bcast(path, sizeof(path), MPI_CHAR, 0, PETSC_COMM_WORLD), 0);
+    const std::string options = "-ts_vshmm_adapt -ts_rtol " + std::to_string(tol) + " -ts_atol " + std::to_string(tol) + " -ts_vshmm_warnings_viewer ascii:" + path;
+    ASSERT_EQ(SolveObserving(options.c_str(), p, x0, {"slow", "fast"}, 0.1, 4, &run, SplitKind::Additive, 2, DuffingObservables, &p), 0);
+    std::ifstream     in(path);
+    const std::string said((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    ASSERT_EQ(MPI_Barrier(PETSC_COMM_WORLD), 0);
+    if (!rank) std::remove(path);
+    EXPECT_EQ(said.find("grew the errors"), std::string::npos) << tol << ": " << said;
+    EXPECT_LE(std::abs(run.x[0] - ref), tol * (1 + std::abs(ref))) << tol << ": x(4) = " << run.x[0] << ", reference " << ref;
+  }
 }
 
 // A slow x driven by the squared amplitude A^2 of a fast rotation about a centre that moves with x
