@@ -712,7 +712,7 @@ PetscErrorCode TSVSHMMSetObservables(TS ts, PetscInt n, PetscErrorCode (*f)(TS, 
    The slow components are those that only the slowest scale's splits write (component splits,
    `TSRHSSplitSetIS()`). Where the splits are additive (every index set covers every component)
    the fields' values tell: the slowest level's field nonzero and every faster split's term zero,
-   at the initial state and the first two macro steps' starts. With observables
+   at the initial state, it nudged along the whole field and the first two macro steps' starts. With observables
    (`TSVSHMMSetObservables()`) the error estimate of a macro step is the larger of the observables'
    difference and the slow components' difference, in the weighted norm of the TS tolerances:
    an error in a slow component that the observables do not show at the end of one macro step
