@@ -511,6 +511,15 @@ static PetscErrorCode FastestJacobianApply(TS ts, Vec X, Vec G, Vec V, Vec Xp, V
   return LevelJacobianApply(ts, (PetscInt)((TS_VSHMM *)ts->data)->level_end.size() - 1, X, G, V, Xp, W);
 }
 
+/* Whether any of level l's limiting modes (its spectra's, vs->level_limiting) oscillates. */
+static bool LimitingModesOscillate(const TS_VSHMM *vs, PetscInt l)
+{
+  if ((PetscInt)vs->level_limiting.size() <= l) return false;
+  for (const std::complex<double> &lambda : vs->level_limiting[l])
+    if (vshmm::oscillates(lambda)) return true;
+  return false;
+}
+
 static constexpr PetscReal kOffCentre = 2; /* a level's own field at the centre its oscillation is taken about, this many times its field at the state: not its centre */
 
 /* Level K's oscillation's part of the state X, P: with additive splits -J_K G_K(X) / rho_K^2. With
@@ -536,10 +545,8 @@ static PetscErrorCode LevelOscillationPart(TS ts, PetscInt K, Vec mask, Vec G, V
   if (mask) {
     /* the own components, an oscillation about 0 (a rotation, a limit cycle: their field vanishes
        there), unless the field at that centre moves them faster than at X: then the displacement */
-    bool oscillates = false;
-    for (const std::complex<double> &lambda : (PetscInt)vs->level_limiting.size() > K ? vs->level_limiting[K] : std::vector<std::complex<double>>()) oscillates = oscillates || vshmm::oscillates(lambda);
     PetscCall(VecPointwiseMult(P, mask, ts->vec_sol));
-    if (!oscillates) PetscFunctionReturn(0);
+    if (!LimitingModesOscillate(vs, K)) PetscFunctionReturn(0);
     PetscReal g, gc;
     PetscCall(VecWAXPY(Xp, -1.0, P, ts->vec_sol));
     PetscCall(TSVSHMMEvaluateLevel_Private(vs, K, ts->ptime, Xp, P)); /* the field at X less its own components */
@@ -1192,10 +1199,8 @@ PetscErrorCode TSVSHMMLevelOwnRates_Private(TS ts)
   vs->beat_omega.clear();
   vs->beat_level.clear();
   for (PetscInt level = 1; level < nscales; ++level) {
-    if (!ComponentLevel(vs, level)) { /* additive splits: the fastest level's part of the state as its field sees it, ||G_K(X)|| / (rho_K ||X||) (the stiffest modes count fully) */
-      bool oscillates = false;        /* used by -ts_vshmm_adapt's micro step bound only, for oscillating modes */
-      if ((PetscInt)vs->level_limiting.size() > level)
-        for (const std::complex<double> &lambda : vs->level_limiting[level]) oscillates = oscillates || vshmm::oscillates(lambda);
+    if (!ComponentLevel(vs, level)) {                            /* additive splits: the fastest level's part of the state as its field sees it, ||G_K(X)|| / (rho_K ||X||) (the stiffest modes count fully) */
+      const bool oscillates = LimitingModesOscillate(vs, level); /* used by -ts_vshmm_adapt's micro step bound only, for oscillating modes */
       if (vs->adapt && oscillates && level == nscales - 1 && (PetscInt)vs->level_radius.size() > level && vs->level_radius[level] > 0) {
         Vec       G;
         PetscReal n_g, n_all;
