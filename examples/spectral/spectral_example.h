@@ -617,7 +617,7 @@ static PetscErrorCode SetStableStepRecheck(SpectralRun *run, TS ts, Vec U)
 
 /* A sparse run that cost more than a direct simulation would: the DNS of the scene, TSRK 3 at the
    stable step of the operator on every wavenumber (VSHMMSpectralGetDNSStableTimeStep(); at most a
-   tenth of the output spacing, as SetDefaultSteps() takes it), its evaluations counted to each
+   tenth of each output interval, as SolveToOutputTimes() takes it), its evaluations counted to each
    output time, against this run's with its stopped runs and its detection (each on the same
    N-point transforms). Said on the standard output where the DNS is cheaper by more than a tenth, for TSVSHMM (and the
    explicit sparse method that replaces it on one cluster), not for a TS type and step the user chose. */
@@ -625,7 +625,7 @@ static PetscErrorCode CompareWithDNS(SpectralRun *run, TS ts)
 {
   VSHMMSpectralStatistics st;
   PetscInt                nclusters, i;
-  PetscReal               h, spacing, t;
+  PetscReal               h, t;
   long long               dns = 0, work, all;
   PetscBool               isvshmm;
 
@@ -634,10 +634,8 @@ static PetscErrorCode CompareWithDNS(SpectralRun *run, TS ts)
   PetscCall(PetscObjectTypeCompare((PetscObject)ts, TSVSHMM, &isvshmm));
   if (!nclusters || !(isvshmm || run->fallback)) PetscFunctionReturn(0); /* a DNS itself, or the user's method */
   PetscCall(VSHMMSpectralGetDNSStableTimeStep(run->sp, TSRK3, &h));
-  PetscCall(OutputSpacing(run, ts, &spacing));
-  if (spacing > 0) h = PetscMin(h, spacing / 10);
   if (!(h > 0) || h >= PETSC_INFINITY) PetscFunctionReturn(0);
-  for (i = 0, t = run->t_start; i < run->ntimes; t = run->times[i], i++) dns += 3 * (long long)ceil((run->times[i] - t) / h - 1e-9);
+  for (i = 0, t = run->t_start; i < run->ntimes; t = run->times[i], i++) dns += 3 * (long long)ceil((run->times[i] - t) / PetscMin(h, (run->times[i] - t) / 10) - 1e-9);
   PetscCall(VSHMMSpectralGetStatistics(run->sp, &st));
   work = (long long)(st.field_evaluations + st.widening_evaluations);
   all  = work + (long long)st.detection_evaluations;
